@@ -1,0 +1,62 @@
+"""Linear viscoelastic (Kelvin-Voigt) impact law, paper Eq. 1-3 (Anagnostopoulos 1988).
+
+F = k * delta + c * delta_dot,  c = 2 * xi * sqrt(k * m_eff),  clipped at zero (no tension).
+
+Two rules give xi from the coefficient of restitution:
+- "eq3": xi = -ln(COR) / sqrt(pi^2 + ln^2(COR)), the paper's Eq. 3. It is exact only if the
+  contact may pull at the end of restitution; with the no-tension rule the bodies separate
+  when F reaches zero, earlier and faster, so the realised COR is higher (0.55 for 0.5).
+- "no_tension" (default): the xi for which the *clipped* law realises the target COR. The
+  clipped oscillator separates when its acceleration vanishes, which gives in closed form
+  COR = exp(-r * (pi - 2 * atan(r))), r = xi / sqrt(1 - xi^2); it is inverted here.
+"""
+import numpy as np
+from scipy.optimize import brentq
+
+XI_RULES = ("no_tension", "eq3")
+
+
+def xi_eq3(cor):
+    """Paper Eq. 3 damping ratio, (B,)."""
+    log = np.log(cor)
+    return -log / np.sqrt(np.pi**2 + log**2)
+
+
+def cor_no_tension(xi):
+    """COR realised by the clipped Kelvin-Voigt contact with damping ratio xi (< 1)."""
+    r = xi / np.sqrt(1 - xi**2)
+    return np.exp(-r * (np.pi - 2 * np.arctan(r)))
+
+
+def xi_no_tension(cor):
+    """Damping ratio for which the clipped contact realises `cor` exactly, (B,)."""
+    cor = np.atleast_1d(np.asarray(cor, dtype=float))
+    xi = np.zeros_like(cor)
+    for i, c in enumerate(cor):  # setup only, never inside the time loop
+        if c < 1:
+            xi[i] = brentq(lambda x, c=c: cor_no_tension(x) - c, 0.0, 1 - 1e-12, xtol=1e-15)
+    return xi
+
+
+def damping_coefficient(k, cor, m_eff, xi_rule="no_tension"):
+    """Impact dashpot c (N*s/m), Eq. 2, with xi from `xi_rule`."""
+    xi = xi_no_tension(cor) if xi_rule == "no_tension" else xi_eq3(cor)
+    return 2 * xi * np.sqrt(k * m_eff)
+
+
+def force(delta, delta_dot, v_imp, p):
+    """Contact force (N, >= 0) for indentation delta (m) and its rate delta_dot (m/s), (B,).
+
+    p.k: N/m; p.coef: dashpot c (N*s/m). v_imp is unused (kept for a uniform signature).
+    """
+    return np.maximum(p.k * delta + p.coef * delta_dot, 0.0)
+
+
+def max_tangent_stiffness(p, indentation_bound):
+    """Largest contact stiffness the member can reach (N/m), for the stability limit."""
+    return p.k
+
+
+def explicit_damping_ratio(p):
+    """Damping ratio of the dashpot on the contact spring: it acts on a lagged velocity."""
+    return p.coef / (2 * np.sqrt(p.k * p.m_eff))
