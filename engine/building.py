@@ -5,8 +5,8 @@ Everything is SI: kg, N/m, N*s/m, s.
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Sequence
 
 import numpy as np
 
@@ -50,7 +50,8 @@ class Building:
             raise EngineError(
                 f"story_stiffness must be 4 positive values in N/m, got {self.story_stiffness!r}")
         if not 0 < self.k2 < self.k1:
-            raise EngineError(f"isolator stiffness needs 0 < k2 < k1, got k1={self.k1}, k2={self.k2}")
+            raise EngineError(
+                f"isolator stiffness needs 0 < k2 < k1, got k1={self.k1}, k2={self.k2}")
         if not self.fy_ratio > 0:
             raise EngineError(f"fy_ratio must be positive, got {self.fy_ratio}")
         for name in ("zeta_iso", "zeta_sup"):
@@ -94,7 +95,8 @@ class Building:
         """(5, 5) viscous damping matrix, N*s/m, per the `damping` choice."""
         if self.damping == "paper":
             c_iso = 2 * self.zeta_iso * np.sqrt(self.k1 * self.total_mass)
-            c_story = 2 * self.zeta_sup * np.asarray(self.story_stiffness) / self.fixed_base_omega1()
+            omega_1 = self.fixed_base_omega1()
+            c_story = 2 * self.zeta_sup * np.asarray(self.story_stiffness) / omega_1
             return _chain_matrix(np.concatenate([[c_iso], c_story]))
         m = np.asarray(self.masses, dtype=float)
         omega2, phi = _generalized_eig(self.stiffness_matrix(), m)
@@ -151,7 +153,7 @@ class BuildingArrays:
     damping: np.ndarray
     stiffness: np.ndarray
 
-    def take(self, index) -> "BuildingArrays":
+    def take(self, index) -> BuildingArrays:
         return BuildingArrays(*(getattr(self, f)[index] for f in self.__dataclass_fields__))
 
 
@@ -173,6 +175,6 @@ def building_arrays(building: Building | Sequence[Building], size: int) -> Build
         )
         for b in unique
     ]
-    fields = [np.array(col) for col in zip(*rows)]
+    fields = [np.array(col) for col in zip(*rows, strict=True)]
     which = np.array([unique[b] for b in members]) if len(members) > 1 else np.zeros(size, int)
     return BuildingArrays(*(f[which] for f in fields))

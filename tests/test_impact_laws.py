@@ -5,7 +5,7 @@ from scipy.integrate import solve_ivp
 
 import engine
 from engine import Contact
-from engine.impact import linear_viscoelastic, rubber_bumper
+from engine.impact import force, linear_viscoelastic, rubber_bumper
 
 M_BODY = 300.0           # kg, the Kajita et al. steel rods
 M_EFF = M_BODY / 2
@@ -130,14 +130,18 @@ def test_bumper_law_shape():
     c = Contact.bumper(0.3, thickness=0.05, strain=0.8, k_w=1.5e9)
     assert c.gap[0] == pytest.approx(0.25) and c.delta_u[0] == pytest.approx(0.04)
     du = 0.04
-    f = rubber_bumper.force
-    below = f(np.array([du - 1e-9]), np.array([1.0]), np.array([1.0]), c)[0]
-    above = f(np.array([du + 1e-9]), np.array([1.0]), np.array([1.0]), c)[0]
+
+    def f(*args):
+        return force(rubber_bumper, *args, c)
+    one = np.array([1.0])
+    below, above = f(np.array([du - 1e-9]), one, one)[0], f(np.array([du + 1e-9]), one, one)[0]
     assert above == pytest.approx(below, rel=1e-6)
-    assert f(np.array([0.05]), np.array([1.0]), np.array([1.0]), c)[0] == pytest.approx(
-        c.k[0] * du**2.65 + 1.5e9 * 0.01)
-    assert f(np.array([0.02]), np.array([-0.5]), np.array([1.0]), c)[0] < c.k[0] * 0.02**2.65
-    assert f(np.array([0.02]), np.array([-100.0]), np.array([1.0]), c)[0] == 0.0
+    assert f(np.array([0.05]), one, one)[0] == pytest.approx(c.k[0] * du**2.65 + 1.5e9 * 0.01)
+    c_imp = rubber_bumper.damping_prefactor(0.45, 320e3)
+    assert f(np.array([0.02]), np.array([-0.1]), one)[0] == pytest.approx(
+        c.k[0] * 0.02**2.65 * (1 - 0.1 * c_imp))
+    assert f(np.array([0.02]), np.array([-100.0]), one)[0] == 0.0
+    assert f(np.array([-0.01]), one, one)[0] == 0.0
 
 
 def test_cavity_mounting_geometry():

@@ -1,10 +1,12 @@
 """Moat-wall impact laws, one module each, and `Contact`: the per-member wall description.
 
-Every law module offers the same pure functions over (B,) arrays:
-    force(delta, delta_dot, v_imp, p) -> F >= 0 (N)
+Every law is affine in the indentation rate at a given indentation and phase, so each module
+offers the same pure functions over (B,) arrays:
+    force_terms(delta, delta_dot, v_imp, p) -> (elastic force N, dashpot N*s/m)
+        with F = max(elastic + dashpot * delta_dot, 0); delta_dot only selects the phase;
     max_tangent_stiffness(p, indentation_bound) -> N/m
-    explicit_damping_ratio(p) -> damping ratio of any dashpot that acts on the lagged velocity
-where p is a `Contact` (or a slice of one) holding that law's members.
+where p is a `Contact` (or a slice of one) holding that law's members. Integrators put the
+dashpot on the central velocity (see integrate.py); `force` evaluates a law directly.
 """
 from __future__ import annotations
 
@@ -70,12 +72,14 @@ class Contact:
         arrays = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in values.values()))
         shape = arrays[0].shape
         if len(shape) > 1:
-            raise EngineError(f"contact parameters must be scalars or 1-D arrays, got shape {shape}")
+            raise EngineError(
+                f"contact parameters must be scalars or 1-D arrays, got shape {shape}")
         arrays = [np.atleast_1d(a).copy() for a in arrays]
-        for name, a in zip(values, arrays):
+        named = dict(zip(values, arrays, strict=True))
+        for name, a in named.items():
             if np.any(np.isnan(a)):
                 raise EngineError(f"{name} contains NaN")
-        return cls(law=np.full(arrays[0].shape, law, dtype=np.int8), **dict(zip(values, arrays)))
+        return cls(law=np.full(arrays[0].shape, law, dtype=np.int8), **named)
 
     @classmethod
     def none(cls, size: int = 1) -> Contact:
@@ -133,7 +137,8 @@ class Contact:
                         alpha=alpha)
         _check_exponent(n)
         _check_cor(cor)
-        strain, n_bumpers, cavity = (np.asarray(x, dtype=float) for x in (strain, n_bumpers, cavity))
+        strain, n_bumpers, cavity = (np.asarray(x, dtype=float)
+                                     for x in (strain, n_bumpers, cavity))
         if np.any((strain <= 0) | (strain > 1)):
             raise EngineError(f"strain must be in (0, 1], got {strain}")
         if np.any(n_bumpers < 1) or np.any(n_bumpers != np.round(n_bumpers)):
@@ -161,13 +166,26 @@ class Contact:
                                                         indentation_bound)
         return out
 
-    def explicit_damping_ratio(self) -> np.ndarray:
-        out = np.zeros(len(self))
-        for code, module in LAW_MODULES.items():
-            sel = self.law == code
-            if np.any(sel):
-                out[sel] = module.explicit_damping_ratio(self[np.flatnonzero(sel)])
-        return out
+
+
+def force(module, delta, delta_dot, v_imp, p):
+    """Contact force (N, >= 0) of one law at indentation delta (m), rate delta_dot (m/s)."""
+    elastic, dashpot = module.force_terms(delta, delta_dot, v_imp, p)
+    return np.where(delta > 0, np.maximum(elastic + dashpot * delta_dot, 0.0), 0.0)
+
+
+def implicit_force(elastic, dashpot, delta_dot_free, compliance):
+    """Contact force (N, >= 0) with the dashpot on the central velocity, solved exactly.
+
+    delta_dot_free: the central indentation rate if no contact force acted this step (m/s);
+    compliance: how much one newton of contact force lowers the next half-step velocity, hence
+    twice what it lowers the central rate (m/s/N). Because the
+    force is affine in the rate, F = (elastic + dashpot * delta_dot_free) /
+    (1 + dashpot * compliance / 2) keeps the sign of the explicit estimate, so clipping at
+    zero (no tension) stays consistent.
+    """
+    trial = elastic + dashpot * delta_dot_free
+    return np.maximum(trial / (1 + 0.5 * dashpot * compliance), 0.0)
 
 
 def _replace(contact: Contact, **arrays) -> Contact:

@@ -21,18 +21,14 @@ def chi(cor, n, rule="lankarani"):
     return hunt_crossley_chi(cor, n, restitution_only=False)
 
 
-def force(delta, delta_dot, v_imp, p):
-    """Contact force (N, >= 0), (B,). p.k (N/m^n), p.n, p.coef = chi; v_imp (m/s) > 0."""
-    d = np.maximum(delta, 0.0)
-    return np.maximum(p.k * d**p.n * (1 + p.coef * delta_dot / v_imp), 0.0)
+def force_terms(delta, delta_dot, v_imp, p):
+    """(elastic force N, dashpot N*s/m), (B,) each: F = k delta^n + (k delta^n chi / v_imp)
+    delta_dot. p.k (N/m^n), p.n, p.coef = chi; v_imp (m/s) > 0."""
+    elastic = p.k * np.maximum(delta, 0.0) ** p.n
+    return elastic, elastic * p.coef / v_imp
 
 
 def max_tangent_stiffness(p, indentation_bound):
     """Tangent n k delta^(n-1) at the indentation bound (m): the law itself has no cap."""
     return p.n * p.k * indentation_bound ** (p.n - 1)
 
-
-def explicit_damping_ratio(p):
-    # The damping only scales a non-negative elastic force down, or up by a bounded factor on
-    # approach; it cannot flip the force's sign, so the stiffness alone sets the limit.
-    return np.zeros_like(p.k)

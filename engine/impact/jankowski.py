@@ -1,6 +1,7 @@
 """Nonlinear viscoelastic impact law (Jankowski 2005; paper Fig. 4a).
 
-Approach (delta_dot > 0): F = beta * delta^1.5 + c * delta_dot, c = 2 xi sqrt(beta sqrt(delta) m_eff)
+Approach (delta_dot > 0): F = beta * delta^1.5 + c * delta_dot,
+    c = 2 xi sqrt(beta sqrt(delta) m_eff)
 Restitution (delta_dot <= 0): F = beta * delta^1.5
 xi = 9 sqrt(5) (1 - COR^2) / (2 COR (COR (9 pi - 16) + 16))  (Jankowski 2006).
 """
@@ -14,18 +15,17 @@ def damping_ratio(cor):
     return 9 * np.sqrt(5) * (1 - cor**2) / (2 * cor * (cor * (9 * np.pi - 16) + 16))
 
 
-def force(delta, delta_dot, v_imp, p):
-    """Contact force (N, >= 0), (B,). p.k = beta (N/m^1.5), p.coef = xi, p.m_eff (kg)."""
+def force_terms(delta, delta_dot, v_imp, p):
+    """(elastic force N, dashpot N*s/m), (B,) each; the dashpot acts on approach only.
+
+    p.k = beta (N/m^1.5), p.coef = xi, p.m_eff (kg).
+    """
     d = np.maximum(delta, 0.0)
-    elastic = p.k * d**EXPONENT
-    dashpot = 2 * p.coef * np.sqrt(p.k * np.sqrt(d) * p.m_eff) * np.maximum(delta_dot, 0.0)
-    return elastic + dashpot
+    dashpot = 2 * p.coef * np.sqrt(p.k * np.sqrt(d) * p.m_eff)
+    return p.k * d**EXPONENT, np.where(delta_dot > 0, dashpot, 0.0)
 
 
 def max_tangent_stiffness(p, indentation_bound):
     """Tangent 1.5 beta delta^0.5 at the indentation bound (m): the law itself has no cap."""
     return EXPONENT * p.k * np.sqrt(indentation_bound)
 
-
-def explicit_damping_ratio(p):
-    return p.coef

@@ -44,19 +44,15 @@ def damping_coefficient(k, cor, m_eff, xi_rule="no_tension"):
     return 2 * xi * np.sqrt(k * m_eff)
 
 
-def force(delta, delta_dot, v_imp, p):
-    """Contact force (N, >= 0) for indentation delta (m) and its rate delta_dot (m/s), (B,).
+def force_terms(delta, delta_dot, v_imp, p):
+    """(elastic force N, dashpot N*s/m), (B,) each: F = k delta + c delta_dot.
 
-    p.k: N/m; p.coef: dashpot c (N*s/m). v_imp is unused (kept for a uniform signature).
+    p.k: N/m; p.coef: dashpot c. delta_dot and v_imp are unused (uniform signature).
     """
-    return np.maximum(p.k * delta + p.coef * delta_dot, 0.0)
+    return p.k * delta, p.coef
 
 
 def max_tangent_stiffness(p, indentation_bound):
     """Largest contact stiffness the member can reach (N/m), for the stability limit."""
     return p.k
 
-
-def explicit_damping_ratio(p):
-    """Damping ratio of the dashpot on the contact spring: it acts on a lagged velocity."""
-    return p.coef / (2 * np.sqrt(p.k * p.m_eff))

@@ -69,17 +69,15 @@ def approach_force(delta, p):
     return rubber + p.k_w * np.maximum(d - p.delta_u, 0.0)
 
 
-def force(delta, delta_dot, v_imp, p):
-    """Contact force (N, >= 0), (B,)."""
+def force_terms(delta, delta_dot, v_imp, p):
+    """(elastic force N, dashpot N*s/m), (B,) each: F_A on approach, F_A (1 + C_imp
+    delta_dot) in restitution, i.e. a dashpot F_A C_imp that acts in restitution only."""
+    elastic = approach_force(delta, p)
     c_imp = p.coef / v_imp**p.vexp
-    factor = np.where(delta_dot > 0, 1.0, np.maximum(1 + c_imp * delta_dot, 0.0))
-    return approach_force(delta, p) * factor
+    return elastic, np.where(delta_dot > 0, 0.0, elastic * c_imp)
 
 
 def max_tangent_stiffness(p, indentation_bound):
     """The stiffer of the rubber's tangent at delta_u and the wall k_w (N/m)."""
     return np.maximum(p.n * p.k * p.delta_u ** (p.n - 1), p.k_w)
 
-
-def explicit_damping_ratio(p):
-    return np.zeros_like(p.k)

@@ -1,0 +1,43 @@
+"""Shared fixtures: the paper's records as the record layer resolves them."""
+from pathlib import Path
+
+import pytest
+
+SHARED_RECORDS = Path(__file__).resolve().parents[1].parent / "shared" / "records"
+
+
+@pytest.fixture(scope="session")
+def records_dir() -> Path:
+    """../shared/records: real AT2 files the project must read in place, never copy."""
+    if not SHARED_RECORDS.is_dir():
+        pytest.skip("../shared/records is not present")
+    return SHARED_RECORDS
+
+
+@pytest.fixture(scope="session")
+def paper_record():
+    """Load one of the paper's records by key: from ../shared/records when it is there, else
+    from the embedded library. Olive View and Pacoima are always the real records; a test
+    that needs real Kobe or Sylmar Converter data should use `real_paper_record`."""
+    from pipeline.records import paper_record as resolve
+
+    directory = SHARED_RECORDS if SHARED_RECORDS.is_dir() else None
+    cache = {}
+
+    def load(key):
+        if key not in cache:
+            cache[key] = resolve(key, records_dir=directory)
+        return cache[key]
+
+    return load
+
+
+@pytest.fixture(scope="session")
+def real_paper_record(paper_record):
+    def load(key):
+        record = paper_record(key)
+        if record.found_in == "stand-in":
+            pytest.skip(f"the real {key} record is not available here")
+        return record
+
+    return load
