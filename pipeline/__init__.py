@@ -1,0 +1,137 @@
+"""Study pipeline: records, parameter grids, dask-parallel engine runs, NetCDF archives.
+
+    import pipeline
+    ds = pipeline.sweep(records=["kobe", "pacoima"], gap=[0.15, 0.30, 0.45],
+                        n_bumpers=[4, 8], baseline=True, out="results/gap.nc")
+
+Data flows one way: records + grid (grid.py) -> engine batches on dask (run.py) -> labelled
+Dataset -> NetCDF (archive.py). Imports happen inside the functions, so that light entry
+points such as `python -m pipeline.records` load neither xarray nor dask.
+"""
+from __future__ import annotations
+
+__all__ = ["SweepError", "sweep", "unconstrained_peaks"]
+
+DEFAULT_M_EFF = 320e3  # kg: the base slab against an immovable wall (SPEC decision)
+
+
+def sweep(records, gap=None, thickness=None, strain=None, n_bumpers=None, wall_k=None,
+          cor=None, impact: str = "bumper", dt: float | None = None, workers: int = 2,
+          scheduler=None, out=None, *, baseline: bool = False, unconstrained: bool = False,
+          building=None, m_eff: float = DEFAULT_M_EFF, batch_size: int | None = None,
+          records_dir=None, quiet: bool = False):
+    """Simulate every combination of the parameters under every record; label the peaks.
+
+    records: paper keys ("kobe", "sylmar_converter", "olive_view", "pacoima"), library names,
+        AT2 paths (see pipeline.records.load_record) or Record objects; one or a list.
+    gap (m), thickness (m), strain (-), n_bumpers (-), wall_k (N/m; N/m^1.5 for jankowski and
+        hertzdamp), cor (-): a scalar is held fixed (scalar coordinate), a sequence is swept
+        (a dimension). None takes the impact law's default; pipeline.grid tells how each
+        parameter maps onto each law (thickness, strain, n_bumpers apply to bumpers only).
+    impact: "bumper" (the paper's rubber bumpers, default), "linear", "jankowski", "hertzdamp".
+    dt: integration step (s), default engine.DEFAULT_DT; refused at or above the stability
+        limit (engine.stable_dt).
+    workers: local worker processes (one thread each); 0 or 1 runs in this process. Worker
+        processes are spawned: a script calling sweep with workers >= 2 needs the
+        `if __name__ == "__main__":` guard.
+    scheduler: a dask.distributed scheduler address (or Client) to run on instead.
+    out: NetCDF path, written atomically; finished batches are kept in `<out>.work/` so that a
+        rerun after a crash computes only what is missing; the folder goes once out is written.
+    baseline: also run the bare wall without bumpers (linear, k 2.5e9 N/m, COR 0.5) once per
+        (record, gap) at the full gap; adds baseline_* and amplification_* variables.
+    unconstrained: also run each record without wall; adds unconstrained_* variables.
+    building: engine.Building (default: the paper's); m_eff: effective impact mass (kg).
+    batch_size: members per engine call (default: up to 512, and at least `workers` batches).
+    records_dir: folder of AT2 files for the records' lookup; quiet: no progress bar.
+
+    Returns an xarray.Dataset, dims: record, the swept parameters (in the order gap,
+    thickness, strain, n_bumpers, wall_k, cor), floor (0-4) or story (1-4). Variables:
+    peak_total_accel (m/s^2; floor), peak_interstory_drift (m; story), peak_isolator_disp (m),
+    max_indentation (m), max_impact_force (N), n_impacts, impact_energy (J); with baseline,
+    baseline_<same> (record, gap, ...) and amplification_total_accel,
+    amplification_interstory_drift (bumpers / no bumpers); with unconstrained,
+    unconstrained_<same> (record, ...). Raises SweepError, naming the parameter, before any
+    simulation runs.
+    """
+    from .grid import SweepError, make_grid
+
+    if gap is None:
+        raise SweepError("gap is required (m)")
+    grid = make_grid(gap, thickness, strain, n_bumpers, wall_k, cor, impact=impact,
+                     m_eff=m_eff, baseline=baseline, unconstrained=unconstrained)
+    arguments = {"gap": gap, "thickness": thickness, "strain": strain, "n_bumpers": n_bumpers,
+                 "wall_k": wall_k, "cor": cor, "impact": impact, "baseline": baseline,
+                 "unconstrained": unconstrained, "m_eff": m_eff}
+    return _execute(grid, records, dt, workers, scheduler, out, building, batch_size,
+                    records_dir, quiet, arguments)
+
+
+def unconstrained_peaks(records, dt: float | None = None, building=None, workers: int = 1,
+                        scheduler=None, records_dir=None, quiet: bool = True):
+    """Peaks of the building without moat wall: a Dataset with dims (record, floor/story).
+
+    Variables as in `sweep` (peak_isolator_disp m, peak_total_accel m/s^2, ...). Recipes use
+    it for "gap = 0.9 x unconstrained peak isolator displacement" and as the no-pounding
+    reference.
+    """
+    from .grid import make_grid
+
+    grid = make_grid(None, unconstrained=True)
+    ds = _execute(grid, records, dt, workers, scheduler, None, building, None, records_dir,
+                  quiet, {"unconstrained_only": True})
+    prefix = "unconstrained_"
+    return ds.rename({name: name[len(prefix):] for name in ds.data_vars
+                      if name.startswith(prefix)})
+
+
+def _execute(grid, records, dt, workers, scheduler, out, building, batch_size, records_dir,
+             quiet, arguments):
+    """Check the rest of the input, run, label, archive."""
+    import shutil
+
+    import engine
+
+    from .archive import build_dataset, write_netcdf
+    from .grid import (
+        SweepError,
+        check_count,
+        check_dt,
+        check_out,
+        default_batch_size,
+        plain,
+        resolve_records,
+    )
+    from .run import run
+
+    building = engine.Building() if building is None else building
+    if not isinstance(building, engine.Building):
+        raise SweepError(f"building must be an engine.Building, got {type(building).__name__}")
+    dt = check_dt(grid, engine.DEFAULT_DT if dt is None else dt, building)
+    workers = check_count("workers", workers, minimum=0)
+    if scheduler is not None and not isinstance(scheduler, str) \
+            and not hasattr(scheduler, "submit"):
+        raise SweepError(f"scheduler must be an address such as 'tcp://host:8786' or a "
+                         f"dask.distributed Client, got {scheduler!r}")
+    recs, names = resolve_records(records, records_dir)
+    if batch_size is None:
+        batch_size = default_batch_size(grid.n_members, len(recs), workers)
+    batch_size = check_count("batch_size", batch_size, minimum=1)
+    out = check_out(out)
+    work_dir = None if out is None else out.with_name(out.name + ".work")
+
+    results = run(grid, recs, dt, building, workers=workers, scheduler=scheduler,
+                  work_dir=work_dir, batch_size=batch_size, quiet=quiet)
+    arguments = plain({**arguments, "records": names, "dt": dt})
+    ds = build_dataset(grid, recs, results, dt, building, names, arguments)
+    if out is not None:
+        write_netcdf(ds, out)
+        shutil.rmtree(work_dir, ignore_errors=True)
+    return ds
+
+
+def __getattr__(name):
+    if name == "SweepError":
+        from .grid import SweepError
+
+        return SweepError
+    raise AttributeError(f"module 'pipeline' has no attribute {name!r}")

@@ -1,0 +1,318 @@
+"""Running a sweep: engine batches, in this process or on dask workers, resumable on disk.
+
+Each batch is one `engine.simulate` call: one record, at most `batch_size` members. Workers
+return peak arrays and this process alone writes them (no races on shared files). Finished
+batches are kept in a work folder as .npz files holding their member rows, so a killed sweep
+rerun with the same arguments computes only the members it is missing. Every member is looked
+up by its context key (record content, dt, building, engine source) and its member row: the
+engine's results do not depend on the batch a member ran in, so the batch size and the
+number of workers may change between runs without invalidating anything.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import logging
+import math
+import os
+import sys
+import tempfile
+import threading
+import time
+import uuid
+import zipfile
+from contextlib import contextmanager
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+
+import engine
+
+from .grid import Grid, contact_for
+
+# Peak arrays kept per simulation: name -> (trailing shape, dtype).
+PEAKS = {
+    "peak_total_accel": ((5,), np.float64),
+    "peak_interstory_drift": ((4,), np.float64),
+    "peak_isolator_disp": ((), np.float64),
+    "max_indentation": ((), np.float64),
+    "max_impact_force": ((), np.float64),
+    "n_impacts": ((), np.int64),
+    "impact_energy": ((), np.float64),
+}
+# One BLAS thread per worker process: workers are the parallelism; more threads only contend.
+BLAS_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
+CACHE_FORMAT = 1  # bump when the work-folder layout or the peak set changes
+
+
+@dataclass(frozen=True)
+class Batch:
+    """One engine call: record index, (b,) member indices into the grid's table, and its key."""
+
+    record: int
+    members: np.ndarray
+    key: str
+
+
+def simulate_batch(accel: np.ndarray, accel_dt: float, rows: np.ndarray,
+                   building: engine.Building, dt: float, progress=None,
+                   report: tuple[str, str] | None = None) -> dict[str, np.ndarray]:
+    """Peaks of the (b, 8) member rows under one record (m/s^2 every accel_dt s).
+
+    progress(step, n_steps) is called as the engine goes; on a dask worker, report =
+    (topic, tag) sends [tag, step / n_steps] to the client's event topic instead.
+    """
+    if report is not None:
+        from distributed import get_worker
+
+        worker, (topic, tag) = get_worker(), report
+
+        def progress(step, n_steps):
+            worker.log_event(topic, [tag, step / n_steps])
+
+    result = engine.simulate(accel, accel_dt, contact_for(rows), building=building, dt=dt,
+                             progress=progress)
+    return {name: np.asarray(getattr(result, name), dtype=dtype)
+            for name, (_, dtype) in PEAKS.items()}
+
+
+@lru_cache(maxsize=1)
+def engine_fingerprint() -> str:
+    """Hash of the engine's source, the project and NumPy versions: a changed engine is a new
+    key (NumPy too, since its kernels set the last bits of a result)."""
+    digest = hashlib.sha256(f"{_project_version()} numpy {np.__version__}".encode())
+    root = Path(engine.__file__).parent
+    for path in sorted(root.rglob("*.py")):
+        digest.update(path.relative_to(root).as_posix().encode())
+        digest.update(path.read_bytes())
+    return digest.hexdigest()
+
+
+def _project_version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("bumpers")
+    except PackageNotFoundError:
+        return "unknown"
+
+
+def record_hash(accel: np.ndarray, accel_dt: float) -> str:
+    """sha256 of a record's samples (float64) and its step."""
+    digest = hashlib.sha256(np.ascontiguousarray(accel, dtype="<f8").tobytes())
+    digest.update(float(accel_dt).hex().encode())
+    return digest.hexdigest()
+
+
+def context_key(record, dt: float, building: engine.Building) -> str:
+    """Everything besides the member row that determines a member's result."""
+    text = json.dumps({"format": CACHE_FORMAT, "engine": engine_fingerprint(),
+                       "record": record_hash(record.accel, record.dt), "dt": float(dt).hex(),
+                       "building": repr(building)}, sort_keys=True)
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+class WorkFolder:
+    """Finished batches on disk: `<key>.npz` with the context, member rows and peaks."""
+
+    def __init__(self, path: Path):
+        self.path = Path(path)
+        self.path.mkdir(parents=True, exist_ok=True)
+
+    def load(self) -> dict[tuple[str, bytes], dict[str, np.ndarray]]:
+        """(context, member row bytes) -> that member's peaks, from every readable batch."""
+        found = {}
+        for file in sorted(self.path.glob("*.npz")):
+            try:
+                with np.load(file, allow_pickle=False) as data:
+                    context, rows = str(data["context"]), data["rows"]
+                    peaks = {name: data[name] for name in PEAKS}
+            except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
+                continue  # a damaged file (killed mid-write elsewhere) is simply recomputed
+            for i, row in enumerate(rows):
+                found[context, row.tobytes()] = {name: value[i] for name, value in peaks.items()}
+        return found
+
+    def save(self, key: str, context: str, rows: np.ndarray, peaks: dict[str, np.ndarray]):
+        """Write atomically: a batch file is complete or absent."""
+        fd, tmp = tempfile.mkstemp(dir=self.path, prefix=f".{key}.", suffix=".tmp")
+        try:
+            with os.fdopen(fd, "wb") as f:
+                np.savez(f, context=np.array(context), rows=rows, **peaks)
+            os.replace(tmp, self.path / f"{key}.npz")
+        except BaseException:
+            Path(tmp).unlink(missing_ok=True)
+            raise
+
+
+class Progress:
+    """'done/total simulations, elapsed, time left' on stderr, once a run passes `delay` s.
+
+    Thread-safe: dask reports running batches from the client's event-loop thread.
+    """
+
+    def __init__(self, total: int, done: int = 0, quiet: bool = False, stream=None,
+                 delay: float = 2.0):
+        self.total, self.done = total, done
+        self.start_done = done
+        self.partial: dict = {}  # running batch -> simulations' worth done
+        self.quiet = quiet
+        self.stream = sys.stderr if stream is None else stream
+        self.tty = getattr(self.stream, "isatty", lambda: False)()
+        self.delay = delay
+        self.every = 0.5 if self.tty else 10.0  # a log file gets a line now and then
+        self.t0 = time.monotonic()
+        self.last = -math.inf
+        self.last_line = ""
+        self.lock = threading.Lock()
+
+    def advance(self, n: int, batch=None) -> None:
+        """n more simulations finished (those of `batch`, if it was reported running)."""
+        with self.lock:
+            self.done += n
+            self.partial.pop(batch, None)
+            self._draw()
+
+    def running(self, batch, n: float) -> None:
+        """`batch` has done n simulations' worth so far."""
+        with self.lock:
+            self.partial[batch] = n
+            self._draw()
+
+    def close(self) -> None:
+        with self.lock:
+            self._draw(final=True)
+
+    def _draw(self, final: bool = False) -> None:
+        now = time.monotonic()
+        elapsed = now - self.t0
+        if self.quiet or elapsed < self.delay or (not final and now - self.last < self.every):
+            return
+        done = self.done + sum(self.partial.values())
+        rate = (done - self.start_done) / elapsed
+        left = (self.total - done) / rate if rate > 0 else math.nan
+        line = (f"sweep: {int(done)}/{self.total} simulations "
+                f"({100 * done / max(self.total, 1):.0f}%), {_clock(elapsed)} elapsed, "
+                f"~{_clock(left)} left")
+        if final and line == self.last_line and not self.tty:
+            return  # already said
+        self.last, self.last_line = now, line
+        end = "\n" if final or not self.tty else ""
+        self.stream.write(("\r" if self.tty else "") + line + end)
+        self.stream.flush()
+
+
+def _clock(seconds: float) -> str:
+    if not math.isfinite(seconds):
+        return "?"
+    minutes, sec = divmod(int(round(seconds)), 60)
+    hours, minutes = divmod(minutes, 60)
+    return f"{hours}:{minutes:02d}:{sec:02d}" if hours else f"{minutes}:{sec:02d}"
+
+
+def run(grid: Grid, records, dt: float, building: engine.Building, *, workers: int = 2,
+        scheduler=None, work_dir: Path | None = None, batch_size: int = 512,
+        quiet: bool = False) -> list[dict[str, np.ndarray]]:
+    """Simulate every member of `grid` under every record.
+
+    records: objects with name, dt (s) and accel (m/s^2); scheduler: None, a dask.distributed
+    address or Client; workers <= 1 without a scheduler runs here, in this process.
+    Returns one dict per record: peak name -> (M, ...) array in the grid's member order.
+    """
+    table = grid.table
+    n_members = table.shape[0]
+    results = [{name: np.zeros((n_members, *shape), dtype) for name, (shape, dtype)
+                in PEAKS.items()} for _ in records]
+    contexts = [context_key(rec, dt, building) for rec in records]
+    work = WorkFolder(work_dir) if work_dir is not None else None
+    cached = work.load() if work is not None else {}
+
+    batches = []
+    for r, context in enumerate(contexts):
+        missing = []
+        for i, row in enumerate(table):
+            peaks = cached.get((context, row.tobytes()))
+            if peaks is None:
+                missing.append(i)
+            else:
+                for name, value in peaks.items():
+                    results[r][name][i] = value
+        for start in range(0, len(missing), batch_size):
+            members = np.array(missing[start:start + batch_size])
+            key = hashlib.sha256(context.encode() + table[members].tobytes()).hexdigest()
+            batches.append(Batch(r, members, key))
+    # Longest records first: a long record's batch starting last would leave workers idle.
+    batches.sort(key=lambda b: -len(records[b.record].accel) * records[b.record].dt)
+    n_todo = sum(b.members.size for b in batches)
+    progress = Progress(len(records) * n_members, len(records) * n_members - n_todo, quiet)
+
+    def finish(batch: Batch, peaks: dict[str, np.ndarray]) -> None:
+        if work is not None:
+            work.save(batch.key, contexts[batch.record], table[batch.members], peaks)
+        for name, value in peaks.items():
+            results[batch.record][name][batch.members] = value
+        progress.advance(batch.members.size, batch.key)
+
+    if batches and scheduler is None and workers <= 1:
+        for batch in batches:
+            rec = records[batch.record]
+            size = batch.members.size
+            peaks = simulate_batch(rec.accel, rec.dt, table[batch.members], building, dt,
+                                   progress=lambda step, steps, b=batch.key, s=size:
+                                   progress.running(b, s * step / steps))
+            finish(batch, peaks)
+    elif batches:
+        _run_on_dask(batches, records, table, building, dt, workers, scheduler, progress,
+                     finish)
+    progress.close()
+    return results
+
+
+def _run_on_dask(batches, records, table, building, dt, workers, scheduler, progress,
+                 finish) -> None:
+    """Submit every batch; finish() each as it completes, here in the client process."""
+    from distributed import as_completed
+
+    with _client(workers, scheduler) as client:
+        sizes = {b.key: b.members.size for b in batches}
+        topic = f"bumpers-progress-{uuid.uuid4().hex}"
+
+        def on_event(event):  # (timestamp, [batch key, fraction done])
+            key, fraction = event[1]
+            progress.running(key, sizes[key] * fraction)
+
+        client.subscribe_topic(topic, on_event)
+        try:
+            accel = {r: client.scatter(np.asarray(records[r].accel), hash=False)
+                     for r in sorted({b.record for b in batches})}
+            futures = {}
+            for batch in batches:
+                future = client.submit(simulate_batch, accel[batch.record],
+                                       records[batch.record].dt, table[batch.members],
+                                       building, dt, report=(topic, batch.key),
+                                       key=f"bumpers-batch-{batch.record}-{batch.key}")
+                futures[future] = batch
+            for future in as_completed(futures, loop=client.loop):
+                finish(futures[future], future.result())
+        finally:
+            client.unsubscribe_topic(topic)
+
+
+@contextmanager
+def _client(workers: int, scheduler):
+    """A dask.distributed Client: given, at an address, or on a new local cluster."""
+    from distributed import Client, LocalCluster
+
+    if scheduler is not None and not isinstance(scheduler, str):
+        yield scheduler  # a Client the caller owns and closes
+    elif scheduler is not None:
+        with Client(scheduler, set_as_default=False) as client:
+            yield client
+    else:
+        with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                          dashboard_address=None, silence_logs=logging.ERROR,
+                          env=BLAS_ENV) as cluster, \
+                Client(cluster, set_as_default=False) as client:
+            yield client
