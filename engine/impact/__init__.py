@@ -123,14 +123,16 @@ class Contact:
     def bumper(cls, gap, thickness=0.05, strain=0.8, n_bumpers=4, k_w=1.5e9, cor=0.45,
                m_eff=DEFAULT_M_EFF, cavity=0.0, area=rubber_bumper.BUMPER_AREA,
                k_r=rubber_bumper.K_R, n=rubber_bumper.EXPONENT, alpha=rubber_bumper.ALPHA,
-               c_imp_rule="eq9") -> Contact:
+               c_imp_rule="eq9", c_imp=None) -> Contact:
         """Rubber bumpers on the wall (the paper's model), SPEC section 2.
 
         gap: slab-to-wall clearance before bumpers (m); thickness t (m); strain: ultimate
         compressive strain; n_bumpers per side (in parallel); k_w: wall stiffness (N/m);
         cavity: depth c_d (m) of the wall recess holding each bumper; area (m^2), k_r (Pa),
         n, alpha: Eq. 11-12. The engine uses gap_eff = gap - (t - c_d) and
-        delta_u = min(strain t, t - c_d).
+        delta_u = min(strain t, t - c_d). c_imp_rule: "eq9" (the paper's C_imp) or
+        "calibrated" (realises the COR exactly); c_imp: a fixed C_imp in s/m instead, the
+        same at every impact velocity (for re-deriving Eq. 9, section 3.2).
         """
         _check_rule("c_imp_rule", c_imp_rule, rubber_bumper.C_IMP_RULES)
         _check_positive(gap=gap, thickness=thickness, k_w=k_w, m_eff=m_eff, area=area, k_r=k_r,
@@ -153,6 +155,9 @@ class Contact:
         delta_u = np.minimum(strain * np.asarray(thickness), protrusion)
         c = cls._build(BUMPER, gap=np.asarray(gap) - protrusion, k=k_imp, n=n, cor=cor,
                        m_eff=m_eff, delta_u=delta_u, k_w=k_w, coef=0.0, vexp=0.0)
+        if c_imp is not None:
+            _check_positive(c_imp=c_imp)
+            return _replace(c, coef=c_imp, vexp=0.0)
         coef, vexp = rubber_bumper.damping_constants(c.cor, c.m_eff, c.n, c_imp_rule)
         return _replace(c, coef=coef, vexp=vexp)
 

@@ -1,0 +1,46 @@
+"""Shared figure style: the paper's units (cm, g, kN), print-size fonts, PNG + PDF output."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")  # recipes draw files, never windows
+import matplotlib.pyplot as plt  # noqa: E402
+
+G = 9.81  # m/s^2 per g, as in the engine's building weight and the record layer
+CM = 100.0  # cm per m
+KN = 1e-3  # kN per N
+
+RECORD_LABELS = {
+    "kobe": "Kobe 1995 (KJMA 000)",
+    "sylmar_converter": "Northridge 1994 (Sylmar Converter 142)",
+    "olive_view": "Northridge 1994 (Olive View 090)",
+    "pacoima": "San Fernando 1971 (Pacoima Dam 164)",
+}
+FLOOR_LABELS = ["Base (isolation level)", "1st floor", "2nd floor", "3rd floor", "Roof"]
+STORY_LABELS = ["1st story", "2nd story", "3rd story", "4th story"]
+
+plt.rcParams.update({
+    "font.size": 8, "axes.titlesize": 8, "axes.labelsize": 8, "legend.fontsize": 7,
+    "xtick.labelsize": 7, "ytick.labelsize": 7, "lines.linewidth": 1.2, "lines.markersize": 3,
+    "axes.grid": True, "grid.alpha": 0.3, "figure.dpi": 100, "savefig.dpi": 200,
+    "savefig.bbox": "tight",
+})
+
+
+def record_label(ds, record: str) -> str:
+    """Readable name of a record coordinate value, marked when it is a stand-in."""
+    label = RECORD_LABELS.get(record, record)
+    if ds.attrs.get(f"record_{record}_found_in") == "stand-in":
+        label += " [stand-in]"
+    return label
+
+
+def save_figure(fig, stem: Path) -> list[Path]:
+    """Write stem.png and stem.pdf; return the paths."""
+    paths = [Path(f"{stem}.png"), Path(f"{stem}.pdf")]
+    for path in paths:
+        fig.savefig(path)
+    plt.close(fig)
+    return paths

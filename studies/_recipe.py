@@ -1,0 +1,114 @@
+"""What every recipe shares: its command line, the archive, the figure, the paper check.
+
+A recipe module declares a `Recipe` (its grid in `compute`, its figure in `plot`, its check of
+the paper's conclusion in `check`) and ends with `main = recipe.main`. Running it:
+    compute (or, with --replot, reopen the archive) -> check -> NAME.nc -> NAME.png / .pdf
+No physics here: grids go to pipeline.sweep or engine.two_body, peaks come back labelled.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable
+
+PAPER_RECORDS = ("kobe", "sylmar_converter", "olive_view", "pacoima")
+
+
+@dataclass(frozen=True)
+class Recipe:
+    """name: module and file stem; figure: the paper's figure(s); summary: one line for --help;
+    chosen: values the paper does not state, and what was chosen (shown in --help, stored in
+    the archive); records: the paper's records for this figure (None: no records, e.g. the
+    two-body studies); compute(args) -> Dataset; plot(ds) -> matplotlib Figure;
+    check(ds) -> the paper's conclusion against what was computed, a short text."""
+
+    name: str
+    figure: str
+    summary: str
+    compute: Callable
+    plot: Callable
+    check: Callable
+    chosen: str = ""
+    records: tuple[str, ...] | None = PAPER_RECORDS
+
+    def parser(self) -> argparse.ArgumentParser:
+        epilog = f"Values the paper does not state: {self.chosen}" if self.chosen else None
+        p = argparse.ArgumentParser(
+            prog=f"python -m studies.{self.name}",
+            description=f"{self.summary} (paper {self.figure}). Writes {self.name}.nc, "
+                        f"{self.name}.png and {self.name}.pdf into --out.",
+            epilog=epilog)
+        if self.records is not None:
+            p.add_argument("--records", nargs="+", default=list(self.records), metavar="NAME",
+                           help="paper keys (kobe, sylmar_converter, olive_view, pacoima), "
+                                "library names, RSN<n>:<component> or AT2 paths "
+                                f"(default: {' '.join(self.records)})")
+            p.add_argument("--records-dir", default=None, metavar="DIR",
+                           help="folder of PEER AT2 files searched first for the paper's "
+                                "records (default: $BUMPERS_RECORDS_DIR; else the embedded "
+                                "library, else a reported stand-in)")
+            p.add_argument("--workers", type=int, default=2,
+                           help="local worker processes, one thread each (0 or 1: in this "
+                                "process; default 2)")
+            p.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                           help="dask.distributed scheduler address to run on instead")
+            p.add_argument("--dt", type=float, default=None, metavar="S",
+                           help="integration step in s (default: the engine's, 0.5 ms)")
+        p.add_argument("--out", type=Path, default=Path("results"), metavar="DIR",
+                       help="output folder (default: results/)")
+        p.add_argument("--quick", action="store_true",
+                       help="a coarse grid, for tests and first looks")
+        p.add_argument("--replot", action="store_true",
+                       help=f"redraw the figure from an existing {self.name}.nc, no computing")
+        p.add_argument("--quiet", action="store_true", help="no progress bar")
+        return p
+
+    def main(self, argv=None) -> int:
+        args = self.parser().parse_args(argv)
+        try:
+            return self._run(args)
+        except (ValueError, FileNotFoundError, OSError) as err:
+            # Bad input (SweepError, RecordError, EngineError are ValueErrors): one line.
+            print(f"{self.name}: error: {err}", file=sys.stderr)
+            return 2
+
+    def _run(self, args) -> int:
+        import xarray as xr
+
+        from pipeline.archive import write_netcdf
+
+        from ._plot import save_figure
+
+        archive = args.out / f"{self.name}.nc"
+        if args.replot:
+            if not archive.is_file():
+                raise FileNotFoundError(f"--replot needs {archive}, which does not exist")
+            with xr.open_dataset(archive) as opened:
+                ds = opened.load()
+        else:
+            args.out.mkdir(parents=True, exist_ok=True)
+            ds = self.compute(args)
+            ds.attrs.update(recipe=self.name, paper_figure=self.figure, quick=int(args.quick),
+                            values_chosen=self.chosen or "none")
+            ds.attrs["paper_check"] = self.check(ds)
+            write_netcdf(ds, archive)
+        for line in _substitutions(ds):
+            print(line)
+        print(ds.attrs["paper_check"])
+        figures = save_figure(self.plot(ds), args.out / self.name)
+        print("wrote", archive, *figures)
+        return 0
+
+
+def sweep_options(args) -> dict:
+    """The pipeline.sweep keywords every record-based recipe passes through."""
+    return dict(records=args.records, records_dir=args.records_dir, workers=args.workers,
+                scheduler=args.scheduler, dt=args.dt, quiet=args.quiet)
+
+
+def _substitutions(ds) -> list[str]:
+    """Stand-in notes stored by the pipeline, one line each."""
+    return [f"note: {value}" for key, value in ds.attrs.items()
+            if key.startswith("record_") and key.endswith("_substitution")]
