@@ -153,11 +153,13 @@ class Contact:
                               f"close the gap (gap {gap}, thickness {thickness}, cavity {cavity})")
         k_imp = rubber_bumper.impact_stiffness(area, thickness, k_r, n, alpha, n_bumpers)
         delta_u = np.minimum(strain * np.asarray(thickness), protrusion)
-        c = cls._build(BUMPER, gap=np.asarray(gap) - protrusion, k=k_imp, n=n, cor=cor,
-                       m_eff=m_eff, delta_u=delta_u, k_w=k_w, coef=0.0, vexp=0.0)
         if c_imp is not None:
             _check_positive(c_imp=c_imp)
-            return _replace(c, coef=c_imp, vexp=0.0)
+        c = cls._build(BUMPER, gap=np.asarray(gap) - protrusion, k=k_imp, n=n, cor=cor,
+                       m_eff=m_eff, delta_u=delta_u, k_w=k_w,
+                       coef=0.0 if c_imp is None else c_imp, vexp=0.0)
+        if c_imp is not None:
+            return c
         coef, vexp = rubber_bumper.damping_constants(c.cor, c.m_eff, c.n, c_imp_rule)
         return _replace(c, coef=coef, vexp=vexp)
 
