@@ -1,6 +1,7 @@
 """Shared figure style: the paper's units (cm, g, kN), print-size fonts, PNG + PDF output."""
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import matplotlib
@@ -30,10 +31,11 @@ plt.rcParams.update({
 
 
 def record_label(ds, record: str) -> str:
-    """Readable name of a record coordinate value, marked when it is a stand-in."""
+    """Readable name of a record coordinate value; a stand-in names the record used."""
     label = RECORD_LABELS.get(record, record)
     if ds.attrs.get(f"record_{record}_found_in") == "stand-in":
-        label += " [stand-in]"
+        used = {r["name"]: r.get("record_name", "?") for r in json.loads(ds.attrs["records"])}
+        label += f"\n[stand-in: {used.get(record, '?')}]"
     return label
 
 

@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import argparse
 import sys
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable
 
 PAPER_RECORDS = ("kobe", "sylmar_converter", "olive_view", "pacoima")
 

@@ -15,6 +15,12 @@ def records_dir() -> Path:
 
 
 @pytest.fixture(scope="session")
+def records_dir_args() -> list[str]:
+    """Command-line arguments pointing a recipe at ../shared/records when it is there."""
+    return ["--records-dir", str(SHARED_RECORDS)] if SHARED_RECORDS.is_dir() else []
+
+
+@pytest.fixture(scope="session")
 def paper_record():
     """Load one of the paper's records by key: from ../shared/records when it is there, else
     from the embedded library. Olive View and Pacoima are always the real records; a test
