@@ -21,7 +21,7 @@ import numpy as np
 
 from .building import N_LEVELS, Building, BuildingArrays, building_arrays
 from .errors import EngineError, UnstableTimeStep
-from .impact import LAW_MODULES, Contact, implicit_force
+from .impact import Contact, fill_force_terms, implicit_force, law_blocks
 from .isolator import isolator_force, plastic_spring_force
 
 # s: the coarsest step at which halving dt moves every peak of the paper's practical example
@@ -131,18 +131,11 @@ def simulate(accel, accel_dt: float, contact: Contact,
             f"(member {worst}, {contact.law_names[worst]} contact); use dt < {limit[worst]:.4g} s")
     ag = ground_motion_on_grid(accel, accel_dt, dt)
 
-    # Members of one law sit in one contiguous block so that each law runs on a view.
-    order = np.argsort(contact.law, kind="stable")
+    order, blocks = law_blocks(contact)
     inverse = np.argsort(order)
     contact, arrays = contact[order], arrays.take(order)
-    groups = []
-    for code, module in LAW_MODULES.items():
-        idx = np.flatnonzero(contact.law == code)
-        if idx.size:
-            block = slice(idx[0], idx[-1] + 1)
-            groups.append((block, module, contact[block]))
     hist_members = None if history is None else inverse[np.asarray(history.members, dtype=int)]
-    peaks, hist = _time_loop(ag, dt, arrays, contact.gap, groups, hist_members,
+    peaks, hist = _time_loop(ag, dt, arrays, contact.gap, blocks, hist_members,
                              None if history is None else history.every, progress)
     peaks = {name: value[inverse] for name, value in peaks.items()}
     if hist is not None:
@@ -150,7 +143,7 @@ def simulate(accel, accel_dt: float, contact: Contact,
     return Result(**peaks, dt=dt, history=hist)
 
 
-def _time_loop(ag, dt, b: BuildingArrays, gap, groups, hist_members, hist_every, progress):
+def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every, progress):
     size = b.masses.shape[0]
     mass = b.masses
     # One (B, 5, 10) operator maps [p - f, v_{n-1/2}] to v_{n+1/2}.
@@ -217,9 +210,7 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, groups, hist_members, hist_every,
         v_imp = np.where(new, side * v_half[:, 0], v_imp)
         in_contact = touching
         rate_free = side * 0.5 * (v_half[:, 0] + v_next[:, 0])
-        for block, module, params in groups:
-            elastic[block], dashpot[block] = module.force_terms(
-                delta[block], rate_free[block], v_imp[block], params)
+        fill_force_terms(blocks, delta, rate_free, v_imp, elastic, dashpot)
         # A dashpot that is already loaded at first touch (Kelvin-Voigt) would push for the
         # whole step [t_n - dt/2, t_n + dt/2]; weight it by the part after the touch, located
         # by linear interpolation of the indentation. Without this, peaks jitter with dt.

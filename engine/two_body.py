@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import EngineError
-from .impact import LAW_MODULES, NONE, Contact, implicit_force
+from .impact import NONE, Contact, fill_force_terms, implicit_force, law_blocks
 
 DEFAULT_STEPS_PER_CONTACT = 4000
 
@@ -62,13 +62,7 @@ def two_body(m1, m2, v, contact: Contact, steps_per_contact: int = DEFAULT_STEPS
     dt = contact_time_scale(m_eff, v, contact.k, contact.n) / steps_per_contact
     max_steps = int(max_contacts * steps_per_contact)
     size = len(contact)
-    order = np.argsort(contact.law, kind="stable")
-    groups = []
-    for code, module in LAW_MODULES.items():
-        idx = np.flatnonzero(contact.law[order] == code)
-        if idx.size:
-            block = slice(idx[0], idx[-1] + 1)
-            groups.append((block, module, contact[order[block]]))
+    order, blocks = law_blocks(contact)
     v_sorted, dt_sorted, m_sorted = v[order], dt[order], m_eff[order]
 
     delta = np.zeros(size)
@@ -79,9 +73,7 @@ def two_body(m1, m2, v, contact: Contact, steps_per_contact: int = DEFAULT_STEPS
     deltas, forces = [], []
     for _ in range(max_steps):
         # No other force acts, so the free central rate is v_{n-1/2} itself.
-        for block, module, params in groups:
-            elastic[block], dashpot[block] = module.force_terms(
-                delta[block], v_half[block], v_sorted[block], params)
+        fill_force_terms(blocks, delta, v_half, v_sorted, elastic, dashpot)
         force = np.where(delta > 0, implicit_force(elastic, dashpot, v_half, compliance), 0.0)
         deltas.append(delta.copy())
         forces.append(force.copy())

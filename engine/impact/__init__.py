@@ -175,6 +175,30 @@ class Contact:
 
 
 
+def law_blocks(contact: Contact):
+    """Order members by law so that each law runs on a contiguous view.
+
+    Returns (order, blocks): `contact[order]` is the sorted batch and `blocks` lists
+    (slice into the sorted batch, law module, that block's Contact).
+    """
+    order = np.argsort(contact.law, kind="stable")
+    law = contact.law[order]
+    blocks = []
+    for code, module in LAW_MODULES.items():
+        idx = np.flatnonzero(law == code)
+        if idx.size:
+            block = slice(idx[0], idx[-1] + 1)
+            blocks.append((block, module, contact[order[block]]))
+    return order, blocks
+
+
+def fill_force_terms(blocks, delta, delta_dot, v_imp, elastic, dashpot):
+    """Evaluate every law on its block of the sorted batch into elastic and dashpot, (B,)."""
+    for block, module, params in blocks:
+        elastic[block], dashpot[block] = module.force_terms(
+            delta[block], delta_dot[block], v_imp[block], params)
+
+
 def force(module, delta, delta_dot, v_imp, p):
     """Contact force (N, >= 0) of one law at indentation delta (m), rate delta_dot (m/s)."""
     elastic, dashpot = module.force_terms(delta, delta_dot, v_imp, p)
