@@ -1,0 +1,347 @@
+"""Time histories of a few wall configurations under one record, labelled like sweep peaks.
+
+    from pipeline.histories import histories
+    ds = histories("kobe", {"no_pounding": {"impact": "none"},
+                            "no_bumpers": {"impact": "linear", "gap": 0.15},
+                            "bumpers": {"impact": "bumper", "gap": 0.15, "thickness": 0.05}})
+
+The practical example of the paper (section 4, Figs. 9-13) needs what a sweep does not keep:
+the base acceleration against time and the force-indentation loops of the impacts. A
+configuration is written in pipeline.sweep's vocabulary with one value per parameter: impact
+("none" for no wall, "bumper", "linear", "jankowski", "hertzdamp"), gap, thickness, strain,
+n_bumpers, wall_k, cor (SI units; pipeline.grid says how each maps onto each law, and omitted
+ones take the law's default; the bare wall of the sweeps' baseline is impact="linear" with its
+defaults, k 2.5e9 N/m, COR 0.5). pipeline.grid validates each configuration and builds the
+engine Contact; all configurations of the record run in one engine batch, in this process.
+
+The Dataset has dims configuration, time (and floor, story): the histories sampled every
+`every` integration steps, and the peaks of every configuration under the same names and units
+as a sweep's archive (pipeline.archive.PEAK_META). Peaks are taken over every step, so with
+every > 1 a history's maximum may fall slightly under its peak; with every = 1 they are equal.
+"""
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+from collections.abc import Mapping
+
+import numpy as np
+import xarray as xr
+
+import engine
+
+from .grid import (
+    DEFAULT_M_EFF,
+    IMPACT_LAWS,
+    PARAMS,
+    WALL_K_MEANING,
+    Grid,
+    SweepError,
+    check_count,
+    check_dt,
+    contact_for,
+    describe_row,
+    make_grid,
+    plain,
+    resolve_records,
+)
+
+# name -> (units, long_name, trailing dimension or None), as archive.PEAK_META
+HISTORY_META = {
+    "isolator_disp": ("m", "isolator displacement (isolation level relative to the ground)",
+                      None),
+    "total_accel": ("m s-2", "total (absolute) floor acceleration", "floor"),
+    "impact_force": ("N", "impact force on the moat wall (0 out of contact)", None),
+    "indentation": ("m", "indentation at the moat wall (0 out of contact)", None),
+}
+CONFIG_KEYS = ("impact", *PARAMS, "m_eff")
+NO_WALL = "none"
+
+
+def histories(record, configurations: Mapping[str, Mapping], dt: float | None = None,
+              every: int = 4, records_dir=None, building=None, m_eff: float = DEFAULT_M_EFF,
+              duration: float | None = None, quiet: bool = True) -> xr.Dataset:
+    """Simulate each configuration under one record; keep its time histories and peaks.
+
+    record: a paper key, library name, AT2 path or Record (see pipeline.records.load_record);
+    configurations: name -> {"impact": ..., "gap": m, ...} (module docstring); dt: integration
+        step (s, default engine.DEFAULT_DT), refused at or above the stability limit;
+    every: keep every `every`-th step of the histories (every * dt s apart);
+    records_dir: folder of AT2 files for the record's lookup; building: engine.Building
+        (default: the paper's); m_eff: effective impact mass (kg) unless a configuration sets
+        its own;
+    duration: simulate only the first `duration` s of the record (a quick look: peaks are then
+        those of the segment, and the archive says so); quiet: no progress bar.
+
+    Returns an xarray.Dataset, dims configuration, time, floor (0-4), story (1-4):
+    isolator_disp (m), total_accel (m/s^2; floor), impact_force (N), indentation (m) against
+    time, and the peaks peak_total_accel (m/s^2; floor), peak_interstory_drift (m; story),
+    peak_isolator_disp (m), max_indentation (m), max_impact_force (N), n_impacts,
+    impact_energy (J); per-configuration coordinates impact, the parameters (NaN where a law
+    does not use one), clear_gap and crush_indentation (the engine's gap_eff and delta_u, m);
+    scalar coordinates of the record; provenance attributes as a sweep's archive. Raises
+    SweepError, naming the parameter, before any simulation runs.
+    """
+    from .run import Progress
+
+    names, grids = _configurations(configurations, m_eff)
+    building = engine.Building() if building is None else building
+    if not isinstance(building, engine.Building):
+        raise SweepError(f"building must be an engine.Building, got {type(building).__name__}")
+    dt = engine.DEFAULT_DT if dt is None else dt
+    for grid in grids:
+        dt = check_dt(grid, dt, building)
+    every = check_count("every", every, minimum=1)
+    recs, rec_names = resolve_records(record, records_dir)
+    if len(recs) != 1:
+        raise SweepError(f"records: histories runs one record at a time, got {len(recs)}")
+    rec, rec_name = recs[0], rec_names[0]
+    if duration is not None:
+        rec = segment(rec, duration)
+
+    table = np.concatenate([grid.table for grid in grids])
+    contact = contact_for(table)
+    size = len(names)
+    progress = Progress(size, quiet=quiet)
+    result = engine.simulate(rec.accel, rec.dt, contact, building=building, dt=dt,
+                             history=engine.History(members=list(range(size)), every=every),
+                             progress=lambda step, steps: progress.running(0, size * step / steps))
+    progress.advance(size, 0)
+    progress.close()
+
+    arguments = plain({"record": rec_name, "configurations": _given(configurations), "dt": dt,
+                       "every": every, "m_eff": m_eff, "duration": duration})
+    return _dataset(names, grids, table, contact, rec, rec_name, result, dt, every, building,
+                    m_eff, duration, arguments)
+
+
+def concat_records(parts, t_end: float | None = None) -> xr.Dataset:
+    """Stack the Datasets of `histories` for several records along a new record dimension.
+
+    The histories share one time axis, from 0 to the end of the longest record, or to t_end
+    (s) when given: histories are cut there (the peaks stay those of the whole simulation). A
+    record that ends before the axis does is NaN after its end, and the history variables'
+    attrs say so; history_end (record) holds each record's last time. Every part must have the
+    same configurations, step and output interval. Provenance attributes of every record are
+    kept; those that differ between records are gathered per record.
+    """
+    parts = list(parts)
+    if not parts:
+        raise SweepError("concat_records: no Dataset given")
+    first = parts[0]
+    for ds in parts[1:]:
+        if list(ds.configuration.values) != list(first.configuration.values):
+            raise SweepError(f"concat_records: configurations differ: "
+                             f"{list(first.configuration.values)} vs "
+                             f"{list(ds.configuration.values)}")
+        for key in ("dt", "history_interval"):
+            if ds.attrs.get(key) != first.attrs.get(key):
+                raise SweepError(f"concat_records: {key} differs between records "
+                                 f"({first.attrs.get(key)} vs {ds.attrs.get(key)})")
+    if t_end is not None:
+        t_end = float(t_end)
+        if not t_end > 0:
+            raise SweepError(f"t_end must be positive (s), got {t_end}")
+        tolerance = 1e-6 * first.attrs["history_interval"]
+        parts = [ds.isel(time=ds.time.values <= t_end + tolerance) for ds in parts]
+    names = [str(ds.record.values) for ds in parts]
+    ends = [float(ds.time.values[-1]) for ds in parts]
+    combined = xr.concat(parts, dim="record", join="outer", data_vars="all",
+                         coords="different", compat="equals", combine_attrs="drop_conflicts")
+    combined.coords["history_end"] = ("record", np.array(ends),
+                                      {"units": "s", "long_name": "last time of the record's "
+                                       "histories (NaN after it)"})
+    axis_end = float(combined.time.values[-1])
+    short = [f"{name} ends at {end:g} s" for name, end in zip(names, ends, strict=True)
+             if end < axis_end]
+    for name in HISTORY_META:
+        if short:
+            combined[name].attrs["fill"] = ("NaN after the end of a record shorter than the "
+                                            f"common time axis ({'; '.join(short)})")
+    combined.time.attrs["long_name"] = "time from the start of the record"
+    if t_end is not None:
+        combined.time.attrs["cut"] = (f"histories kept up to {t_end:g} s; peaks are over the "
+                                      "whole simulation")
+    # Attributes that differ between records (configurations, arguments, ...): per record.
+    for key in dict.fromkeys(k for ds in parts for k in ds.attrs):
+        if key in combined.attrs:
+            continue
+        values = [_decoded(ds.attrs.get(key)) for ds in parts]
+        if key == "date_created":
+            combined.attrs[key] = max(map(str, values))
+        elif key == "records":
+            combined.attrs[key] = json.dumps([item for value in values for item in value])
+        else:
+            combined.attrs[key] = json.dumps(dict(zip(names, plain(values), strict=True)))
+    return combined
+
+
+def _decoded(value):
+    """An attribute value, JSON text decoded."""
+    if isinstance(value, str) and value[:1] in "[{":
+        try:
+            return json.loads(value)
+        except ValueError:
+            return value
+    return value
+
+
+def segment(record, duration: float):
+    """The first `duration` s of a record (samples t = 0 .. duration), noted in its source and
+    note so that the archive tells it apart from the whole record."""
+    try:
+        duration = float(duration)
+    except (TypeError, ValueError):
+        raise SweepError(f"duration must be a number (s), got {duration!r}") from None
+    if not (duration > 0 and math.isfinite(duration)):
+        raise SweepError(f"duration must be positive (s), got {duration}")
+    if not dataclasses.is_dataclass(record):
+        raise SweepError("duration: only a pipeline.records.Record can be cut to a segment")
+    n = min(int(math.floor(duration / record.dt + 1e-9)) + 1, len(record.accel))
+    if n < 2:
+        raise SweepError(f"duration {duration:g} s is shorter than two samples of "
+                         f"{record.name} (dt {record.dt:g} s)")
+    if n == len(record.accel):
+        return record
+    what = f"first {(n - 1) * record.dt:g} s of {record.duration:g} s"
+    note = getattr(record, "note", "") or ""
+    return dataclasses.replace(record, accel=record.accel[:n],
+                               source=f"{record.source} ({what})",
+                               note=(note + " " if note else "") + f"Segment: {what} only.")
+
+
+def _configurations(configurations, m_eff) -> tuple[list[str], list[Grid]]:
+    """Validate the configurations; one single-member Grid each (pipeline.grid rules)."""
+    if not isinstance(configurations, Mapping) or not configurations:
+        raise SweepError("configurations must be a non-empty dict: name -> parameters")
+    names, grids = [], []
+    for name, config in configurations.items():
+        if not isinstance(name, str) or not name.strip():
+            raise SweepError(f"configurations: a name must be a non-empty string, got {name!r}")
+        if not isinstance(config, Mapping):
+            raise SweepError(f"configurations[{name!r}] must be a dict of parameters, "
+                             f"got {config!r}")
+        unknown = sorted(set(config) - set(CONFIG_KEYS))
+        if unknown:
+            raise SweepError(f"configurations[{name!r}]: unknown parameter(s) {unknown}; "
+                             f"use {', '.join(CONFIG_KEYS)}")
+        impact = config.get("impact", "bumper")
+        params = {p: config[p] for p in PARAMS if config.get(p) is not None}
+        for p, value in params.items():
+            if np.ndim(value) != 0:
+                raise SweepError(f"configurations[{name!r}]: {p} takes one value per "
+                                 f"configuration, got {value!r}")
+        member_m_eff = config.get("m_eff", m_eff)
+        try:
+            if impact == NO_WALL:
+                if params:
+                    raise SweepError(f"{', '.join(params)} need a wall, not impact='none'")
+                grid = make_grid(None, unconstrained=True, m_eff=member_m_eff)
+            elif impact in IMPACT_LAWS:
+                grid = make_grid(params.pop("gap", None), impact=impact, m_eff=member_m_eff,
+                                 **params)
+            else:
+                raise SweepError(f"impact: unknown impact law {impact!r}; choose one of "
+                                 f"{(NO_WALL, *IMPACT_LAWS)}")
+        except SweepError as err:
+            raise SweepError(f"configurations[{name!r}]: {err}") from None
+        names.append(name)
+        grids.append(grid)
+    return names, grids
+
+
+def _given(configurations) -> dict:
+    return {name: dict(config) for name, config in configurations.items()}
+
+
+def _dataset(names, grids, table, contact, rec, rec_name, result, dt, every, building, m_eff,
+             duration, arguments) -> xr.Dataset:
+    from .archive import PARAM_META, PEAK_META, _coords, _law_defaults, provenance
+
+    hist = result.history
+    config = ("configuration",)
+    data_vars = {}
+    for name, (units, long_name, tail) in HISTORY_META.items():
+        dims = (*config, "time") + ((tail,) if tail else ())
+        data_vars[name] = xr.Variable(dims, hist[name], {"units": units, "long_name": long_name})
+    for name, (units, long_name, tail) in PEAK_META.items():
+        dims = config + ((tail,) if tail else ())
+        data_vars[name] = xr.Variable(dims, getattr(result, name),
+                                      {"units": units, "long_name": long_name})
+
+    laws = [grid.impact for grid in grids]
+    one = Grid(impact=NO_WALL, coords={}, fixed={}, blocks=(), m_eff=m_eff)
+    coords = {}
+    for key, (dims, values, attrs) in _coords(one, [rec], [rec_name]).items():
+        # One record: its coordinates become scalars (xr.concat over records stacks them).
+        dims = (dims,) if isinstance(dims, str) else tuple(dims)
+        coords[key] = ((), values[0], attrs) if dims == ("record",) else (dims, values, attrs)
+    coords["configuration"] = (config, np.array(names, dtype=str),
+                               {"units": "1", "long_name": "moat-wall configuration"})
+    coords["time"] = ("time", hist["time"],
+                      {"units": "s", "long_name": "time from the start of the record",
+                       "sampling": f"every {every} integration step(s) of {dt:g} s"})
+    coords["impact"] = (config, np.array(laws, dtype=str),
+                        {"units": "1", "long_name": "impact law ('none': no moat wall)"})
+    cols = {p: i for i, p in enumerate(("law", *PARAMS, "m_eff"))}
+    for p in PARAMS:
+        values = table[:, cols[p]]
+        if p == "wall_k":
+            units, long_name = _wall_k_meta(laws)
+        else:
+            units, long_name = PARAM_META[p]
+        coords[p] = (config, values, {"units": units, "long_name": long_name
+                                      + " (NaN: not used by the configuration's law)"})
+    coords["m_eff"] = (config, table[:, cols["m_eff"]],
+                       {"units": "kg", "long_name": "effective impact mass"})
+    coords["clear_gap"] = (config, _finite(contact.gap),
+                           {"units": "m", "long_name": "clear gap to the contact surface "
+                            "(gap - bumper thickness with bumpers; NaN: no wall)"})
+    coords["crush_indentation"] = (config, _finite(contact.delta_u),
+                                   {"units": "m", "long_name": "indentation at which the "
+                                    "bumpers are crushed, strain x thickness (NaN: no crush "
+                                    "limit)"})
+
+    ds = xr.Dataset(data_vars, coords=coords)
+    attrs = provenance(one, [rec], [rec_name], dt, building)
+    attrs.update(
+        title="bumpers: time histories and peak responses of a seismically isolated building "
+              "pounding on its moat wall, per wall configuration",
+        impact_law="per configuration (see the impact coordinate and `configurations`)",
+        swept_parameters="configuration",
+        fixed_parameters="none",
+        baseline="none (a bare wall is a configuration with impact='linear')",
+        unconstrained="none (no wall is a configuration with impact='none')",
+        impact_law_defaults=json.dumps({law: _law_defaults(law) for law in dict.fromkeys(laws)
+                                        if law != NO_WALL}),
+        configurations=json.dumps({name: describe_row(row)
+                                   for name, row in zip(names, table, strict=True)}),
+        history_every=every,
+        history_interval=every * dt,
+        history_interval_units="s",
+        history_note=(f"histories keep one integration step in {every} ({every * dt:g} s "
+                      "apart); peaks are taken over every step, so a history's maximum can "
+                      "fall slightly under its peak"),
+        record_segment=("whole record" if duration is None
+                        else f"first {float(duration):g} s only (peaks of the segment)"),
+        histories_arguments=json.dumps(arguments, sort_keys=True),
+    )
+    ds.attrs = attrs
+    return ds
+
+
+def _wall_k_meta(laws) -> tuple[str, str]:
+    used = [law for law in dict.fromkeys(laws) if law in WALL_K_MEANING]
+    units = {WALL_K_MEANING[law][0] for law in used}
+    text = "; ".join(f"{law}: {WALL_K_MEANING[law][1]}" for law in used) or "not used"
+    if len(units) == 1:
+        unit = units.pop().replace("N/m^1.5", "N m-1.5").replace("N/m", "N m-1")
+    else:
+        unit = "N m-1 (bumper, linear) or N m-1.5 (jankowski, hertzdamp)"
+    return unit, f"moat wall stiffness parameter ({text})"
+
+
+def _finite(values) -> np.ndarray:
+    values = np.asarray(values, dtype=float)
+    return np.where(np.isfinite(values), values, np.nan)

@@ -1,0 +1,107 @@
+"""Figs. 16, 18, 19, 21: peak responses against the seismic gap width, one line per value of
+the varied bumper parameter, the building without bumpers (bare wall) dashed.
+
+Shared by the thickness, strain, n_bumpers and wall_stiffness recipes: their gap grid, their
+figure (rows: peak floor acceleration in g, the largest over the floors, and peak interstory
+deflection in cm, the largest over the stories; columns: records) and the envelopes their
+checks compare.
+"""
+from __future__ import annotations
+
+import textwrap
+from collections.abc import Callable
+
+import numpy as np
+
+from ._plot import CM, G, plt, record_label
+
+MARKERS = ("o", "s", "^", "D", "v", "P")
+
+
+def gaps(quick: bool) -> np.ndarray:
+    """m: 15 to 45 cm every cm (every 10 cm with --quick), as in Figs. 14-15."""
+    return np.round(np.arange(15, 46, 10 if quick else 1) / CM, 4)
+
+
+def accel_g(ds, prefix: str = ""):
+    """Peak total floor acceleration in g, the largest over the floors."""
+    return ds[prefix + "peak_total_accel"].max("floor") / G
+
+
+def drift_cm(ds, prefix: str = ""):
+    """Peak interstory deflection in cm, the largest over the stories."""
+    return ds[prefix + "peak_interstory_drift"].max("story") * CM
+
+
+def spread(da, dim: str):
+    """(max - min) / mean over `dim`: how much the varied parameter moves a peak."""
+    return (da.max(dim) - da.min(dim)) / da.mean(dim)
+
+
+def plot(ds, dim: str, label: Callable[[float], str], title: str,
+         indentation_limit: float | None = None):
+    """Rows: peak floor acceleration (g), peak interstory deflection (cm) and, when
+    indentation_limit (m) is given, maximum indentation (cm) with that limit drawn; columns:
+    records; one line per value of `dim`, the no-bumper baseline dashed."""
+    rows = [("Peak floor\nacceleration (g)", accel_g, True),
+            ("Peak interstory\ndeflection (cm)", drift_cm, True)]
+    if indentation_limit is not None:
+        rows.append(("Maximum\nindentation (cm)", indentation_cm, False))
+    records = [str(r) for r in ds.record.values]
+    height = 0.9 + 2.0 * len(rows)  # inches: rows plus title and legend
+    fig, axes = plt.subplots(len(rows), len(records), sharex=True, squeeze=False,
+                             figsize=(1.2 + 2.6 * len(records), height))
+    gap_cm = ds.gap.values * CM
+    for col, record in enumerate(records):
+        axes[0, col].set_title(record_label(ds, record))
+        for row, (ylabel, quantity, with_baseline) in enumerate(rows):
+            ax = axes[row, col]
+            values = quantity(ds).sel(record=record)
+            for i, value in enumerate(ds[dim].values):
+                ax.plot(gap_cm, values.sel({dim: value}), marker=MARKERS[i % len(MARKERS)],
+                        markevery=max(1, gap_cm.size // 8), label=label(float(value)))
+            if with_baseline:
+                ax.plot(gap_cm, quantity(ds, "baseline_").sel(record=record), "k--",
+                        label="No bumpers")
+            else:
+                ax.axhline(indentation_limit * CM, color="r", lw=0.9, ls=":",
+                           label=f"Limit $\\delta_u$ = {indentation_limit * CM:g} cm")
+            ax.set_ylim(bottom=0)
+            if col == 0:
+                ax.set_ylabel(ylabel)
+        axes[-1, col].set_xlabel("Seismic gap (cm)")
+    legend = {}
+    for ax in axes[:, 0]:
+        for handle, text in zip(*ax.get_legend_handles_labels(), strict=True):
+            legend.setdefault(text, handle)
+    note = ("Acceleration: largest over the floors; deflection: largest over the stories; "
+            "dashed: no bumpers (bare wall, 2500 kN/mm, at the full gap)")
+    width = int(15 * fig.get_figwidth())  # characters per line at this font size
+    fig.suptitle(textwrap.fill(title, width) + "\n" + textwrap.fill(note, width), fontsize=9)
+    fig.tight_layout(rect=(0, 0.3 / height, 1, 1))
+    fig.legend(legend.values(), legend.keys(), loc="lower center", ncol=len(legend),
+               frameon=False)
+    return fig
+
+
+def indentation_cm(ds, prefix: str = ""):
+    """Maximum indentation at the moat wall in cm."""
+    return ds[prefix + "max_indentation"] * CM
+
+
+def ranges(grid, selected) -> str:
+    """'15-18, 22' style text for the runs of consecutive selected grid values."""
+    runs, start = [], None
+    for value, chosen, following in zip(grid, selected, list(selected[1:]) + [False],
+                                        strict=True):
+        if chosen and start is None:
+            start = value
+        if chosen and not following:
+            runs.append(f"{start:g}" if start == value else f"{start:g}-{value:g}")
+            start = None
+    return ", ".join(runs) or "none"
+
+
+def verdict(agrees) -> str:
+    """'agrees' / 'differs' for a truth value, 'not tested' for None (nothing to compare)."""
+    return "not tested" if agrees is None else ("agrees" if bool(agrees) else "differs")

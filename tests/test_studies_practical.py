@@ -1,0 +1,163 @@
+"""The practical_example recipe (Figs. 9-13) in --quick form, and pipeline.histories with real
+numbers: a history's maxima are the engine's peaks."""
+import numpy as np
+import pytest
+import xarray as xr
+
+from pipeline.grid import SweepError
+from pipeline.histories import concat_records, histories
+from studies import practical_example
+
+PEAKS = ("peak_total_accel", "peak_interstory_drift", "peak_isolator_disp", "max_indentation",
+         "max_impact_force", "n_impacts")
+HISTORIES = ("base_total_accel", "impact_force", "indentation", "isolator_disp")
+CONFIGS = ["no_pounding", "no_bumpers", "bumpers"]
+
+
+@pytest.fixture(scope="module")
+def quick_run(tmp_path_factory, records_dir_args):
+    out = tmp_path_factory.mktemp("practical_example")
+    args = ["--quick", "--workers", "1", "--quiet", "--out", str(out), *records_dir_args]
+    assert practical_example.main(args) == 0
+    return out
+
+
+def test_archive_is_labelled_and_complete(quick_run):
+    with xr.open_dataset(quick_run / "practical_example.nc") as ds:
+        assert list(ds.record.values) == ["kobe", "pacoima"]
+        assert list(ds.configuration.values) == CONFIGS
+        assert ds.sizes["floor"] == 5 and ds.sizes["story"] == 4 and ds.sizes["time"] > 1000
+        for name in PEAKS:
+            assert ds[name].dims[:2] == ("record", "configuration"), name
+            assert not ds[name].isnull().any(), name
+            assert ds[name].attrs["units"] and ds[name].attrs["long_name"], name
+        for name in HISTORIES:
+            assert ds[name].dims == ("record", "configuration", "time"), name
+            assert ds[name].attrs["units"] and ds[name].attrs["long_name"], name
+        assert ds.time.attrs["units"] == "s"
+        np.testing.assert_allclose(np.diff(ds.time.values), 0.002)  # every 4 steps of 0.5 ms
+        for record in ds.record.values:
+            sel = ds.sel(record=record)
+            assert not sel[list(HISTORIES)].sel(time=slice(0, float(sel.history_end))) \
+                .to_array().isnull().any()
+
+        # The gap rule: 90% of the engine's unconstrained peak, to the mm, beside the paper's.
+        assert ds.chosen_gap.attrs["units"] == "m" and not ds.chosen_gap.isnull().any()
+        np.testing.assert_allclose(ds.chosen_gap,
+                                   np.round(0.9 * ds.unconstrained_peak_isolator_disp, 3))
+        np.testing.assert_allclose(ds.paper_gap, [0.15, 0.24])
+        free = ds.sel(configuration="no_pounding")
+        np.testing.assert_array_equal(free.peak_isolator_disp, ds.unconstrained_peak_isolator_disp)
+        assert (free.n_impacts == 0).all() and (free.max_impact_force == 0).all()
+        for config, clear in (("no_bumpers", 0.0), ("bumpers", 0.05)):
+            sel = ds.sel(configuration=config)
+            np.testing.assert_allclose(sel.gap, ds.chosen_gap)
+            np.testing.assert_allclose(sel.clear_gap, ds.chosen_gap - clear)
+            assert (sel.n_impacts > 0).all(), config  # the gaps are hit: strong motion kept
+        np.testing.assert_allclose(ds.crush_indentation.sel(configuration="bumpers"), 0.04)
+        assert list(ds.impact.values) == ["none", "linear", "bumper"]
+
+        # Histories every 2 ms: their maxima within a whisker under the exact peaks.
+        base_peak = ds.peak_total_accel.sel(floor=0)
+        base_max = abs(ds.base_total_accel).max("time")
+        assert (base_max <= base_peak).all() and (base_max >= 0.95 * base_peak).all()
+        force_max = ds.impact_force.max("time")
+        assert (force_max <= ds.max_impact_force).all()
+        assert (force_max >= 0.95 * ds.max_impact_force).all()
+
+        assert "kobe" in ds.attrs["paper_check"] and "pacoima" in ds.attrs["paper_check"]
+        assert "15 cm" in ds.attrs["gap_rule"] and "24 cm" in ds.attrs["gap_rule"]
+        assert ds.attrs["recipe"] == "practical_example" and ds.attrs["quick"] == 1
+        assert ds.attrs["record_kobe_source"] and ds.attrs["record_pacoima_source"]
+
+
+def test_figure_files_and_replot(quick_run):
+    png, pdf = quick_run / "practical_example.png", quick_run / "practical_example.pdf"
+    assert png.stat().st_size > 10_000 and pdf.stat().st_size > 10_000
+    png.unlink()
+    assert practical_example.main(["--replot", "--out", str(quick_run)]) == 0
+    assert png.exists()
+
+
+def test_help_and_bad_input(tmp_path, capsys):
+    with pytest.raises(SystemExit) as exit_info:
+        practical_example.main(["--help"])
+    assert exit_info.value.code == 0
+    assert "Figs. 9-13" in capsys.readouterr().out
+    assert practical_example.main(["--replot", "--out", str(tmp_path)]) == 2
+
+
+# --------------------------------------------------------------------------- pipeline.histories
+
+def configurations(gap):
+    return {"no_pounding": {"impact": "none"},
+            "no_bumpers": {"impact": "linear", "gap": gap},
+            "bumpers": {"impact": "bumper", "gap": gap, "thickness": 0.05, "n_bumpers": 4}}
+
+
+@pytest.fixture(scope="module")
+def segment_run(paper_record):
+    """The first 6 s of Pacoima Dam (its pulse) at a 12 cm gap, every step kept."""
+    return histories(paper_record("pacoima"), configurations(0.12), every=1, duration=6.0)
+
+
+def test_history_maxima_are_the_peaks(segment_run):
+    ds = segment_run
+    assert list(ds.configuration.values) == CONFIGS
+    np.testing.assert_allclose(ds.time[1] - ds.time[0], 5e-4)
+    assert float(ds.time[-1]) == pytest.approx(6.0)
+    assert (ds.n_impacts.sel(configuration=["no_bumpers", "bumpers"]) > 0).all()
+    np.testing.assert_array_equal(abs(ds.total_accel).max("time"), ds.peak_total_accel)
+    np.testing.assert_array_equal(abs(ds.isolator_disp).max("time"), ds.peak_isolator_disp)
+    np.testing.assert_array_equal(ds.impact_force.max("time"), ds.max_impact_force)
+    np.testing.assert_array_equal(ds.indentation.max("time"), ds.max_indentation)
+    assert (ds.impact_force.sel(configuration="no_pounding") == 0).all()
+    # Past the crush limit the bumpers bear on the wall; below it the force is k_imp d^2.65.
+    bump = ds.sel(configuration="bumpers")
+    assert float(bump.clear_gap) == pytest.approx(0.07)
+    assert float(bump.crush_indentation) == pytest.approx(0.04)
+    for name in (*ds.data_vars, *ds.coords):
+        assert "units" in ds[name].attrs and "long_name" in ds[name].attrs, name
+    assert "first 6 s" in ds.attrs["record_segment"]
+    assert "linear(gap=0.12" in ds.attrs["configurations"]
+
+
+def test_every_keeps_every_kth_step(segment_run, paper_record):
+    coarse = histories(paper_record("pacoima"), configurations(0.12), every=4, duration=6.0)
+    for name in ("total_accel", "impact_force", "indentation", "isolator_disp"):
+        every_4th = segment_run[name].isel(time=slice(None, None, 4))
+        np.testing.assert_array_equal(coarse[name], every_4th)
+    for name in PEAKS:  # the peaks do not depend on the output interval
+        np.testing.assert_array_equal(coarse[name], segment_run[name])
+
+    # Records of different lengths share one time axis, NaN after the shorter one's end.
+    short = histories(paper_record("kobe"), configurations(0.12), every=4, duration=3.0)
+    both = concat_records([coarse, short])
+    assert list(both.record.values) == ["pacoima", "kobe"]
+    np.testing.assert_allclose(both.history_end, [6.0, 3.0])
+    assert both.impact_force.sel(record="kobe", time=slice(3.01, None)).isnull().all()
+    assert not both.impact_force.sel(record="pacoima").isnull().any()
+    assert "NaN after the end" in both.impact_force.attrs["fill"]
+    for name in PEAKS:
+        assert not both[name].isnull().any(), name
+    cut = concat_records([coarse, short], t_end=2.0)
+    assert float(cut.time[-1]) == pytest.approx(2.0)
+
+
+@pytest.mark.parametrize("configs, message", [
+    ({"a": {"impact": "bumper", "gap": 0.2, "colour": 1}}, "colour"),
+    ({"a": {"impact": "none", "gap": 0.2}}, "gap"),
+    ({"a": {"impact": "bumper", "gap": [0.2, 0.3]}}, "one value"),
+    ({"a": {"impact": "linear", "gap": 0.2, "thickness": 0.05}}, "thickness"),
+    ({"a": {"impact": "rubber", "gap": 0.2}}, "impact"),
+    ({"a": {"impact": "bumper", "gap": 0.04}}, "thickness"),
+    ({}, "configurations"),
+])
+def test_bad_configurations_fail_before_compute(configs, message):
+    with pytest.raises(SweepError, match=message):
+        histories("pacoima", configs)
+
+
+def test_one_record_at_a_time():
+    with pytest.raises(SweepError, match="one record"):
+        histories(["pacoima", "olive_view"], configurations(0.2))

@@ -1,0 +1,133 @@
+"""The two-body recipes (impact_validation, Fig. 6; damping_calibration, Eq. 9) and
+engine.damping_fit, the energy-equilibrium procedure of section 3.2."""
+import numpy as np
+import pytest
+import xarray as xr
+
+from engine import EngineError, damping_fit
+from engine.impact.calibration import hunt_crossley_chi
+from studies import damping_calibration, impact_validation
+
+KAJITA = dict(thickness=0.010, area=0.040**2, strain=0.8, n_bumpers=1)  # 0.45 kN/mm^2.65
+
+
+# --- engine.damping_fit ---------------------------------------------------------------------
+
+def test_energy_equilibrium_a1_balances_eq5():
+    """At the a1 found, the measured hysteresis area equals Delta E of Eq. 5 (within 0.5%),
+    and C_imp v_imp is the damping factor the independent COR table of calibration.py gives."""
+    cor, m_eff, v = 0.45, 150.0, 1.0
+    found = damping_fit.find_a1(cor, m_eff, v, KAJITA, rtol=1e-4)
+    delta_e = 0.5 * m_eff * (1 - cor**2) * v**2
+    assert found.energy_loss[0] == pytest.approx(delta_e)
+    assert found.hysteresis_area[0] == pytest.approx(delta_e, rel=5e-3)
+    assert found.cor_realised[0] == pytest.approx(cor, rel=5e-3)
+    assert not found.crushed[0]
+    assert found.c_imp[0] == pytest.approx(found.a1[0] * (1 - cor**2))
+    chi = hunt_crossley_chi(cor, 2.65, restitution_only=True)[0]
+    assert found.c_imp[0] * v == pytest.approx(chi, rel=2e-3)
+    # Eq. 9 at this point, for scale: the paper's law is within a few percent.
+    assert found.c_imp[0] == pytest.approx(
+        damping_fit.power_law_c_imp(cor, m_eff, v, 1.55, 0.7076, 0.0025, 0.9755), rel=0.05)
+
+
+def test_a1_is_independent_of_mass_and_inverse_in_velocity():
+    """Pure power law: the realised COR depends on C_imp v_imp and n only."""
+    found = damping_fit.find_a1(0.6, [10.0, 1e5, 10.0], [1.0, 1.0, 2.0],
+                                dict(thickness=0.2, area=1.0, strain=1.0), rtol=1e-6)
+    assert found.a1[1] == pytest.approx(found.a1[0], rel=1e-5)
+    assert found.a1[2] == pytest.approx(found.a1[0] / 2, rel=1e-5)
+
+
+def test_find_a1_rejects_a_bracket_without_the_root():
+    with pytest.raises(EngineError, match="bracket"):
+        damping_fit.find_a1(0.45, 150.0, 1.0, KAJITA, bracket=(1e-3, 1e-2))
+    with pytest.raises(EngineError, match="cor"):
+        damping_fit.find_a1(1.0, 150.0, 1.0, KAJITA)
+
+
+def test_power_law_fit_recovers_known_exponents():
+    cor, m_eff, v = (a.ravel() for a in np.meshgrid([0.3, 0.5, 0.9], [10.0, 1e3, 3e5],
+                                                     [0.5, 1.0, 4.0], indexing="ij"))
+    c_imp = damping_fit.power_law_c_imp(cor, m_eff, v, 1.55, 0.7076, 0.0025, 0.9755)
+    fit = damping_fit.fit_power_law(cor, m_eff, v, c_imp)
+    np.testing.assert_allclose([fit.c0, fit.p1, fit.p2, fit.p3],
+                               [1.55, 0.7076, 0.0025, 0.9755], rtol=1e-10)
+    assert fit.rms_log_error < 1e-12
+    np.testing.assert_allclose(fit.c_imp(cor, m_eff, v), c_imp, rtol=1e-10)
+    with pytest.raises(EngineError, match="two values"):
+        damping_fit.fit_power_law(cor, np.full_like(cor, 150.0), v, c_imp)
+
+
+# --- the recipes ----------------------------------------------------------------------------
+
+RECIPES = {"impact_validation": impact_validation, "damping_calibration": damping_calibration}
+DIMS = {"impact_validation": {"model": 2, "velocity": 3},
+        "damping_calibration": {"cor": 3, "m_eff": 2, "v_imp": 2}}
+
+
+@pytest.fixture(scope="module")
+def quick_runs(tmp_path_factory):
+    out = tmp_path_factory.mktemp("two_body")
+    for module in RECIPES.values():
+        assert module.main(["--quick", "--out", str(out), "--quiet"]) == 0
+    return out
+
+
+@pytest.mark.parametrize("name", RECIPES)
+def test_archive_is_labelled_and_complete(quick_runs, name):
+    with xr.open_dataset(quick_runs / f"{name}.nc") as ds:
+        for dim, size in DIMS[name].items():
+            assert ds.sizes[dim] == size, dim
+        for var in [*ds.data_vars, *ds.coords]:
+            assert ds[var].attrs.get("units"), var
+            assert ds[var].attrs.get("long_name"), var
+            if ds[var].dtype.kind == "f":
+                assert not ds[var].isnull().any(), var
+        assert ds.attrs["paper_check"].strip()
+        assert ds.attrs["recipe"] == name and ds.attrs["quick"] == 1
+
+
+def test_impact_validation_numbers(quick_runs):
+    with xr.open_dataset(quick_runs / "impact_validation.nc") as ds:
+        assert ds.sizes["step"] > 1000
+        assert float(ds.k_imp) / (1e3 * 1e3**2.65) == pytest.approx(0.45, rel=1e-4)
+        proposed, hertzdamp = ds.sel(model="proposed"), ds.sel(model="hertzdamp")
+        np.testing.assert_allclose(proposed.area_ratio, 1.0, atol=0.01)
+        assert np.all(hertzdamp.area_ratio < 0.7)
+        assert float(proposed.approach_deviation.max()) < 1e-9
+        assert np.all(ds.peak_indentation < ds.delta_u)
+        assert np.all((ds.peak_force > 10e3) & (ds.peak_force < 60e3))  # a few tens of kN
+        assert np.all(ds.indentation >= 0) and np.all(ds.force >= 0)
+        assert "agrees" in ds.attrs["paper_check"]
+
+
+def test_damping_calibration_numbers(quick_runs):
+    with xr.open_dataset(quick_runs / "damping_calibration.nc") as ds:
+        np.testing.assert_allclose(ds.hysteresis_area / ds.energy_loss, 1.0, atol=1e-3)
+        assert abs(float(ds.fit_p2)) < 1e-6
+        assert float(ds.fit_p3) == pytest.approx(1.0, abs=1e-6)
+        assert float(ds.fit_c0) == pytest.approx(1.55, rel=0.1)
+        assert float(ds.fit_p1) == pytest.approx(0.7076, abs=0.1)
+        assert np.all(ds.peak_indentation < ds.delta_u)
+        np.testing.assert_allclose(ds.cor_fit / ds.cor, 1.0, atol=0.01)
+        assert "paper 1.55" in ds.attrs["paper_check"]
+
+
+@pytest.mark.parametrize("name", RECIPES)
+def test_figure_files_and_replot(quick_runs, name):
+    png, pdf = quick_runs / f"{name}.png", quick_runs / f"{name}.pdf"
+    assert png.stat().st_size > 10_000 and pdf.stat().st_size > 10_000
+    png.unlink()
+    assert RECIPES[name].main(["--replot", "--out", str(quick_runs), "--quiet"]) == 0
+    assert png.exists()
+
+
+@pytest.mark.parametrize("name", RECIPES)
+def test_help_and_missing_archive(tmp_path, capsys, name):
+    with pytest.raises(SystemExit) as exit_info:
+        RECIPES[name].main(["--help"])
+    assert exit_info.value.code == 0
+    text = capsys.readouterr().out
+    assert "--records" not in text and "--workers" not in text
+    assert RECIPES[name].main(["--replot", "--out", str(tmp_path)]) == 2
