@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._peaks_vs_gap import ranges, verdict
 from ._plot import CM, FLOOR_LABELS, STORY_LABELS, plt, record_label
 from ._recipe import Recipe, sweep_options
 
@@ -67,31 +68,18 @@ def check(ds) -> str:
         helped = base_amp.sel(**r).values < 1
         wide_text = (f"amplified at {amplified[wide].sum()}/{wide.sum()} gaps where only the "
                      "bumpers are hit" if wide.any() else "no gap where only the bumpers are hit")
-        help_text = (f"base acceleration reduced at gaps {_ranges(gap_cm, helped)} cm"
+        help_text = (f"base acceleration reduced at gaps {ranges(gap_cm, helped)} cm"
                      if helped.any() else "base acceleration never reduced")
         lines.append(f"  {record}: unconstrained peak "
                      f"{float(ds.unconstrained_peak_isolator_disp.sel(**r)) * CM:.1f} cm; "
                      f"{wide_text}; {help_text}")
     wide_all = (no_bare_pounding & (ds.n_impacts > 0)).values
     agree_wide = bool(np.all(worst.values[wide_all] > 1)) if wide_all.any() else None
-    verdict = {True: "agrees", False: "differs", None: "not tested (no such gap)"}[agree_wide]
     return ("Wide gaps: bumpers amplify the response (paper 5.1); here: at every gap where only "
-            f"the bumpers are hit, peak floor acceleration amplification > 1: {verdict}.\n"
+            f"the bumpers are hit, peak floor acceleration amplification > 1: "
+            f"{verdict(agree_wide)}.\n"
             "Narrow gaps: bumpers can help under Sylmar Converter and San Fernando (paper 5.1); "
             "here:\n" + "\n".join(lines))
-
-
-def _ranges(grid, selected) -> str:
-    """'15-18, 22' style text for the runs of consecutive selected grid values."""
-    runs, start = [], None
-    for value, chosen, following in zip(grid, selected, list(selected[1:]) + [False],
-                                        strict=True):
-        if chosen and start is None:
-            start = value
-        if chosen and not following:
-            runs.append(f"{start:g}" if start == value else f"{start:g}-{value:g}")
-            start = None
-    return ", ".join(runs)
 
 
 recipe = Recipe(
