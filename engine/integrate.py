@@ -216,7 +216,7 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
         # by linear interpolation of the indentation. Without this, peaks jitter with dt.
         travel = np.maximum(delta - np.minimum(delta_prev, 0.0), 1e-300)
         onset = np.minimum(delta / travel + 0.5, 1.0)
-        dashpot = np.where(new, dashpot * onset, dashpot)
+        np.multiply(dashpot, onset, out=dashpot, where=new)
         delta_prev = delta
         force = np.where(touching, implicit_force(elastic, dashpot, rate_free, compliance), 0.0)
         v_next -= wall_response * (side * force)[:, None]

@@ -102,6 +102,3 @@ def ranges(grid, selected) -> str:
     return ", ".join(runs) or "none"
 
 
-def verdict(agrees) -> str:
-    """'agrees' / 'differs' for a truth value, 'not tested' for None (nothing to compare)."""
-    return "not tested" if agrees is None else ("agrees" if bool(agrees) else "differs")

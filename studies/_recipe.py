@@ -102,6 +102,11 @@ class Recipe:
         return 0
 
 
+def verdict(agrees) -> str:
+    """'agrees' / 'differs' for a truth value, 'not tested' for None (nothing to compare)."""
+    return "not tested" if agrees is None else ("agrees" if bool(agrees) else "differs")
+
+
 def sweep_options(args) -> dict:
     """The pipeline.sweep keywords every record-based recipe passes through."""
     return dict(records=args.records, records_dir=args.records_dir, workers=args.workers,

@@ -8,17 +8,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._peaks_vs_gap import ranges, verdict
+from ._peaks_vs_gap import gaps, ranges
 from ._plot import CM, FLOOR_LABELS, STORY_LABELS, plt, record_label
-from ._recipe import Recipe, sweep_options
+from ._recipe import Recipe, sweep_options, verdict
 
 THICKNESS = 0.05  # m
 N_BUMPERS = 4
-
-
-def gaps(quick: bool) -> np.ndarray:
-    """m: 15 to 45 cm every cm (every 10 cm with --quick)."""
-    return np.round(np.arange(15, 46, 10 if quick else 1) / CM, 4)
 
 
 def compute(args):

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._plot import KN, plt
-from ._recipe import Recipe
+from ._recipe import Recipe, verdict
 
 MM = 1e3  # mm per m
 M_ROD = 300.0  # kg, each steel rod
@@ -193,19 +193,18 @@ def check(ds) -> str:
     hertz_ok = bool(np.all(np.abs(hertz.area_ratio - 1) > 0.2))
     approach_ok = bool(float(prop.approach_deviation.max()) < 1e-6)
     crushed = bool(np.any(ds.peak_indentation >= ds.delta_u))
-    verdict = {True: "agrees", False: "differs"}
     return (
         "Paper 3.4: the proposed model's hysteresis area matches the kinetic energy loss of "
         f"Eq. 5 (COR {float(ds.cor):g}); Hertzdamp's loop area differs significantly; the "
         "approach branch follows k delta^n.\n"
         f"  here, v_imp = {v_text} m/s: proposed A_h / dE(Eq. 5) = "
         f"{listed(prop.area_ratio)} (measured COR {listed(prop.cor_measured)}): "
-        f"{verdict[prop_ok]} (within 5%);\n"
+        f"{verdict(prop_ok)} (within 5%);\n"
         f"  Hertzdamp (chi = {float(ds.chi_hertzdamp):.3f}) A_h / dE = "
         f"{listed(hertz.area_ratio)} (measured COR {listed(hertz.cor_measured)}): "
-        f"{'differs significantly' if hertz_ok else 'close'} -> {verdict[hertz_ok]};\n"
+        f"{'differs significantly' if hertz_ok else 'close'} -> {verdict(hertz_ok)};\n"
         "  proposed approach branch vs k_imp delta^2.65: max relative deviation "
-        f"{float(prop.approach_deviation.max()):.1e} -> {verdict[approach_ok]}.\n"
+        f"{float(prop.approach_deviation.max()):.1e} -> {verdict(approach_ok)}.\n"
         f"  Peak force {listed(prop.peak_force * KN, '{:.1f}')} kN (proposed), "
         f"{listed(hertz.peak_force * KN, '{:.1f}')} kN (Hertzdamp); peak indentation "
         f"{listed(prop.peak_indentation * MM, '{:.2f}')} mm vs delta_u "

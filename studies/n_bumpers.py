@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from . import _peaks_vs_gap as pvg
 from ._plot import CM
-from ._recipe import Recipe, sweep_options
+from ._recipe import Recipe, sweep_options, verdict
 
 COUNTS = (4, 8, 16, 32)
 THICKNESS = 0.05  # m
@@ -59,15 +59,15 @@ def check(ds) -> str:
         "More bumpers raise the peak responses in almost all cases (paper 5.4); here: "
         f"{many} rather than {few} bumpers give a higher peak acceleration at {counts[0]}/{n} "
         f"and a higher peak interstory deflection at {counts[1]}/{n} (record, gap) points with "
-        f"impacts -> {pvg.verdict(min(counts) >= ALMOST_ALL * n if n else None)} "
+        f"impacts -> {verdict(min(counts) >= ALMOST_ALL * n if n else None)} "
         f"(almost all: >= {ALMOST_ALL:.0%}).",
         "Except at some very narrow gaps, where fewer bumpers are crushed past delta_u (paper "
         f"5.4); here: {n_exceptions} exceptions (gaps in cm: {where or 'none'}), "
         f"{int(crushed.sum())} of them with {few} bumpers past delta_u = {LIMIT * CM:g} cm -> "
-        f"{pvg.verdict(int(crushed.sum()) > n_exceptions / 2 if n_exceptions else None)}.",
+        f"{verdict(int(crushed.sum()) > n_exceptions / 2 if n_exceptions else None)}.",
         "More bumpers, smaller maximum indentation (paper 5.4); here: it shrinks at every "
         f"doubling at {shrinking}/{n} points with impacts -> "
-        f"{pvg.verdict(shrinking >= ALMOST_ALL * n if n else None)}.",
+        f"{verdict(shrinking >= ALMOST_ALL * n if n else None)}.",
         f"With {many} bumpers the indentation stays below {LIMIT * CM:g} cm for every record "
         f"(paper 5.4); here: largest {per_record} cm -> "
         + ("agrees." if over <= 0 else f"differs (by {over * 1e3:.2f} mm).")])

@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._plot import CM, KN, G, plt, record_label
-from ._recipe import Recipe
+from ._recipe import Recipe, verdict
 
 GAP_FRACTION = 0.9  # of the unconstrained peak isolator displacement
 THICKNESS = 0.05  # m
@@ -267,10 +267,6 @@ CONSIDERABLE = 0.75  # "considerably reduced": with / without bumpers below this
 SLIGHT_CRUSH = 1.25  # "very small exceedance" of the crush indentation: below this multiple
 
 
-def _verdict(ok: bool) -> str:
-    return "agrees" if ok else "differs"
-
-
 def check(ds) -> str:
     """Section 4: Kobe, bumpers hardly lower the peak base acceleration (crushed well past
     4 cm) and amplify the interstory deflections; San Fernando, bumpers considerably lower the
@@ -318,7 +314,7 @@ def check(ds) -> str:
         else:
             lines.append("  " + head + " (not a record of the paper's section 4: no claim)")
             continue
-        claim_text = "; ".join(f"{text}: {_verdict(ok)}" for text, ok in claims)
+        claim_text = "; ".join(f"{text}: {verdict(ok)}" for text, ok in claims)
         lines.append(f"  {head}\n    Paper: {claim_text}.")
     quick = ds.attrs.get("quick", 0)
     note = (" [--quick: first part of each record only, not the paper's runs]"

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from . import _peaks_vs_gap as pvg
 from ._plot import CM
-from ._recipe import Recipe, sweep_options
+from ._recipe import Recipe, sweep_options, verdict
 
 STRAINS = (0.6, 0.8, 1.0)
 THICKNESS = 0.05  # m
@@ -50,7 +50,7 @@ def check(ds) -> str:
             f"(elsewhere eps_u plays no part), eps_u = {high:g} rather than {low:g} gives a "
             f"lower peak acceleration at {counts[0]}/{n} (mean {changes[0]:+.0%}) and a lower "
             f"peak interstory deflection at {counts[1]}/{n} (mean {changes[1]:+.0%}) -> "
-            f"{pvg.verdict(agrees)}.")
+            f"{verdict(agrees)}.")
 
 
 recipe = Recipe(

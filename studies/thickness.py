@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from . import _peaks_vs_gap as pvg
 from ._plot import CM
-from ._recipe import Recipe, sweep_options
+from ._recipe import Recipe, sweep_options, verdict
 
 THICKNESSES = (0.03, 0.05, 0.08)  # m
 N_BUMPERS = 4
@@ -52,17 +52,17 @@ def check(ds) -> str:
         f"Very narrow gaps (< {NARROW} x the unconstrained peak isolator displacement): thicker "
         "bumpers reduce the peak floor acceleration (paper 5.2); here: "
         f"{names[0]} below {names[1]} at {n_lower}/{n_narrow} such gaps -> "
-        f"{pvg.verdict(n_lower > n_narrow / 2 if n_narrow else None)}.",
+        f"{verdict(n_lower > n_narrow / 2 if n_narrow else None)}.",
         "Medium and wide gaps: negligible effect of the thickness on the acceleration "
         f"(paper 5.2); here: median spread over t {wide_spread:.0%} at the other gaps with "
-        f"impacts (negligible: < 10%) -> {pvg.verdict(wide_spread < 0.1 if wide.any() else None)}.",
+        f"impacts (negligible: < 10%) -> {verdict(wide_spread < 0.1 if wide.any() else None)}.",
         f"Interstory deflections increase with the thickness (paper 5.2); here: {names[0]} above "
         f"{names[1]} at {n_higher}/{n_hit} gaps with impacts -> "
-        f"{pvg.verdict(n_higher > n_hit / 2 if n_hit else None)}.",
+        f"{verdict(n_higher > n_hit / 2 if n_hit else None)}.",
         "Overall the thickness does not significantly affect the response (paper 5.2); here: "
         f"median spread over t {spread_a:.0%} (acceleration), {spread_d:.0%} (interstory "
         "deflection) at the gaps with impacts (not significant: < 15%) -> "
-        f"{pvg.verdict(max(spread_a, spread_d) < 0.15 if n_hit else None)}."])
+        f"{verdict(max(spread_a, spread_d) < 0.15 if n_hit else None)}."])
 
 
 recipe = Recipe(

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from . import _peaks_vs_gap as pvg
 from ._plot import CM
-from ._recipe import Recipe, sweep_options
+from ._recipe import Recipe, sweep_options, verdict
 
 WALL_KS = (2.5e9, 1.5e9, 5e8)  # N/m: 2500, 1500, 500 kN/mm
 KN_PER_MM = 1e6  # N/m
@@ -52,7 +52,7 @@ def check(ds) -> str:
             f"k_w = {soft / KN_PER_MM:g} rather than {stiff / KN_PER_MM:g} kN/mm gives a lower "
             f"peak acceleration at {counts[0]}/{n} (mean {changes[0]:+.0%}) and a lower peak "
             f"interstory deflection at {counts[1]}/{n} (mean {changes[1]:+.0%}) -> "
-            f"{pvg.verdict(agrees)} (significant: acceleration down by more than "
+            f"{verdict(agrees)} (significant: acceleration down by more than "
             f"{SIGNIFICANT:.0%} on average, and more than the deflection).")
 
 
