@@ -1,7 +1,11 @@
 """bumpers engine: a vectorised NumPy simulator of isolated buildings pounding on a moat wall.
 
-Arrays in, arrays out; SI units; a leading batch axis B on every state array. See API.md.
+Arrays in, arrays out; SI units (units.py converts the paper's cm, g, kN); a leading batch
+axis B on every state array. building.py holds the structure, isolator.py the bilinear law,
+impact/ one module per wall law, each declaring its parameters once (impact/parameters.py),
+integrate.py the time loop, two_body.py section 3's impacts. The contract is in API.md.
 """
+from . import units
 from .building import Building
 from .errors import EngineError, UnstableTimeStep
 from .impact import Contact
@@ -9,4 +13,4 @@ from .integrate import DEFAULT_DT, History, Result, simulate, stable_dt
 from .two_body import TwoBodyResult, two_body
 
 __all__ = ["Building", "Contact", "DEFAULT_DT", "EngineError", "History", "Result",
-           "TwoBodyResult", "UnstableTimeStep", "simulate", "stable_dt", "two_body"]
+           "TwoBodyResult", "UnstableTimeStep", "simulate", "stable_dt", "two_body", "units"]

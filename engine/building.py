@@ -11,6 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import EngineError
+from .units import G
 
 N_LEVELS = 5
 N_STORIES = 4
@@ -39,7 +40,7 @@ class Building:
     zeta_iso: float = 0.05
     zeta_sup: float = 0.02
     damping: str = "paper"
-    g: float = 9.81
+    g: float = G
 
     def __post_init__(self):
         masses = np.asarray(self.masses, dtype=float)
@@ -74,10 +75,6 @@ class Building:
     def yield_displacement(self) -> float:
         """Isolator yield displacement u_y = Fy / k1 (m)."""
         return self.yield_force / self.k1
-
-    def mass_matrix(self) -> np.ndarray:
-        """(5, 5) diagonal mass matrix, kg."""
-        return np.diag(np.asarray(self.masses, dtype=float))
 
     def stiffness_matrix(self, isolator_stiffness: float | None = None) -> np.ndarray:
         """(5, 5) linear stiffness matrix (N/m) with the isolator at `isolator_stiffness` (k1)."""

@@ -135,7 +135,7 @@ def simulate(accel, accel_dt: float, contact: Contact,
     inverse = np.argsort(order)
     contact, arrays = contact[order], arrays.take(order)
     hist_members = None if history is None else inverse[np.asarray(history.members, dtype=int)]
-    peaks, hist = _time_loop(ag, dt, arrays, contact.gap, blocks, hist_members,
+    peaks, hist = _time_loop(ag, dt, arrays, contact.clear_gap, blocks, hist_members,
                              None if history is None else history.every, progress)
     peaks = {name: value[inverse] for name, value in peaks.items()}
     if hist is not None:

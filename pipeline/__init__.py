@@ -4,30 +4,34 @@
     ds = pipeline.sweep(records=["kobe", "pacoima"], gap=[0.15, 0.30, 0.45],
                         n_bumpers=[4, 8], baseline=True, out="results/gap.nc")
 
-Data flows one way: records + grid (grid.py) -> engine batches on dask (run.py) -> labelled
-Dataset -> NetCDF (archive.py). Imports happen inside the functions, so that light entry
-points such as `python -m pipeline.records` load neither xarray nor dask.
+Data flows one way: records (records.py: AT2 files, the embedded library, lookup by name) +
+grid (grid.py: parameters checked against the impact laws' declarations, one member record
+per simulation) -> engine batches, here or on dask, resumable (run.py) -> labelled Dataset
+with its provenance (archive.py, provenance.py) -> NetCDF (archive.py). histories.py keeps
+time histories of a few configurations; errors.py holds SweepError. Imports happen inside the
+functions, so that light entry points such as `python -m pipeline.records` load neither
+xarray nor dask.
 """
 from __future__ import annotations
 
 __all__ = ["SweepError", "sweep", "unconstrained_peaks"]
 
-DEFAULT_M_EFF = 320e3  # kg: the base slab against an immovable wall (SPEC decision)
 
-
-def sweep(records, gap=None, thickness=None, strain=None, n_bumpers=None, wall_k=None,
+def sweep(records, *, gap=None, thickness=None, strain=None, n_bumpers=None, wall_k=None,
           cor=None, impact: str = "bumper", dt: float | None = None, workers: int = 2,
-          scheduler=None, out=None, *, baseline: bool = False, unconstrained: bool = False,
-          building=None, m_eff: float = DEFAULT_M_EFF, batch_size: int | None = None,
+          scheduler=None, out=None, baseline: bool = False, unconstrained: bool = False,
+          building=None, m_eff: float | None = None, batch_size: int | None = None,
           records_dir=None, quiet: bool = False):
     """Simulate every combination of the parameters under every record; label the peaks.
 
     records: paper keys ("kobe", "sylmar_converter", "olive_view", "pacoima"), library names,
         AT2 paths (see pipeline.records.load_record) or Record objects; one or a list.
-    gap (m), thickness (m), strain (-), n_bumpers (-), wall_k (N/m; N/m^1.5 for jankowski and
-        hertzdamp), cor (-): a scalar is held fixed (scalar coordinate), a sequence is swept
-        (a dimension). None takes the impact law's default; pipeline.grid tells how each
-        parameter maps onto each law (thickness, strain, n_bumpers apply to bumpers only).
+    Every parameter after `records` is given by keyword.
+    gap (m, the seismic gap before any bumper), thickness (m), strain (-), n_bumpers (-),
+        wall_k (N/m; N/m^1.5 for jankowski and hertzdamp), cor (-): a scalar is held fixed
+        (scalar coordinate), a sequence is swept (a dimension). None takes the impact law's
+        declared default (engine.impact.LAWS[impact].PARAMETERS, where each law states what
+        wall_k means for it); thickness, strain, n_bumpers apply to bumpers only.
     impact: "bumper" (the paper's rubber bumpers, default), "linear", "jankowski", "hertzdamp".
     dt: integration step (s), default engine.DEFAULT_DT; refused at or above the stability
         limit (engine.stable_dt).
@@ -37,10 +41,12 @@ def sweep(records, gap=None, thickness=None, strain=None, n_bumpers=None, wall_k
     scheduler: a dask.distributed scheduler address (or Client) to run on instead.
     out: NetCDF path, written atomically; finished batches are kept in `<out>.work/` so that a
         rerun after a crash computes only what is missing; the folder goes once out is written.
-    baseline: also run the bare wall without bumpers (linear, k 2.5e9 N/m, COR 0.5) once per
-        (record, gap) at the full gap; adds baseline_* and amplification_* variables.
+    baseline: also run the bare wall without bumpers (the linear law at its defaults, k 2.5e9
+        N/m, COR 0.5) once per (record, gap) at the full gap; adds baseline_* and
+        amplification_* variables.
     unconstrained: also run each record without wall; adds unconstrained_* variables.
-    building: engine.Building (default: the paper's); m_eff: effective impact mass (kg).
+    building: engine.Building (default: the paper's); m_eff: effective impact mass (kg;
+        default: the declared one, 320 t, the base slab).
     batch_size: members per engine call (default: up to 512, and at least `workers` batches).
     records_dir: folder of AT2 files for the records' lookup; quiet: no progress bar.
 
@@ -53,7 +59,8 @@ def sweep(records, gap=None, thickness=None, strain=None, n_bumpers=None, wall_k
     unconstrained_<same> (record, ...). Raises SweepError, naming the parameter, before any
     simulation runs.
     """
-    from .grid import SweepError, make_grid
+    from .errors import SweepError
+    from .grid import make_grid
 
     if gap is None:
         raise SweepError("gap is required (m)")
@@ -61,7 +68,7 @@ def sweep(records, gap=None, thickness=None, strain=None, n_bumpers=None, wall_k
                      m_eff=m_eff, baseline=baseline, unconstrained=unconstrained)
     arguments = {"gap": gap, "thickness": thickness, "strain": strain, "n_bumpers": n_bumpers,
                  "wall_k": wall_k, "cor": cor, "impact": impact, "baseline": baseline,
-                 "unconstrained": unconstrained, "m_eff": m_eff}
+                 "unconstrained": unconstrained, "m_eff": grid.m_eff}
     return _execute(grid, records, dt, workers, scheduler, out, building, batch_size,
                     records_dir, quiet, arguments)
 
@@ -91,17 +98,12 @@ def _execute(grid, records, dt, workers, scheduler, out, building, batch_size, r
 
     import engine
 
-    from .archive import build_dataset, write_netcdf
-    from .grid import (
-        SweepError,
-        check_count,
-        check_dt,
-        check_out,
-        default_batch_size,
-        plain,
-        resolve_records,
-    )
-    from .run import run
+    from .archive import build_dataset, check_out, write_netcdf
+    from .errors import SweepError, check_count
+    from .grid import check_dt
+    from .provenance import plain
+    from .records import RecordError, resolve_records
+    from .run import default_batch_size, run
 
     building = engine.Building() if building is None else building
     if not isinstance(building, engine.Building):
@@ -112,7 +114,10 @@ def _execute(grid, records, dt, workers, scheduler, out, building, batch_size, r
             and not hasattr(scheduler, "submit"):
         raise SweepError(f"scheduler must be an address such as 'tcp://host:8786' or a "
                          f"dask.distributed Client, got {scheduler!r}")
-    recs, names = resolve_records(records, records_dir)
+    try:
+        recs, names = resolve_records(records, records_dir)
+    except RecordError as err:
+        raise SweepError(str(err)) from err
     if batch_size is None:
         batch_size = default_batch_size(grid.n_members, len(recs), workers)
     batch_size = check_count("batch_size", batch_size, minimum=1)
@@ -131,7 +136,7 @@ def _execute(grid, records, dt, workers, scheduler, out, building, batch_size, r
 
 def __getattr__(name):
     if name == "SweepError":
-        from .grid import SweepError
+        from .errors import SweepError
 
         return SweepError
     raise AttributeError(f"module 'pipeline' has no attribute {name!r}")

@@ -30,22 +30,29 @@ import numpy as np
 import xarray as xr
 
 import engine
+from engine.impact import M_EFF
 
+from .archive import (
+    LEVEL_COORDS,
+    labelled_dataset,
+    parameter_meta,
+    peak_variables,
+    record_coords,
+    variable,
+)
+from .errors import SweepError, check_count
 from .grid import (
-    DEFAULT_M_EFF,
     IMPACT_LAWS,
+    NO_WALL,
     PARAMS,
-    WALL_K_MEANING,
     Grid,
-    SweepError,
-    check_count,
     check_dt,
     contact_for,
-    describe_row,
+    describe_member,
     make_grid,
-    plain,
-    resolve_records,
 )
+from .provenance import attributes, law_defaults, plain
+from .records import RecordError, resolve_records
 
 # name -> (units, long_name, trailing dimension or None), as archive.PEAK_META
 HISTORY_META = {
@@ -56,11 +63,10 @@ HISTORY_META = {
     "indentation": ("m", "indentation at the moat wall (0 out of contact)", None),
 }
 CONFIG_KEYS = ("impact", *PARAMS, "m_eff")
-NO_WALL = "none"
 
 
 def histories(record, configurations: Mapping[str, Mapping], dt: float | None = None,
-              every: int = 4, records_dir=None, building=None, m_eff: float = DEFAULT_M_EFF,
+              every: int = 4, records_dir=None, building=None, m_eff: float | None = None,
               duration: float | None = None, quiet: bool = True) -> xr.Dataset:
     """Simulate each configuration under one record; keep its time histories and peaks.
 
@@ -85,6 +91,7 @@ def histories(record, configurations: Mapping[str, Mapping], dt: float | None = 
     """
     from .run import Progress
 
+    m_eff = M_EFF.default if m_eff is None else m_eff
     names, grids = _configurations(configurations, m_eff)
     building = engine.Building() if building is None else building
     if not isinstance(building, engine.Building):
@@ -93,15 +100,18 @@ def histories(record, configurations: Mapping[str, Mapping], dt: float | None = 
     for grid in grids:
         dt = check_dt(grid, dt, building)
     every = check_count("every", every, minimum=1)
-    recs, rec_names = resolve_records(record, records_dir)
+    try:
+        recs, rec_names = resolve_records(record, records_dir)
+    except RecordError as err:
+        raise SweepError(str(err)) from err
     if len(recs) != 1:
         raise SweepError(f"records: histories runs one record at a time, got {len(recs)}")
     rec, rec_name = recs[0], rec_names[0]
     if duration is not None:
         rec = segment(rec, duration)
 
-    table = np.concatenate([grid.table for grid in grids])
-    contact = contact_for(table)
+    members = np.concatenate([grid.members for grid in grids])
+    contact = contact_for(members)
     size = len(names)
     progress = Progress(size, quiet=quiet)
     result = engine.simulate(rec.accel, rec.dt, contact, building=building, dt=dt,
@@ -112,7 +122,7 @@ def histories(record, configurations: Mapping[str, Mapping], dt: float | None = 
 
     arguments = plain({"record": rec_name, "configurations": _given(configurations), "dt": dt,
                        "every": every, "m_eff": m_eff, "duration": duration})
-    return _dataset(names, grids, table, contact, rec, rec_name, result, dt, every, building,
+    return _dataset(names, grids, members, contact, rec, rec_name, result, dt, every, building,
                     m_eff, duration, arguments)
 
 
@@ -255,56 +265,39 @@ def _given(configurations) -> dict:
     return {name: dict(config) for name, config in configurations.items()}
 
 
-def _dataset(names, grids, table, contact, rec, rec_name, result, dt, every, building, m_eff,
-             duration, arguments) -> xr.Dataset:
-    from .archive import PARAM_META, PEAK_META, _coords, _law_defaults, provenance
-
+def _dataset(names, grids, members, contact, rec, rec_name, result, dt, every, building,
+             m_eff, duration, arguments) -> xr.Dataset:
     hist = result.history
-    config = ("configuration",)
-    data_vars = {}
-    for name, (units, long_name, tail) in HISTORY_META.items():
-        dims = (*config, "time") + ((tail,) if tail else ())
-        data_vars[name] = xr.Variable(dims, hist[name], {"units": units, "long_name": long_name})
-    for name, (units, long_name, tail) in PEAK_META.items():
-        dims = config + ((tail,) if tail else ())
-        data_vars[name] = xr.Variable(dims, getattr(result, name),
-                                      {"units": units, "long_name": long_name})
+    config = "configuration"
+    data_vars = {name: variable((config, "time") + ((tail,) if tail else ()), hist[name],
+                                units, long_name)
+                 for name, (units, long_name, tail) in HISTORY_META.items()}
+    data_vars.update(peak_variables(result.peaks(), (config,)))
 
     laws = [grid.impact for grid in grids]
-    one = Grid(impact=NO_WALL, coords={}, fixed={}, blocks=(), m_eff=m_eff)
-    coords = {}
-    for key, (dims, values, attrs) in _coords(one, [rec], [rec_name]).items():
-        # One record: its coordinates become scalars (xr.concat over records stacks them).
-        dims = (dims,) if isinstance(dims, str) else tuple(dims)
-        coords[key] = ((), values[0], attrs) if dims == ("record",) else (dims, values, attrs)
-    coords["configuration"] = (config, np.array(names, dtype=str),
-                               {"units": "1", "long_name": "moat-wall configuration"})
-    coords["time"] = ("time", hist["time"],
-                      {"units": "s", "long_name": "time from the start of the record",
-                       "sampling": f"every {every} integration step(s) of {dt:g} s"})
-    coords["impact"] = (config, np.array(laws, dtype=str),
-                        {"units": "1", "long_name": "impact law ('none': no moat wall)"})
-    cols = {p: i for i, p in enumerate(("law", *PARAMS, "m_eff"))}
+    # One record: its coordinates are scalars (xr.concat over records stacks them).
+    coords = {key: var[0] for key, var in record_coords([rec], [rec_name]).items()}
+    coords.update(LEVEL_COORDS)
+    coords["configuration"] = variable(config, np.array(names, dtype=str), "1",
+                                       "moat-wall configuration")
+    coords["time"] = variable("time", hist["time"], "s", "time from the start of the record",
+                              sampling=f"every {every} integration step(s) of {dt:g} s")
+    coords["impact"] = variable(config, np.array(laws, dtype=str), "1",
+                                "impact law ('none': no moat wall)")
     for p in PARAMS:
-        values = table[:, cols[p]]
-        if p == "wall_k":
-            units, long_name = _wall_k_meta(laws)
-        else:
-            units, long_name = PARAM_META[p]
-        coords[p] = (config, values, {"units": units, "long_name": long_name
-                                      + " (NaN: not used by the configuration's law)"})
-    coords["m_eff"] = (config, table[:, cols["m_eff"]],
-                       {"units": "kg", "long_name": "effective impact mass"})
-    coords["clear_gap"] = (config, _finite(contact.gap),
-                           {"units": "m", "long_name": "clear gap to the contact surface "
-                            "(gap - bumper thickness with bumpers; NaN: no wall)"})
-    coords["crush_indentation"] = (config, _finite(contact.delta_u),
-                                   {"units": "m", "long_name": "indentation at which the "
-                                    "bumpers are crushed, strain x thickness (NaN: no crush "
-                                    "limit)"})
+        units, long_name = parameter_meta(laws, p)
+        coords[p] = variable(config, members[p], units,
+                             long_name + " (NaN: not used by the configuration's law)")
+    coords["m_eff"] = variable(config, members["m_eff"], "kg", "effective impact mass")
+    coords["clear_gap"] = variable(config, _finite(contact.clear_gap), "m",
+                                   "clear gap to the contact surface (gap - bumper thickness "
+                                   "with bumpers; NaN: no wall)")
+    coords["crush_indentation"] = variable(config, _finite(contact.delta_u), "m",
+                                           "indentation at which the bumpers are crushed, "
+                                           "strain x thickness (NaN: no crush limit)")
 
-    ds = xr.Dataset(data_vars, coords=coords)
-    attrs = provenance(one, [rec], [rec_name], dt, building)
+    one = Grid(impact=NO_WALL, coords={}, fixed={}, blocks=(), m_eff=m_eff)
+    attrs = attributes(one, [rec], [rec_name], dt, building)
     attrs.update(
         title="bumpers: time histories and peak responses of a seismically isolated building "
               "pounding on its moat wall, per wall configuration",
@@ -313,10 +306,10 @@ def _dataset(names, grids, table, contact, rec, rec_name, result, dt, every, bui
         fixed_parameters="none",
         baseline="none (a bare wall is a configuration with impact='linear')",
         unconstrained="none (no wall is a configuration with impact='none')",
-        impact_law_defaults=json.dumps({law: _law_defaults(law) for law in dict.fromkeys(laws)
+        impact_law_defaults=json.dumps({law: law_defaults(law) for law in dict.fromkeys(laws)
                                         if law != NO_WALL}),
-        configurations=json.dumps({name: describe_row(row)
-                                   for name, row in zip(names, table, strict=True)}),
+        configurations=json.dumps({name: describe_member(member)
+                                   for name, member in zip(names, members, strict=True)}),
         history_every=every,
         history_interval=every * dt,
         history_interval_units="s",
@@ -327,19 +320,7 @@ def _dataset(names, grids, table, contact, rec, rec_name, result, dt, every, bui
                         else f"first {float(duration):g} s only (peaks of the segment)"),
         histories_arguments=json.dumps(arguments, sort_keys=True),
     )
-    ds.attrs = attrs
-    return ds
-
-
-def _wall_k_meta(laws) -> tuple[str, str]:
-    used = [law for law in dict.fromkeys(laws) if law in WALL_K_MEANING]
-    units = {WALL_K_MEANING[law][0] for law in used}
-    text = "; ".join(f"{law}: {WALL_K_MEANING[law][1]}" for law in used) or "not used"
-    if len(units) == 1:
-        unit = units.pop().replace("N/m^1.5", "N m-1.5").replace("N/m", "N m-1")
-    else:
-        unit = "N m-1 (bumper, linear) or N m-1.5 (jankowski, hertzdamp)"
-    return unit, f"moat wall stiffness parameter ({text})"
+    return labelled_dataset(data_vars, coords, attrs)
 
 
 def _finite(values) -> np.ndarray:

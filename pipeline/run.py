@@ -2,9 +2,10 @@
 
 Each batch is one `engine.simulate` call: one record, at most `batch_size` members. Workers
 return peak arrays and this process alone writes them (no races on shared files). Finished
-batches are kept in a work folder as .npz files holding their member rows, so a killed sweep
-rerun with the same arguments computes only the members it is missing. Every member is looked
-up by its context key (record content, dt, building, engine source) and its member row: the
+batches are kept in a work folder as .npz files holding their members (grid.MEMBER_DTYPE), so
+a killed sweep rerun with the same arguments computes only the members it is missing. Every
+member is looked up by its context key (record content, dt, building, engine source) and its
+member record: the
 engine's results do not depend on the batch a member ran in, so the batch size and the
 number of workers may change between runs without invalidating anything.
 """
@@ -23,14 +24,14 @@ import uuid
 import zipfile
 from contextlib import contextmanager
 from dataclasses import dataclass
-from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
 
 import engine
 
-from .grid import Grid, contact_for
+from .grid import MEMBER_DTYPE, Grid, contact_for
+from .provenance import engine_fingerprint, record_hash
 
 # Peak arrays kept per simulation: name -> (trailing shape, dtype).
 PEAKS = {
@@ -44,22 +45,22 @@ PEAKS = {
 }
 # One BLAS thread per worker process: workers are the parallelism; more threads only contend.
 BLAS_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
-CACHE_FORMAT = 1  # bump when the work-folder layout or the peak set changes
+CACHE_FORMAT = 2  # bump when the work-folder layout, the member record or the peak set change
 
 
 @dataclass(frozen=True)
 class Batch:
-    """One engine call: record index, (b,) member indices into the grid's table, and its key."""
+    """One engine call: record index, (b,) indices into the grid's members, and its key."""
 
     record: int
     members: np.ndarray
     key: str
 
 
-def simulate_batch(accel: np.ndarray, accel_dt: float, rows: np.ndarray,
+def simulate_batch(accel: np.ndarray, accel_dt: float, members: np.ndarray,
                    building: engine.Building, dt: float, progress=None,
                    report: tuple[str, str] | None = None) -> dict[str, np.ndarray]:
-    """Peaks of the (b, 8) member rows under one record (m/s^2 every accel_dt s).
+    """Peaks of (b,) members (grid.MEMBER_DTYPE) under one record (m/s^2 every accel_dt s).
 
     progress(step, n_steps) is called as the engine goes; on a dask worker, report =
     (topic, tag) sends [tag, step / n_steps] to the client's event topic instead.
@@ -72,42 +73,14 @@ def simulate_batch(accel: np.ndarray, accel_dt: float, rows: np.ndarray,
         def progress(step, n_steps):
             worker.log_event(topic, [tag, step / n_steps])
 
-    result = engine.simulate(accel, accel_dt, contact_for(rows), building=building, dt=dt,
+    result = engine.simulate(accel, accel_dt, contact_for(members), building=building, dt=dt,
                              progress=progress)
     return {name: np.asarray(getattr(result, name), dtype=dtype)
             for name, (_, dtype) in PEAKS.items()}
 
 
-@lru_cache(maxsize=1)
-def engine_fingerprint() -> str:
-    """Hash of the engine's source, the project and NumPy versions: a changed engine is a new
-    key (NumPy too, since its kernels set the last bits of a result)."""
-    digest = hashlib.sha256(f"{_project_version()} numpy {np.__version__}".encode())
-    root = Path(engine.__file__).parent
-    for path in sorted(root.rglob("*.py")):
-        digest.update(path.relative_to(root).as_posix().encode())
-        digest.update(path.read_bytes())
-    return digest.hexdigest()
-
-
-def _project_version() -> str:
-    from importlib.metadata import PackageNotFoundError, version
-
-    try:
-        return version("bumpers")
-    except PackageNotFoundError:
-        return "unknown"
-
-
-def record_hash(accel: np.ndarray, accel_dt: float) -> str:
-    """sha256 of a record's samples (float64) and its step."""
-    digest = hashlib.sha256(np.ascontiguousarray(accel, dtype="<f8").tobytes())
-    digest.update(float(accel_dt).hex().encode())
-    return digest.hexdigest()
-
-
 def context_key(record, dt: float, building: engine.Building) -> str:
-    """Everything besides the member row that determines a member's result."""
+    """Everything besides the member record that determines a member's result."""
     text = json.dumps({"format": CACHE_FORMAT, "engine": engine_fingerprint(),
                        "record": record_hash(record.accel, record.dt), "dt": float(dt).hex(),
                        "building": repr(building)}, sort_keys=True)
@@ -115,32 +88,36 @@ def context_key(record, dt: float, building: engine.Building) -> str:
 
 
 class WorkFolder:
-    """Finished batches on disk: `<key>.npz` with the context, member rows and peaks."""
+    """Finished batches on disk: `<key>.npz` with the context, members and peaks."""
 
     def __init__(self, path: Path):
         self.path = Path(path)
         self.path.mkdir(parents=True, exist_ok=True)
 
     def load(self) -> dict[tuple[str, bytes], dict[str, np.ndarray]]:
-        """(context, member row bytes) -> that member's peaks, from every readable batch."""
+        """(context, member record bytes) -> that member's peaks, from every readable batch."""
         found = {}
         for file in sorted(self.path.glob("*.npz")):
             try:
                 with np.load(file, allow_pickle=False) as data:
-                    context, rows = str(data["context"]), data["rows"]
+                    context, members = str(data["context"]), data["members"]
                     peaks = {name: data[name] for name in PEAKS}
             except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
                 continue  # a damaged file (killed mid-write elsewhere) is simply recomputed
-            for i, row in enumerate(rows):
-                found[context, row.tobytes()] = {name: value[i] for name, value in peaks.items()}
+            if members.dtype != MEMBER_DTYPE:
+                continue  # written by another version: its keys cannot match
+            for i, member in enumerate(members):
+                found[context, member.tobytes()] = {name: value[i]
+                                                    for name, value in peaks.items()}
         return found
 
-    def save(self, key: str, context: str, rows: np.ndarray, peaks: dict[str, np.ndarray]):
+    def save(self, key: str, context: str, members: np.ndarray,
+             peaks: dict[str, np.ndarray]):
         """Write atomically: a batch file is complete or absent."""
         fd, tmp = tempfile.mkstemp(dir=self.path, prefix=f".{key}.", suffix=".tmp")
         try:
             with os.fdopen(fd, "wb") as f:
-                np.savez(f, context=np.array(context), rows=rows, **peaks)
+                np.savez(f, context=np.array(context), members=members, **peaks)
             os.replace(tmp, self.path / f"{key}.npz")
         except BaseException:
             Path(tmp).unlink(missing_ok=True)
@@ -212,6 +189,18 @@ def _clock(seconds: float) -> str:
     return f"{hours}:{minutes:02d}:{sec:02d}" if hours else f"{minutes}:{sec:02d}"
 
 
+def default_batch_size(n_members: int, n_records: int, workers: int,
+                       max_batch: int = 512) -> int:
+    """Default members per engine batch.
+
+    A time step costs a fixed ~50 us plus ~0.2 us per member, so batches should be large; but
+    a sweep should give every worker something to do, and no batch exceeds max_batch members
+    (memory stays small: a few (B, 5, 10) arrays).
+    """
+    per_record = max(math.ceil(n_members / max_batch), math.ceil(max(workers, 1) / n_records))
+    return max(1, min(max_batch, math.ceil(n_members / per_record)))
+
+
 def run(grid: Grid, records, dt: float, building: engine.Building, *, workers: int = 2,
         scheduler=None, work_dir: Path | None = None, batch_size: int = 512,
         quiet: bool = False) -> list[dict[str, np.ndarray]]:
@@ -221,8 +210,8 @@ def run(grid: Grid, records, dt: float, building: engine.Building, *, workers: i
     address or Client; workers <= 1 without a scheduler runs here, in this process.
     Returns one dict per record: peak name -> (M, ...) array in the grid's member order.
     """
-    table = grid.table
-    n_members = table.shape[0]
+    members = grid.members
+    n_members = members.size
     results = [{name: np.zeros((n_members, *shape), dtype) for name, (shape, dtype)
                 in PEAKS.items()} for _ in records]
     contexts = [context_key(rec, dt, building) for rec in records]
@@ -232,17 +221,17 @@ def run(grid: Grid, records, dt: float, building: engine.Building, *, workers: i
     batches = []
     for r, context in enumerate(contexts):
         missing = []
-        for i, row in enumerate(table):
-            peaks = cached.get((context, row.tobytes()))
+        for i, member in enumerate(members):
+            peaks = cached.get((context, member.tobytes()))
             if peaks is None:
                 missing.append(i)
             else:
                 for name, value in peaks.items():
                     results[r][name][i] = value
         for start in range(0, len(missing), batch_size):
-            members = np.array(missing[start:start + batch_size])
-            key = hashlib.sha256(context.encode() + table[members].tobytes()).hexdigest()
-            batches.append(Batch(r, members, key))
+            which = np.array(missing[start:start + batch_size])
+            key = hashlib.sha256(context.encode() + members[which].tobytes()).hexdigest()
+            batches.append(Batch(r, which, key))
     # Longest records first: a long record's batch starting last would leave workers idle.
     batches.sort(key=lambda b: -len(records[b.record].accel) * records[b.record].dt)
     n_todo = sum(b.members.size for b in batches)
@@ -250,7 +239,7 @@ def run(grid: Grid, records, dt: float, building: engine.Building, *, workers: i
 
     def finish(batch: Batch, peaks: dict[str, np.ndarray]) -> None:
         if work is not None:
-            work.save(batch.key, contexts[batch.record], table[batch.members], peaks)
+            work.save(batch.key, contexts[batch.record], members[batch.members], peaks)
         for name, value in peaks.items():
             results[batch.record][name][batch.members] = value
         progress.advance(batch.members.size, batch.key)
@@ -259,18 +248,18 @@ def run(grid: Grid, records, dt: float, building: engine.Building, *, workers: i
         for batch in batches:
             rec = records[batch.record]
             size = batch.members.size
-            peaks = simulate_batch(rec.accel, rec.dt, table[batch.members], building, dt,
+            peaks = simulate_batch(rec.accel, rec.dt, members[batch.members], building, dt,
                                    progress=lambda step, steps, b=batch.key, s=size:
                                    progress.running(b, s * step / steps))
             finish(batch, peaks)
     elif batches:
-        _run_on_dask(batches, records, table, building, dt, workers, scheduler, progress,
+        _run_on_dask(batches, records, members, building, dt, workers, scheduler, progress,
                      finish)
     progress.close()
     return results
 
 
-def _run_on_dask(batches, records, table, building, dt, workers, scheduler, progress,
+def _run_on_dask(batches, records, members, building, dt, workers, scheduler, progress,
                  finish) -> None:
     """Submit every batch; finish() each as it completes, here in the client process."""
     from distributed import as_completed
@@ -290,7 +279,7 @@ def _run_on_dask(batches, records, table, building, dt, workers, scheduler, prog
             futures = {}
             for batch in batches:
                 future = client.submit(simulate_batch, accel[batch.record],
-                                       records[batch.record].dt, table[batch.members],
+                                       records[batch.record].dt, members[batch.members],
                                        building, dt, report=(topic, batch.key),
                                        key=f"bumpers-batch-{batch.record}-{batch.key}")
                 futures[future] = batch

@@ -13,14 +13,16 @@ from collections.abc import Callable
 
 import numpy as np
 
-from ._plot import CM, G, plt, record_label
+from engine.units import CM, G
+
+from ._plot import plt, record_label
 
 MARKERS = ("o", "s", "^", "D", "v", "P")
 
 
 def gaps(quick: bool) -> np.ndarray:
     """m: 15 to 45 cm every cm (every 10 cm with --quick), as in Figs. 14-15."""
-    return np.round(np.arange(15, 46, 10 if quick else 1) / CM, 4)
+    return np.round(np.arange(15, 46, 10 if quick else 1) * CM, 4)
 
 
 def accel_g(ds, prefix: str = ""):
@@ -30,7 +32,7 @@ def accel_g(ds, prefix: str = ""):
 
 def drift_cm(ds, prefix: str = ""):
     """Peak interstory deflection in cm, the largest over the stories."""
-    return ds[prefix + "peak_interstory_drift"].max("story") * CM
+    return ds[prefix + "peak_interstory_drift"].max("story") / CM
 
 
 def spread(da, dim: str):
@@ -51,7 +53,7 @@ def plot(ds, dim: str, label: Callable[[float], str], title: str,
     height = 0.9 + 2.0 * len(rows)  # inches: rows plus title and legend
     fig, axes = plt.subplots(len(rows), len(records), sharex=True, squeeze=False,
                              figsize=(1.2 + 2.6 * len(records), height))
-    gap_cm = ds.gap.values * CM
+    gap_cm = ds.gap.values / CM
     for col, record in enumerate(records):
         axes[0, col].set_title(record_label(ds, record))
         for row, (ylabel, quantity, with_baseline) in enumerate(rows):
@@ -64,8 +66,8 @@ def plot(ds, dim: str, label: Callable[[float], str], title: str,
                 ax.plot(gap_cm, quantity(ds, "baseline_").sel(record=record), "k--",
                         label="No bumpers")
             else:
-                ax.axhline(indentation_limit * CM, color="r", lw=0.9, ls=":",
-                           label=f"Limit $\\delta_u$ = {indentation_limit * CM:g} cm")
+                ax.axhline(indentation_limit / CM, color="r", lw=0.9, ls=":",
+                           label=f"Limit $\\delta_u$ = {indentation_limit / CM:g} cm")
             ax.set_ylim(bottom=0)
             if col == 0:
                 ax.set_ylabel(ylabel)
@@ -86,7 +88,7 @@ def plot(ds, dim: str, label: Callable[[float], str], title: str,
 
 def indentation_cm(ds, prefix: str = ""):
     """Maximum indentation at the moat wall in cm."""
-    return ds[prefix + "max_indentation"] * CM
+    return ds[prefix + "max_indentation"] / CM
 
 
 def ranges(grid, selected) -> str:

@@ -1,4 +1,5 @@
-"""Shared figure style: the paper's units (cm, g, kN), print-size fonts, PNG + PDF output."""
+"""Shared figure style: labels, print-size fonts, PNG + PDF output (figures use the paper's
+cm, g and kN: engine.units)."""
 from __future__ import annotations
 
 import json
@@ -8,10 +9,6 @@ import matplotlib
 
 matplotlib.use("Agg")  # recipes draw files, never windows
 import matplotlib.pyplot as plt  # noqa: E402
-
-G = 9.81  # m/s^2 per g, as in the engine's building weight and the record layer
-CM = 100.0  # cm per m
-KN = 1e-3  # kN per N
 
 RECORD_LABELS = {
     "kobe": "Kobe 1995 (KJMA 000)",

@@ -47,8 +47,8 @@ class Recipe:
                                 f"(default: {' '.join(self.records)})")
             p.add_argument("--records-dir", default=None, metavar="DIR",
                            help="folder of PEER AT2 files searched first for the paper's "
-                                "records (default: $BUMPERS_RECORDS_DIR; else the embedded "
-                                "library, else a reported stand-in)")
+                                "records (default: $BUMPERS_RECORDS_DIR; else the built-in "
+                                "records and the embedded library)")
             p.add_argument("--workers", type=int, default=2,
                            help="local worker processes, one thread each (0 or 1: in this "
                                 "process; default 2)")
@@ -67,28 +67,33 @@ class Recipe:
 
     def main(self, argv=None) -> int:
         args = self.parser().parse_args(argv)
+        from engine import EngineError
+        from pipeline.errors import SweepError
+        from pipeline.records import RecordError
+
         try:
             return self._run(args)
-        except (ValueError, FileNotFoundError, OSError) as err:
-            # Bad input (SweepError, RecordError, EngineError are ValueErrors): one line.
-            print(f"{self.name}: error: {err}", file=sys.stderr)
+        except (EngineError, SweepError, RecordError) as err:
+            # Bad input: one line. Anything else is a bug and keeps its traceback.
+            print(f"{self.name}: error: {' '.join(str(err).split())}", file=sys.stderr)
             return 2
 
     def _run(self, args) -> int:
         import xarray as xr
 
-        from pipeline.archive import write_netcdf
+        from pipeline.archive import check_out, write_netcdf
+        from pipeline.errors import SweepError
 
         from ._plot import save_figure
 
         archive = args.out / f"{self.name}.nc"
         if args.replot:
             if not archive.is_file():
-                raise FileNotFoundError(f"--replot needs {archive}, which does not exist")
+                raise SweepError(f"--replot needs {archive}, which does not exist")
             with xr.open_dataset(archive) as opened:
                 ds = opened.load()
         else:
-            args.out.mkdir(parents=True, exist_ok=True)
+            check_out(archive)  # before any compute
             ds = self.compute(args)
             ds.attrs.update(recipe=self.name, paper_figure=self.figure, quick=int(args.quick),
                             values_chosen=self.chosen or "none")

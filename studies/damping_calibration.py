@@ -32,10 +32,9 @@ def grid(quick: bool) -> dict[str, np.ndarray]:
 
 
 def compute(args):
-    import xarray as xr
-
     from engine import damping_fit
     from engine.impact import rubber_bumper
+    from pipeline.archive import labelled_dataset, variable
 
     axes = grid(args.quick)
     shape = tuple(len(a) for a in axes.values())
@@ -52,8 +51,8 @@ def compute(args):
 
     def var(values, units, long_name, grid_shaped=True):
         values = np.asarray(values)
-        return xr.Variable(dims if grid_shaped else (), values.reshape(shape)
-                           if grid_shaped else values, {"units": units, "long_name": long_name})
+        return variable(dims if grid_shaped else (), values.reshape(shape) if grid_shaped
+                        else values, units, long_name)
 
     data = {
         "a1": var(found.a1, "s m-1", "a1 of Eq. 8 at energy equilibrium (A_h = Eq. 5 loss)"),
@@ -93,9 +92,9 @@ def compute(args):
                                            "m1 m2 / (m1 + m2) (two equal bodies of 2 m_eff)"}),
         "v_imp": ("v_imp", axes["v_imp"], {"units": "m s-1", "long_name": "impact velocity"}),
     }
-    ds = xr.Dataset(data, coords=coords)
-    ds.attrs["rubber_k_r_pa"] = rubber_bumper.K_R
-    ds.attrs["rubber_alpha"] = rubber_bumper.ALPHA
+    ds = labelled_dataset(data, coords)
+    ds.attrs["rubber_k_r_pa"] = rubber_bumper.PARAMETERS.k_r.default
+    ds.attrs["rubber_alpha"] = rubber_bumper.PARAMETERS.alpha.default
     return ds
 
 

@@ -8,8 +8,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from engine.units import CM
+
 from ._peaks_vs_gap import gaps, ranges
-from ._plot import CM, FLOOR_LABELS, STORY_LABELS, plt, record_label
+from ._plot import FLOOR_LABELS, STORY_LABELS, plt, record_label
 from ._recipe import Recipe, sweep_options, verdict
 
 THICKNESS = 0.05  # m
@@ -25,7 +27,7 @@ def compute(args):
 
 def plot(ds):
     fig, axes = plt.subplots(2, 5, figsize=(10, 4.4), sharex=True)
-    gap_cm = ds.gap.values * CM
+    gap_cm = ds.gap.values / CM
     panels = [("amplification_total_accel", "floor", FLOOR_LABELS, axes[0]),
               ("amplification_interstory_drift", "story", STORY_LABELS, axes[1])]
     for name, dim, labels, row in panels:
@@ -57,7 +59,7 @@ def check(ds) -> str:
     no_bare_pounding = ds.baseline_n_impacts == 0
     for record in ds.record.values:
         r = {"record": record}
-        gap_cm = ds.gap.values * CM
+        gap_cm = ds.gap.values / CM
         wide = no_bare_pounding.sel(**r).values & (ds.n_impacts.sel(**r).values > 0)
         amplified = worst.sel(**r).values > 1
         helped = base_amp.sel(**r).values < 1
@@ -66,7 +68,7 @@ def check(ds) -> str:
         help_text = (f"base acceleration reduced at gaps {ranges(gap_cm, helped)} cm"
                      if helped.any() else "base acceleration never reduced")
         lines.append(f"  {record}: unconstrained peak "
-                     f"{float(ds.unconstrained_peak_isolator_disp.sel(**r)) * CM:.1f} cm; "
+                     f"{float(ds.unconstrained_peak_isolator_disp.sel(**r)) / CM:.1f} cm; "
                      f"{wide_text}; {help_text}")
     wide_all = (no_bare_pounding & (ds.n_impacts > 0)).values
     agree_wide = bool(np.all(worst.values[wide_all] > 1)) if wide_all.any() else None

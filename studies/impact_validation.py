@@ -12,10 +12,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._plot import KN, plt
+from engine.units import KN, MM, kn_per_mm_n
+
+from ._plot import plt
 from ._recipe import Recipe, verdict
 
-MM = 1e3  # mm per m
 M_ROD = 300.0  # kg, each steel rod
 THICKNESS = 0.010  # m
 AREA = 0.040**2  # m^2
@@ -46,10 +47,10 @@ def contacts(velocities):
 
 
 def compute(args):
-    import xarray as xr
-
     import engine
     from engine.impact import rubber_bumper
+    from pipeline.archive import labelled_dataset
+    from pipeline.archive import variable as var
 
     v = np.asarray(VELOCITIES)
     contact = contacts(v)
@@ -70,9 +71,6 @@ def compute(args):
     approach = (step <= peak_step[..., None]) & (indentation > 0)
     elastic = k * indentation**EXPONENT
     deviation = np.where(approach, np.abs(force / np.where(approach, elastic, 1.0) - 1), 0.0)
-
-    def var(dims, values, units, long_name):
-        return xr.Variable(dims, np.asarray(values), {"units": units, "long_name": long_name})
 
     mv = ("model", "velocity")
     per_case = {name: getattr(res, name).reshape(shape) for name in
@@ -104,11 +102,11 @@ def compute(args):
                                   "k_imp delta^n"),
         "c_imp": var("velocity", c_imp, "s m-1", "impact damping coefficient C_imp of Eq. 9 "
                      "(proposed model)"),
-        "chi_hertzdamp": var((), contact.coef[-1], "1",
+        "chi_hertzdamp": var((), contact.chi[-1], "1",
                              "Hertzdamp damping factor chi = 3 (1 - COR^2) / 4"),
         "k_imp": var((), k, f"N m-{EXPONENT:g}",
                      "impact stiffness k_imp (Eq. 12), also Hertzdamp's k"),
-        "k_st": var((), rubber_bumper.kn_mm_to_si(K_ST_KN_MM, EXPONENT), f"N m-{EXPONENT:g}",
+        "k_st": var((), K_ST_KN_MM * kn_per_mm_n(EXPONENT), f"N m-{EXPONENT:g}",
                     "static stiffness k_st of the static test fit (Fig. 6a)"),
         "exponent": var((), EXPONENT, "1", "exponent n of both laws"),
         "cor": var((), COR, "1", "target coefficient of restitution"),
@@ -126,16 +124,16 @@ def compute(args):
         "velocity": ("velocity", v, {"units": "m s-1", "long_name": "impact velocity v_imp"}),
         "step": ("step", step, {"units": "1", "long_name": "integration step (time / dt)"}),
     }
-    return xr.Dataset(data, coords=coords)
+    return labelled_dataset(data, coords)
 
 
 def plot(ds):
     fig, axes = plt.subplots(2, 2, figsize=(6.5, 5.2), sharex=True, sharey=True)
     n = float(ds.exponent)
-    delta_u_mm = float(ds.delta_u) * MM
+    delta_u_mm = float(ds.delta_u) / MM
     grid_mm = np.linspace(0, delta_u_mm, 200)
-    k_st = float(ds.k_st) / (1e3 * 1e3**n)  # kN/mm^n
-    k_imp = float(ds.k_imp) / (1e3 * 1e3**n)
+    k_st = float(ds.k_st) / kn_per_mm_n(n)  # kN/mm^n
+    k_imp = float(ds.k_imp) / kn_per_mm_n(n)
     static = k_st * grid_mm**n
 
     ax = axes[0, 0]
@@ -153,7 +151,7 @@ def plot(ds):
         for model in ds.model.values:
             case = ds.sel(model=model, velocity=v)
             end = int(case.n_contact_steps)
-            ax.plot(case.indentation.values[:end] * MM, case.force.values[:end] * KN,
+            ax.plot(case.indentation.values[:end] / MM, case.force.values[:end] / KN,
                     label=MODEL_LABELS.get(str(model), str(model)), **styles.get(str(model), {}))
         ax.plot(grid_mm, static, color="k", ls=":", lw=0.9, label="Static curve")
         ax.set_title(f"({letter}) $v_{{imp}}$ = {v:.2g} m/s")
@@ -162,7 +160,7 @@ def plot(ds):
     ax = axes[1, 1]
     case = ds.sel(model=ds.model.values[0], velocity=ds.velocity.values[-1])
     peak = int(np.argmax(case.indentation.values))
-    d_mm, f_kn = case.indentation.values * MM, case.force.values * KN
+    d_mm, f_kn = case.indentation.values / MM, case.force.values / KN
     unloaded = peak + int(np.argmax(f_kn[peak:] < 0.3 * f_kn[peak]))
     for i, text, offset, ha in ((peak // 2, "approach", (-32, 14), "right"),
                                 (unloaded, "restitution", (14, 10), "left")):
@@ -174,7 +172,7 @@ def plot(ds):
     for ax in axes[:, 0]:
         ax.set_ylabel("Impact force (kN)")
     axes[0, 0].set_xlim(0, 1.06 * delta_u_mm)
-    axes[0, 0].set_ylim(0, 1.15 * max(float(ds.peak_force.max()) * KN, static[-1]))
+    axes[0, 0].set_ylim(0, 1.15 * max(float(ds.peak_force.max()) / KN, static[-1]))
     fig.suptitle(f"Fig. 6: 10 mm rubber bumper between two {float(ds.rod_mass):g} kg steel rods "
                  f"(COR {float(ds.cor):g})")
     fig.tight_layout()
@@ -205,10 +203,10 @@ def check(ds) -> str:
         f"{'differs significantly' if hertz_ok else 'close'} -> {verdict(hertz_ok)};\n"
         "  proposed approach branch vs k_imp delta^2.65: max relative deviation "
         f"{float(prop.approach_deviation.max()):.1e} -> {verdict(approach_ok)}.\n"
-        f"  Peak force {listed(prop.peak_force * KN, '{:.1f}')} kN (proposed), "
-        f"{listed(hertz.peak_force * KN, '{:.1f}')} kN (Hertzdamp); peak indentation "
-        f"{listed(prop.peak_indentation * MM, '{:.2f}')} mm vs delta_u "
-        f"{float(ds.delta_u) * MM:g} mm: {'crushed' if crushed else 'not crushed (k_w unused)'}.")
+        f"  Peak force {listed(prop.peak_force / KN, '{:.1f}')} kN (proposed), "
+        f"{listed(hertz.peak_force / KN, '{:.1f}')} kN (Hertzdamp); peak indentation "
+        f"{listed(prop.peak_indentation / MM, '{:.2f}')} mm vs delta_u "
+        f"{float(ds.delta_u) / MM:g} mm: {'crushed' if crushed else 'not crushed (k_w unused)'}.")
 
 
 recipe = Recipe(

@@ -8,8 +8,9 @@ indentation, with the bumpers' capacity 0.8 x 5 cm = 4 cm drawn.
 """
 from __future__ import annotations
 
+from engine.units import CM
+
 from . import _peaks_vs_gap as pvg
-from ._plot import CM
 from ._recipe import Recipe, sweep_options, verdict
 
 COUNTS = (4, 8, 16, 32)
@@ -48,12 +49,12 @@ def check(ds) -> str:
     exception = hit & ~(higher[0] & higher[1])
     n_exceptions = int(exception.sum())
     crushed = exception & (dent.sel(n_bumpers=few) > LIMIT)
-    where = "; ".join(f"{r} {pvg.ranges(ds.gap.values * CM, exception.sel(record=r).values)}"
+    where = "; ".join(f"{r} {pvg.ranges(ds.gap.values / CM, exception.sel(record=r).values)}"
                       for r in ds.record.values if exception.sel(record=r).any())
     shrinking = int(((dent.diff("n_bumpers") < 0).all("n_bumpers") & hit).sum())
     worst = dent.sel(n_bumpers=many).max("gap")
     over = float(worst.max()) - LIMIT
-    per_record = ", ".join(f"{r} {float(worst.sel(record=r)) * CM:.2f}"
+    per_record = ", ".join(f"{r} {float(worst.sel(record=r)) / CM:.2f}"
                            for r in ds.record.values)
     return "\n".join([
         "More bumpers raise the peak responses in almost all cases (paper 5.4); here: "
@@ -63,12 +64,12 @@ def check(ds) -> str:
         f"(almost all: >= {ALMOST_ALL:.0%}).",
         "Except at some very narrow gaps, where fewer bumpers are crushed past delta_u (paper "
         f"5.4); here: {n_exceptions} exceptions (gaps in cm: {where or 'none'}), "
-        f"{int(crushed.sum())} of them with {few} bumpers past delta_u = {LIMIT * CM:g} cm -> "
+        f"{int(crushed.sum())} of them with {few} bumpers past delta_u = {LIMIT / CM:g} cm -> "
         f"{verdict(int(crushed.sum()) > n_exceptions / 2 if n_exceptions else None)}.",
         "More bumpers, smaller maximum indentation (paper 5.4); here: it shrinks at every "
         f"doubling at {shrinking}/{n} points with impacts -> "
         f"{verdict(shrinking >= ALMOST_ALL * n if n else None)}.",
-        f"With {many} bumpers the indentation stays below {LIMIT * CM:g} cm for every record "
+        f"With {many} bumpers the indentation stays below {LIMIT / CM:g} cm for every record "
         f"(paper 5.4); here: largest {per_record} cm -> "
         + ("agrees." if over <= 0 else f"differs (by {over * 1e3:.2f} mm).")])
 

@@ -21,7 +21,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._plot import CM, KN, G, plt, record_label
+from engine.units import CM, KN, G
+
+from ._plot import plt, record_label
 from ._recipe import Recipe, verdict
 
 GAP_FRACTION = 0.9  # of the unconstrained peak isolator displacement
@@ -46,12 +48,11 @@ MARKERS = {"no_pounding": "o", "no_bumpers": "s", "bumpers": "^"}  # peak profil
 def configurations(gap: float) -> dict[str, dict]:
     """The three configurations of section 4 at one seismic gap (m), in pipeline.sweep's
     vocabulary (pipeline.histories)."""
-    from pipeline.grid import BASELINE_COR, BASELINE_K
+    from pipeline.grid import BASELINE, BASELINE_LAW
 
     return {
         "no_pounding": {"impact": "none"},
-        "no_bumpers": {"impact": "linear", "gap": gap, "wall_k": BASELINE_K,
-                       "cor": BASELINE_COR},
+        "no_bumpers": {"impact": BASELINE_LAW, "gap": gap, **BASELINE},
         "bumpers": {"impact": "bumper", "gap": gap, "thickness": THICKNESS,
                     "n_bumpers": N_BUMPERS, "wall_k": WALL_K, "strain": STRAIN},
     }
@@ -61,8 +62,8 @@ def compute(args):
     import xarray as xr
 
     import pipeline
-    from pipeline.grid import resolve_records
     from pipeline.histories import concat_records, histories, segment
+    from pipeline.records import resolve_records
 
     records, names = resolve_records(args.records, args.records_dir)
     if args.quick:
@@ -100,10 +101,10 @@ def compute(args):
         {"units": "m", "long_name": "the paper's unconstrained peak isolator displacement "
                                     "(section 4; NaN: not in the paper)"})
     ds.attrs["gap_rule"] = "; ".join(
-        f"{name}: gap = {GAP_FRACTION} x {peak * CM:.2f} cm = {gap * CM:.1f} cm, clear gap with "
-        f"bumpers {(gap - THICKNESS) * CM:.1f} cm"
-        + (f" (paper: {PAPER_GAP[name] * CM:.0f} cm from {PAPER_UNCONSTRAINED[name] * CM:.1f} "
-           f"cm, clear gap {(PAPER_GAP[name] - THICKNESS) * CM:.0f} cm)"
+        f"{name}: gap = {GAP_FRACTION} x {peak / CM:.2f} cm = {gap / CM:.1f} cm, clear gap with "
+        f"bumpers {(gap - THICKNESS) / CM:.1f} cm"
+        + (f" (paper: {PAPER_GAP[name] / CM:.0f} cm from {PAPER_UNCONSTRAINED[name] / CM:.1f} "
+           f"cm, clear gap {(PAPER_GAP[name] - THICKNESS) / CM:.0f} cm)"
            if name in PAPER_GAP else "")
         for name, peak, gap in zip(names, unconstrained.values, gaps, strict=True))
     if args.quick:
@@ -148,12 +149,12 @@ def plot(ds):
 
 
 def _gap_text(ds, record: str) -> str:
-    gap = float(ds.chosen_gap.sel(record=record)) * CM
-    paper = float(ds.paper_gap.sel(record=record)) * CM
+    gap = float(ds.chosen_gap.sel(record=record)) / CM
+    paper = float(ds.paper_gap.sel(record=record)) / CM
     text = f"gap {gap:.1f} cm"
     if np.isfinite(paper):
         text += f" (paper {paper:.0f} cm)"
-    return text + f", clear gap with bumpers {gap - THICKNESS * CM:.1f} cm"
+    return text + f", clear gap with bumpers {gap - THICKNESS / CM:.1f} cm"
 
 
 def _plot_base_accel(ax, ds, record, fig_number):
@@ -224,14 +225,14 @@ def _plot_force_indentation(ax, ds, record):
         # Each contact drawn from and back to zero: keep the samples next to a contact.
         near = contact | np.roll(contact, 1) | np.roll(contact, -1)
         near &= np.isfinite(indentation)
-        ax.plot(np.where(near, indentation * CM, np.nan), np.where(near, force * KN, np.nan),
+        ax.plot(np.where(near, indentation / CM, np.nan), np.where(near, force / KN, np.nan),
                 **CONFIG_STYLE[config], label=CONFIG_LABELS[config])
         if config == "bumpers":
             crush = float(c.crush_indentation)
     if np.isfinite(crush):
-        ax.axvline(crush * CM, color="k", ls="--", lw=0.8)
-        ax.annotate(f"bumpers crushed:\n{crush * CM:g} cm = {STRAIN:g} x thickness",
-                    (crush * CM, 0.75), xycoords=("data", "axes fraction"), xytext=(-4, 0),
+        ax.axvline(crush / CM, color="k", ls="--", lw=0.8)
+        ax.annotate(f"bumpers crushed:\n{crush / CM:g} cm = {STRAIN:g} x thickness",
+                    (crush / CM, 0.75), xycoords=("data", "axes fraction"), xytext=(-4, 0),
                     textcoords="offset points", va="top", ha="right", fontsize=7)
     ax.set_xlim(left=0)
     ax.set_ylim(bottom=0)
@@ -247,7 +248,7 @@ def _plot_peaks(ax_accel, ax_drift, ds, record, fig_number):
         c = sel.sel(configuration=config)
         style = dict(CONFIG_STYLE[config], lw=1.1, marker=MARKERS.get(str(config), "o"))
         ax_accel.plot(c.peak_total_accel.values / G, ds.floor.values, **style)
-        ax_drift.plot(c.peak_interstory_drift.values * CM, ds.story.values, **style)
+        ax_drift.plot(c.peak_interstory_drift.values / CM, ds.story.values, **style)
     ax_accel.set_yticks(ds.floor.values, ["Base", "1st", "2nd", "3rd", "Roof"])
     ax_drift.set_yticks(ds.story.values, ["1st", "2nd", "3rd", "4th"])
     ax_accel.set_xlabel("Peak floor acceleration (g)")
@@ -283,20 +284,20 @@ def check(ds) -> str:
         drift = sel.peak_interstory_drift
         drift_ratio = (drift.sel(configuration="bumpers")
                        / drift.sel(configuration="no_bumpers")).values
-        gap = float(sel.chosen_gap) * CM
-        paper_gap = float(sel.paper_gap) * CM
+        gap = float(sel.chosen_gap) / CM
+        paper_gap = float(sel.paper_gap) / CM
         head = (f"{record}: gap {gap:.1f} cm"
                 + (f" (paper {paper_gap:.0f} cm)" if np.isfinite(paper_gap) else "")
                 + f"; peak base acceleration no poundings {free:.2f} g, without bumpers "
                 f"{bare:.2f} g, with bumpers {bump:.2f} g (x{ratio:.2f}); bumpers indented "
-                f"{indent * CM:.1f} cm against {crush * CM:g} cm crush limit; interstory "
+                f"{indent / CM:.1f} cm against {crush / CM:g} cm crush limit; interstory "
                 f"deflections with / without bumpers x{drift_ratio.min():.2f}-"
                 f"x{drift_ratio.max():.2f}.")
         if record == "kobe":
             claims = [
                 ("bumpers do not reduce the peak base acceleration much "
                  f"(with / without > {LITTLE})", ratio > LITTLE),
-                (f"bumpers crushed well past the limit (> {SLIGHT_CRUSH} x {crush * CM:g} cm)",
+                (f"bumpers crushed well past the limit (> {SLIGHT_CRUSH} x {crush / CM:g} cm)",
                  indent > SLIGHT_CRUSH * crush),
                 ("interstory deflections amplified by the bumpers (some story above x1)",
                  bool((drift_ratio > 1).any())),
@@ -306,7 +307,7 @@ def check(ds) -> str:
                 ("bumpers considerably reduce the peak base acceleration "
                  f"(with / without < {CONSIDERABLE})", ratio < CONSIDERABLE),
                 ("it stays above the no-pounding response", bump > free),
-                (f"bumpers only slightly crushed (< {SLIGHT_CRUSH} x {crush * CM:g} cm)",
+                (f"bumpers only slightly crushed (< {SLIGHT_CRUSH} x {crush / CM:g} cm)",
                  indent < SLIGHT_CRUSH * crush),
                 ("first-story deflection slightly lower with bumpers",
                  bool(drift_ratio[0] < 1)),

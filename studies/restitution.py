@@ -9,7 +9,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._plot import CM, FLOOR_LABELS, STORY_LABELS, G, plt, record_label
+from engine.units import CM, G
+
+from ._plot import FLOOR_LABELS, STORY_LABELS, plt, record_label
 from ._recipe import Recipe, sweep_options
 
 THICKNESS = 0.05  # m
@@ -24,10 +26,11 @@ def cors(quick: bool) -> np.ndarray:
 
 def compute(args):
     import pipeline
+    from pipeline.errors import SweepError
 
     options = sweep_options(args)
     if len(options["records"]) != 1:
-        raise ValueError("restitution: the gap follows one record's unconstrained peak; "
+        raise SweepError("restitution: the gap follows one record's unconstrained peak; "
                          f"give one record, not {len(options['records'])}")
     free = pipeline.unconstrained_peaks(options["records"], dt=args.dt,
                                         workers=min(args.workers, 1),
@@ -39,8 +42,8 @@ def compute(args):
                         unconstrained=True, **options)
     ds.attrs.update(
         gap_rule=f"gap = {GAP_FRACTION} x unconstrained peak isolator displacement "
-                 f"({peak * CM:.2f} cm) = {gap * CM:.1f} cm, to the mm; clear gap with "
-                 f"{THICKNESS * CM:g} cm bumpers {(gap - THICKNESS) * CM:.1f} cm "
+                 f"({peak / CM:.2f} cm) = {gap / CM:.1f} cm, to the mm; clear gap with "
+                 f"{THICKNESS / CM:g} cm bumpers {(gap - THICKNESS) / CM:.1f} cm "
                  "(paper: 28.5 and 23.5 cm)",
         chosen_gap=gap, chosen_gap_units="m", clear_gap=round(gap - THICKNESS, 4),
         clear_gap_units="m")
@@ -52,7 +55,7 @@ def plot(ds):
     record = str(ds.record.values[0])
     cor = ds.cor.values
     accel = ds.peak_total_accel.sel(record=record) / G
-    drift = ds.peak_interstory_drift.sel(record=record) * CM
+    drift = ds.peak_interstory_drift.sel(record=record) / CM
     for floor, label in zip(ds.floor.values, FLOOR_LABELS, strict=True):
         left.plot(cor, accel.sel(floor=floor), marker="o", label=label)
     for story, label in zip(ds.story.values, STORY_LABELS, strict=True):
@@ -63,11 +66,11 @@ def plot(ds):
         ax.set_xlabel("Coefficient of restitution of the bumpers")
         ax.set_ylim(bottom=0, top=ax.get_ylim()[1] * 1.35)
         ax.legend(loc="upper center", ncol=2)
-    gap = float(ds.gap) * CM
+    gap = float(ds.gap) / CM
     fig.suptitle(f"Fig. 22: peak responses vs the bumpers' coefficient of restitution\n"
                  f"{record_label(ds, record)}, seismic gap {gap:.1f} cm, "
-                 f"{float(ds.thickness) * CM:g} cm bumpers (clear gap "
-                 f"{gap - float(ds.thickness) * CM:.1f} cm)")
+                 f"{float(ds.thickness) / CM:g} cm bumpers (clear gap "
+                 f"{gap - float(ds.thickness) / CM:.1f} cm)")
     fig.tight_layout()
     return fig
 
@@ -82,10 +85,10 @@ def check(ds) -> str:
     worst = [float(s.max()) for s in spreads]
     floor = FLOOR_LABELS[int(spreads[0].values.argmax())].lower()
     story = STORY_LABELS[int(spreads[1].values.argmax())]
-    dent = ds.max_indentation.sel(record=record) * CM
-    delta_u = float(ds.strain * ds.thickness) * CM
+    dent = ds.max_indentation.sel(record=record) / CM
+    delta_u = float(ds.strain * ds.thickness) / CM
     return (f"The COR does not affect the peak responses (paper 5.6); here, at a "
-            f"{float(ds.gap) * CM:.1f} cm gap under {record}, over COR {ds.cor.values.min():g}-"
+            f"{float(ds.gap) / CM:.1f} cm gap under {record}, over COR {ds.cor.values.min():g}-"
             f"{ds.cor.values.max():g}: peak floor accelerations vary by up to {worst[0]:.0%} "
             f"({floor}), interstory deflections by up to {worst[1]:.0%} ({story}) of their "
             f"mean -> {'agrees' if max(worst) < NO_EFFECT else 'differs'} "

@@ -8,8 +8,9 @@ wall without bumpers at the full gap is dashed.
 """
 from __future__ import annotations
 
+from engine.units import CM
+
 from . import _peaks_vs_gap as pvg
-from ._plot import CM
 from ._recipe import Recipe, sweep_options, verdict
 
 STRAINS = (0.6, 0.8, 1.0)
@@ -46,7 +47,7 @@ def check(ds) -> str:
     agrees = all(c > n / 2 for c in counts) if n else None
     return ("Both peak floor accelerations and interstory deflections decrease as eps_u "
             f"increases (paper 5.3); here, at the {n} (record, gap) points where the bumpers "
-            f"are compressed past the smallest delta_u = {low:g} x {float(ds.thickness) * CM:g} cm "
+            f"are compressed past the smallest delta_u = {low:g} x {float(ds.thickness) / CM:g} cm "
             f"(elsewhere eps_u plays no part), eps_u = {high:g} rather than {low:g} gives a "
             f"lower peak acceleration at {counts[0]}/{n} (mean {changes[0]:+.0%}) and a lower "
             f"peak interstory deflection at {counts[1]}/{n} (mean {changes[1]:+.0%}) -> "

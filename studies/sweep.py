@@ -11,8 +11,20 @@ from __future__ import annotations
 import argparse
 import sys
 
-KN_PER_MM = 1e6  # N/m in 1 kN/mm
-CM = 1e-2  # m in 1 cm
+from engine.impact import LAWS, M_EFF
+from engine.units import CM, KN_PER_MM
+from pipeline.grid import BASELINE, IMPACT_LAWS
+
+
+def declared(name: str) -> str:
+    """What sweep parameter `name` is under each law that takes it: the laws' declarations."""
+    parts = []
+    for law in IMPACT_LAWS:
+        p = LAWS[law].PARAMETERS.swept().get(name)
+        if p is not None:
+            default = "required" if p.required else f"default {p.default:g}"
+            parts.append(f"{law}: {p.meaning}, {p.units}, in {p.valid}, {default}")
+    return "; ".join(parts)
 
 
 def parser() -> argparse.ArgumentParser:
@@ -30,39 +42,37 @@ def parser() -> argparse.ArgumentParser:
                         "(default: $BUMPERS_RECORDS_DIR)")
     gap = p.add_mutually_exclusive_group(required=True)
     gap.add_argument("--gap", nargs="+", type=float, metavar="M",
-                     help="clear gap between base slab and moat wall before bumpers, m")
+                     help="seismic gap between base slab and moat wall, before bumpers, m "
+                          "(with bumpers the clear gap is gap - thickness)")
     gap.add_argument("--gap-cm", nargs="+", type=float, metavar="CM", help="the gap in cm")
     thickness = p.add_mutually_exclusive_group()
     thickness.add_argument("--thickness", nargs="+", type=float, metavar="M",
-                           help="bumper thickness, m (bumper law only; default 0.05)")
+                           help=declared("thickness"))
     thickness.add_argument("--thickness-cm", nargs="+", type=float, metavar="CM",
                            help="bumper thickness in cm")
     p.add_argument("--strain", nargs="+", type=float, metavar="EPS",
-                   help="ultimate compressive strain of the rubber, in (0, 1] (bumper law only; "
-                        "default 0.8)")
+                   help=declared("strain"))
     p.add_argument("--n-bumpers", nargs="+", type=int, metavar="N",
-                   help="bumpers on each side, acting in parallel (bumper law only; default 4)")
+                   help=declared("n_bumpers"))
     wall = p.add_mutually_exclusive_group()
     wall.add_argument("--wall-k", nargs="+", type=float, metavar="K",
-                      help="wall stiffness: k_w behind the crushed bumper in N/m (bumper, "
-                           "default 1.5e9), k in N/m (linear, default 2.5e9), beta in N/m^1.5 "
-                           "(jankowski, required), k in N/m^1.5 (hertzdamp, required)")
+                      help="wall stiffness, per law: " + declared("wall_k"))
     wall.add_argument("--wall-k-kn-mm", nargs="+", type=float, metavar="K",
                       help="wall stiffness in kN/mm (bumper and linear laws only)")
     p.add_argument("--cor", nargs="+", type=float, metavar="E",
-                   help="coefficient of restitution, in (0, 1] (default 0.45 for bumpers, 0.5 "
-                        "for the other laws)")
+                   help=declared("cor"))
     p.add_argument("--impact", default="bumper",
-                   choices=("bumper", "linear", "jankowski", "hertzdamp"),
+                   choices=IMPACT_LAWS,
                    help="impact law at the moat wall (default: bumper)")
     p.add_argument("--baseline", action="store_true",
-                   help="also run the bare wall without bumpers (linear, 2500 kN/mm, COR 0.5) "
-                        "at each full gap, and store the amplification ratios "
-                        "bumpers / no bumpers (bumper law only)")
+                   help="also run the bare wall without bumpers (the linear law at its "
+                        f"defaults, wall_k {BASELINE['wall_k'] / KN_PER_MM:g} kN/mm, cor "
+                        f"{BASELINE['cor']:g}) at each full gap, and store the amplification "
+                        "ratios bumpers / no bumpers (bumper law only)")
     p.add_argument("--unconstrained", action="store_true",
                    help="also run each record without moat wall")
-    p.add_argument("--m-eff", type=float, default=320e3, metavar="KG",
-                   help="effective impact mass, kg (default: 320e3, the base slab)")
+    p.add_argument("--m-eff", type=float, default=M_EFF.default, metavar="KG",
+                   help=f"{M_EFF.meaning}, kg (default: {M_EFF.default:g})")
     p.add_argument("--damping", choices=("paper", "modal"), default="paper",
                    help="building damping model, see engine.Building (default: paper)")
     p.add_argument("--dt", type=float, metavar="S",
@@ -95,7 +105,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
     import engine
     import pipeline
-    from pipeline.grid import SweepError
+    from pipeline.errors import SweepError
 
     try:
         if args.wall_k_kn_mm is not None and args.impact not in ("bumper", "linear"):

@@ -7,8 +7,9 @@ without bumpers at the full gap is dashed.
 """
 from __future__ import annotations
 
+from engine.units import CM
+
 from . import _peaks_vs_gap as pvg
-from ._plot import CM
 from ._recipe import Recipe, sweep_options, verdict
 
 THICKNESSES = (0.03, 0.05, 0.08)  # m
@@ -26,7 +27,7 @@ def compute(args):
 
 
 def plot(ds):
-    return pvg.plot(ds, "thickness", lambda t: f"t = {t * CM:g} cm",
+    return pvg.plot(ds, "thickness", lambda t: f"t = {t / CM:g} cm",
                     "Fig. 16: peak responses vs seismic gap, bumper thickness t "
                     "(4 bumpers, $k_w$ = 1500 kN/mm)")
 
@@ -37,7 +38,7 @@ def check(ds) -> str:
     thickness does not significantly affect the response."""
     accel, drift = pvg.accel_g(ds), pvg.drift_cm(ds)
     thin, thick = ds.thickness.values.min(), ds.thickness.values.max()
-    names = f"t = {thick * CM:g} cm", f"t = {thin * CM:g} cm"
+    names = f"t = {thick / CM:g} cm", f"t = {thin / CM:g} cm"
     narrow = ds.gap < NARROW * ds.unconstrained_peak_isolator_disp
     hit = (ds.n_impacts > 0).any("thickness")
     lower = accel.sel(thickness=thick) < accel.sel(thickness=thin)

@@ -6,12 +6,12 @@ k_w, the post-yield stiffness of the bumper law (the wall behind the crushed rub
 """
 from __future__ import annotations
 
+from engine.units import CM, KN_PER_MM
+
 from . import _peaks_vs_gap as pvg
-from ._plot import CM
 from ._recipe import Recipe, sweep_options, verdict
 
 WALL_KS = (2.5e9, 1.5e9, 5e8)  # N/m: 2500, 1500, 500 kN/mm
-KN_PER_MM = 1e6  # N/m
 SIGNIFICANT = 0.1  # mean relative reduction of the peak acceleration
 
 
@@ -47,7 +47,7 @@ def check(ds) -> str:
               and changes[0] < changes[1]) if n else None
     return ("Lower k_w: significantly lower peak responses, especially floor accelerations "
             f"(paper 5.5); here, at the {n} (record, gap) points where the bumpers are crushed "
-            f"past delta_u = {float(ds.strain * ds.thickness) * CM:g} cm (elsewhere k_w plays no "
+            f"past delta_u = {float(ds.strain * ds.thickness) / CM:g} cm (elsewhere k_w plays no "
             f"part{'; never under ' + ', '.join(untouched) if untouched else ''}), "
             f"k_w = {soft / KN_PER_MM:g} rather than {stiff / KN_PER_MM:g} kN/mm gives a lower "
             f"peak acceleration at {counts[0]}/{n} (mean {changes[0]:+.0%}) and a lower peak "

@@ -23,8 +23,9 @@ def records_dir_args() -> list[str]:
 @pytest.fixture(scope="session")
 def paper_record():
     """Load one of the paper's records by key: from ../shared/records when it is there, else
-    from the embedded library. Olive View and Pacoima are always the real records; a test
-    that needs real Kobe or Sylmar Converter data should use `real_paper_record`."""
+    built in (Kobe, Sylmar Converter) or from the embedded library (Olive View, Pacoima).
+    A test that must not run on a stand-in (the built-in data unreadable) should use
+    `real_paper_record`."""
     from pipeline.records import paper_record as resolve
 
     directory = SHARED_RECORDS if SHARED_RECORDS.is_dir() else None

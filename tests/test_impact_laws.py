@@ -4,7 +4,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 import engine
-from engine import Contact
+from engine import Contact, units
 from engine.impact import force, linear_viscoelastic, rubber_bumper
 
 M_BODY = 300.0           # kg, the Kajita et al. steel rods
@@ -82,7 +82,7 @@ def _independent_cor(force, v, m_eff):
 def test_published_rules_against_independent_solution(cor, v):
     """The published closed forms, run literally, realise the COR an independent ODE solver
     finds for the same law: Eq. 9, Hertzdamp's 3(1-COR^2)/4, and Eq. 3 with no tension."""
-    k_bumper = rubber_bumper.impact_stiffness(rubber_bumper.BUMPER_AREA, 0.05, count=4)
+    k_bumper = rubber_bumper.impact_stiffness(rubber_bumper.PARAMETERS.area.default, 0.05, count=4)
     c_eq9 = rubber_bumper.damping_prefactor(cor, M_EFF) / v**rubber_bumper.EQ9_VELOCITY_EXPONENT
     chi = 0.75 * (1 - cor**2)
     c_kv = 2 * linear_viscoelastic.xi_eq3(cor) * np.sqrt(2.5e7 * M_EFF)
@@ -111,14 +111,16 @@ def test_eq3_with_no_tension_has_the_closed_form_cor():
 
 
 def test_bumper_stiffness_reproduces_the_paper():
-    to_kn_mm = rubber_bumper.si_to_kn_mm
+    def to_kn_mm(k, n):
+        return k / units.kn_per_mm_n(n)
+
     kajita_area, n = 0.040 * 0.040, 2.65
     # Static test fit (0.2 kN/mm^2.65) and impact stiffness (0.45), Kajita specimen 10 mm.
     assert to_kn_mm(rubber_bumper.static_stiffness(kajita_area, 0.010), n) == pytest.approx(
         0.2, rel=1e-3)
     assert to_kn_mm(rubber_bumper.impact_stiffness(kajita_area, 0.010), n) == pytest.approx(
         0.45, rel=1e-3)
-    one = to_kn_mm(rubber_bumper.impact_stiffness(rubber_bumper.BUMPER_AREA, 0.050), n)
+    one = to_kn_mm(rubber_bumper.impact_stiffness(rubber_bumper.PARAMETERS.area.default, 0.050), n)
     assert one == pytest.approx(0.089, abs=5e-4)
     for count, paper in [(4, 0.36), (8, 0.71), (16, 1.42), (32, 2.85)]:
         k = Contact.bumper(0.3, n_bumpers=count).k[0]
@@ -128,7 +130,7 @@ def test_bumper_stiffness_reproduces_the_paper():
 def test_bumper_law_shape():
     """Eq. 14 is continuous at delta_u, restitution lowers the force, and it never pulls."""
     c = Contact.bumper(0.3, thickness=0.05, strain=0.8, k_w=1.5e9)
-    assert c.gap[0] == pytest.approx(0.25) and c.delta_u[0] == pytest.approx(0.04)
+    assert c.clear_gap[0] == pytest.approx(0.25) and c.delta_u[0] == pytest.approx(0.04)
     du = 0.04
 
     def f(*args):
@@ -146,7 +148,7 @@ def test_bumper_law_shape():
 
 def test_cavity_mounting_geometry():
     c = Contact.bumper(0.3, thickness=0.05, strain=1.0, cavity=0.01)
-    assert c.gap[0] == pytest.approx(0.26)          # protrudes 4 cm
+    assert c.clear_gap[0] == pytest.approx(0.26)          # protrudes 4 cm
     assert c.delta_u[0] == pytest.approx(0.04)      # then bears on the wall
 
 

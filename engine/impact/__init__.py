@@ -1,7 +1,8 @@
 """Moat-wall impact laws, one module each, and `Contact`: the per-member wall description.
 
-Every law is affine in the indentation rate at a given indentation and phase, so each module
-offers the same pure functions over (B,) arrays:
+Each law module declares its parameters once (`PARAMETERS`: unit, valid range, default,
+meaning, the paper's equation; see parameters.py), turns them into Contact fields
+(`contact_fields`), and offers the same pure functions over (B,) arrays:
     force_terms(delta, delta_dot, v_imp, p) -> (elastic force N, dashpot N*s/m)
         with F = max(elastic + dashpot * delta_dot, 0); delta_dot only selects the phase;
     max_tangent_stiffness(p, indentation_bound) -> N/m
@@ -10,43 +11,90 @@ dashpot on the central velocity (see integrate.py); `force` evaluates a law dire
 """
 from __future__ import annotations
 
+import inspect
 from dataclasses import dataclass, fields
 
 import numpy as np
 
 from ..errors import EngineError
 from . import hertzdamp, jankowski, linear_viscoelastic, rubber_bumper
+from .parameters import M_EFF, REQUIRED, Declaration, Parameter
 
 NONE, LINEAR, JANKOWSKI, HERTZDAMP, BUMPER = range(5)
-LAW_NAMES = {NONE: "none", LINEAR: "linear", JANKOWSKI: "jankowski", HERTZDAMP: "hertzdamp",
-             BUMPER: "bumper"}
+LAW_CODES = {"none": NONE, "linear": LINEAR, "jankowski": JANKOWSKI, "hertzdamp": HERTZDAMP,
+             "bumper": BUMPER}
+LAW_NAMES = {code: name for name, code in LAW_CODES.items()}
 LAW_MODULES = {LINEAR: linear_viscoelastic, JANKOWSKI: jankowski, HERTZDAMP: hertzdamp,
                BUMPER: rubber_bumper}
+LAWS = {LAW_NAMES[code]: module for code, module in LAW_MODULES.items()}
+"""Wall law name -> its module (PARAMETERS, contact_fields, force_terms, ...)."""
 
-DEFAULT_M_EFF = 320e3  # kg: the base slab against an immovable wall (SPEC decision)
+DEFAULT_M_EFF = M_EFF.default
+
+# Contact fields a law leaves unset, and their neutral values.
+_UNSET = {"delta_u": np.inf, "k_w": 0.0, "dashpot": 0.0, "damping_ratio": 0.0, "chi": 0.0,
+          "c_imp_coef": 0.0, "c_imp_exponent": 0.0}
+
+
+def _law_constructor(law: str):
+    """Contact.<law>(gap, ...): a classmethod whose signature and docstring are the law's
+    declaration, so that the declaration is the only place defaults and ranges are written."""
+    declaration = LAWS[law].PARAMETERS
+    signature = inspect.Signature(
+        [inspect.Parameter("gap", inspect.Parameter.POSITIONAL_OR_KEYWORD)]
+        + [inspect.Parameter(name, inspect.Parameter.POSITIONAL_OR_KEYWORD,
+                             default=inspect.Parameter.empty if entry.default is REQUIRED
+                             else entry.default)
+           for name, entry in declaration.items() if name != "gap"])
+
+    def constructor(cls, *args, **kwargs) -> Contact:
+        try:
+            bound = signature.bind(*args, **kwargs)
+        except TypeError as err:
+            raise EngineError(f"Contact.{law}: {err}") from None
+        return cls.of(law, **bound.arguments)
+
+    constructor.__name__ = constructor.__qualname__ = law
+    constructor.__signature__ = signature.replace(
+        parameters=[inspect.Parameter("cls", inspect.Parameter.POSITIONAL_ONLY),
+                    *signature.parameters.values()])
+    constructor.__doc__ = (f"A {law} moat wall ({LAWS[law].__name__}); every parameter is a "
+                           "scalar or a (B,) array, broadcast together:\n"
+                           + declaration.describe())
+    return classmethod(constructor)
 
 
 @dataclass(frozen=True)
 class Contact:
     """Moat-wall contact for a batch of B members; every field is a (B,) array.
 
-    law: int code (NONE, LINEAR, JANKOWSKI, HERTZDAMP, BUMPER); gap: clear gap to the contact
-    surface on either side, m (inf for NONE); k: contact stiffness (N/m^n); n: exponent;
-    cor: coefficient of restitution; m_eff: kg; delta_u: indentation at which the bumper is
-    crushed, m (inf otherwise); k_w: wall stiffness past delta_u, N/m; coef, vexp: the law's
-    damping constants (see each module).
+    law: int code (LAW_CODES); clear_gap: clearance from the slab to the contact surface on
+    either side, m (after any bumper; inf without a wall); k: the law's stiffness (N/m^n: the
+    linear k, Jankowski's beta, Hertzdamp's k, the bumpers' k_imp); n: its exponent; cor:
+    coefficient of restitution; m_eff: kg; delta_u: indentation at which the bumpers are
+    crushed, m (inf otherwise); k_w: wall stiffness past delta_u, N/m. The damping constants,
+    each used by one law (0 for the others): dashpot (linear, N*s/m), damping_ratio
+    (Jankowski's xi), chi (Hertzdamp), c_imp_coef and c_imp_exponent (bumper: C_imp =
+    c_imp_coef / v_imp^c_imp_exponent, s/m).
+
+    Build one with a law's constructor (`Contact.bumper(gap, ...)`, `linear`, `jankowski`,
+    `hertzdamp`; their parameters are declared in each law's module), `Contact.of(law, ...)`
+    or `Contact.none(size)`.
     """
 
     law: np.ndarray
-    gap: np.ndarray
+    clear_gap: np.ndarray
     k: np.ndarray
     n: np.ndarray
     cor: np.ndarray
     m_eff: np.ndarray
     delta_u: np.ndarray
     k_w: np.ndarray
-    coef: np.ndarray
-    vexp: np.ndarray
+    dashpot: np.ndarray
+    damping_ratio: np.ndarray
+    chi: np.ndarray
+    c_imp_coef: np.ndarray
+    c_imp_exponent: np.ndarray
 
     def __len__(self) -> int:
         return len(self.law)
@@ -68,100 +116,41 @@ class Contact:
         return cls(*(np.concatenate([getattr(p, f.name) for p in parts]) for f in fields(cls)))
 
     @classmethod
-    def _build(cls, law, **values) -> Contact:
-        arrays = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in values.values()))
-        shape = arrays[0].shape
-        if len(shape) > 1:
-            raise EngineError(
-                f"contact parameters must be scalars or 1-D arrays, got shape {shape}")
-        arrays = [np.atleast_1d(a).copy() for a in arrays]
-        named = dict(zip(values, arrays, strict=True))
-        for name, a in named.items():
-            if np.any(np.isnan(a)):
-                raise EngineError(f"{name} contains NaN")
-        return cls(law=np.full(arrays[0].shape, law, dtype=np.int8), **named)
-
-    @classmethod
     def none(cls, size: int = 1) -> Contact:
         """No moat wall: the unconstrained building."""
         inf, zero, one = np.full(size, np.inf), np.zeros(size), np.ones(size)
-        return cls(law=np.full(size, NONE, dtype=np.int8), gap=inf, k=zero, n=one, cor=one,
-                   m_eff=one, delta_u=inf, k_w=zero, coef=zero, vexp=one)
+        return cls(law=np.full(size, NONE, dtype=np.int8), clear_gap=inf, k=zero, n=one,
+                   cor=one, m_eff=one, delta_u=inf, k_w=zero, dashpot=zero.copy(),
+                   damping_ratio=zero.copy(), chi=zero.copy(), c_imp_coef=zero.copy(),
+                   c_imp_exponent=zero.copy())
 
     @classmethod
-    def linear(cls, gap, k=2.5e9, cor=0.5, m_eff=DEFAULT_M_EFF, xi_rule="no_tension") -> Contact:
-        """Linear viscoelastic wall, Eq. 1-3: gap m, k N/m (paper: 2500 kN/mm), COR 0.5."""
-        _check_rule("xi_rule", xi_rule, linear_viscoelastic.XI_RULES)
-        _check_positive(gap=gap, k=k, m_eff=m_eff)
-        _check_cor(cor)
-        c = cls._build(LINEAR, gap=gap, k=k, n=1.0, cor=cor, m_eff=m_eff, delta_u=np.inf,
-                       k_w=0.0, coef=0.0, vexp=0.0)
-        coef = linear_viscoelastic.damping_coefficient(c.k, c.cor, c.m_eff, xi_rule)
-        return _replace(c, coef=coef)
+    def of(cls, law: str, **params) -> Contact:
+        """A wall of the named law ("linear", "jankowski", "hertzdamp", "bumper") from its
+        declared parameters (`LAWS[law].PARAMETERS`); omitted ones take their defaults.
+        Numeric parameters are scalars or (B,) arrays, broadcast together."""
+        if law not in LAWS:
+            raise EngineError(f"unknown impact law {law!r}; choose one of {tuple(LAWS)}")
+        declaration: Declaration = LAWS[law].PARAMETERS
+        values = declaration.resolve(params)
+        numeric = [n for n, e in declaration.items()
+                   if isinstance(e, Parameter) and values[n] is not None]
+        arrays = np.broadcast_arrays(*(values[n] for n in numeric))
+        if arrays[0].ndim > 1:
+            raise EngineError(
+                f"contact parameters must be scalars or 1-D arrays, got shape {arrays[0].shape}")
+        values.update(zip(numeric, (np.atleast_1d(a).copy() for a in arrays), strict=True))
+        size = values["gap"].size
+        physics = LAWS[law].contact_fields(**values)
+        columns = {**_UNSET, "cor": values["cor"], "m_eff": values["m_eff"], **physics}
+        return cls(law=np.full(size, LAW_CODES[law], dtype=np.int8),
+                   **{name: np.broadcast_to(np.asarray(value, dtype=float), (size,)).copy()
+                      for name, value in columns.items()})
 
-    @classmethod
-    def jankowski(cls, gap, beta, cor=0.5, m_eff=DEFAULT_M_EFF) -> Contact:
-        """Nonlinear viscoelastic wall (Jankowski 2005): gap m, beta N/m^1.5."""
-        _check_positive(gap=gap, beta=beta, m_eff=m_eff)
-        _check_cor(cor)
-        c = cls._build(JANKOWSKI, gap=gap, k=beta, n=jankowski.EXPONENT, cor=cor, m_eff=m_eff,
-                       delta_u=np.inf, k_w=0.0, coef=0.0, vexp=0.0)
-        return _replace(c, coef=jankowski.damping_ratio(c.cor))
-
-    @classmethod
-    def hertzdamp(cls, gap, k, n=1.5, cor=0.5, m_eff=DEFAULT_M_EFF, chi_rule="lankarani"):
-        """Hertzdamp wall (Muthukumar & DesRoches 2006): gap m, k N/m^n."""
-        _check_rule("chi_rule", chi_rule, hertzdamp.CHI_RULES)
-        _check_positive(gap=gap, k=k, m_eff=m_eff)
-        _check_exponent(n)
-        _check_cor(cor)
-        c = cls._build(HERTZDAMP, gap=gap, k=k, n=n, cor=cor, m_eff=m_eff, delta_u=np.inf,
-                       k_w=0.0, coef=0.0, vexp=1.0)
-        return _replace(c, coef=hertzdamp.chi(c.cor, c.n, chi_rule))
-
-    @classmethod
-    def bumper(cls, gap, thickness=0.05, strain=0.8, n_bumpers=4, k_w=1.5e9, cor=0.45,
-               m_eff=DEFAULT_M_EFF, cavity=0.0, area=rubber_bumper.BUMPER_AREA,
-               k_r=rubber_bumper.K_R, n=rubber_bumper.EXPONENT, alpha=rubber_bumper.ALPHA,
-               c_imp_rule="eq9", c_imp=None) -> Contact:
-        """Rubber bumpers on the wall (the paper's model), SPEC section 2.
-
-        gap: slab-to-wall clearance before bumpers (m); thickness t (m); strain: ultimate
-        compressive strain; n_bumpers per side (in parallel); k_w: wall stiffness (N/m);
-        cavity: depth c_d (m) of the wall recess holding each bumper; area (m^2), k_r (Pa),
-        n, alpha: Eq. 11-12. The engine uses gap_eff = gap - (t - c_d) and
-        delta_u = min(strain t, t - c_d). c_imp_rule: "eq9" (the paper's C_imp) or
-        "calibrated" (realises the COR exactly); c_imp: a fixed C_imp in s/m instead, the
-        same at every impact velocity (for re-deriving Eq. 9, section 3.2).
-        """
-        _check_rule("c_imp_rule", c_imp_rule, rubber_bumper.C_IMP_RULES)
-        _check_positive(gap=gap, thickness=thickness, k_w=k_w, m_eff=m_eff, area=area, k_r=k_r,
-                        alpha=alpha)
-        _check_exponent(n)
-        _check_cor(cor)
-        strain, n_bumpers, cavity = (np.asarray(x, dtype=float)
-                                     for x in (strain, n_bumpers, cavity))
-        if np.any((strain <= 0) | (strain > 1)):
-            raise EngineError(f"strain must be in (0, 1], got {strain}")
-        if np.any(n_bumpers < 1) or np.any(n_bumpers != np.round(n_bumpers)):
-            raise EngineError(f"n_bumpers must be a whole number >= 1, got {n_bumpers}")
-        if np.any((cavity < 0) | (cavity >= thickness)):
-            raise EngineError(f"cavity must be in [0, thickness), got {cavity}")
-        protrusion = np.asarray(thickness) - cavity
-        if np.any(protrusion >= np.asarray(gap)):
-            raise EngineError("thickness - cavity must be smaller than gap: the bumpers would "
-                              f"close the gap (gap {gap}, thickness {thickness}, cavity {cavity})")
-        k_imp = rubber_bumper.impact_stiffness(area, thickness, k_r, n, alpha, n_bumpers)
-        delta_u = np.minimum(strain * np.asarray(thickness), protrusion)
-        if c_imp is not None:
-            _check_positive(c_imp=c_imp)
-        c = cls._build(BUMPER, gap=np.asarray(gap) - protrusion, k=k_imp, n=n, cor=cor,
-                       m_eff=m_eff, delta_u=delta_u, k_w=k_w,
-                       coef=0.0 if c_imp is None else c_imp, vexp=0.0)
-        if c_imp is not None:
-            return c
-        coef, vexp = rubber_bumper.damping_constants(c.cor, c.m_eff, c.n, c_imp_rule)
-        return _replace(c, coef=coef, vexp=vexp)
+    linear = _law_constructor("linear")
+    jankowski = _law_constructor("jankowski")
+    hertzdamp = _law_constructor("hertzdamp")
+    bumper = _law_constructor("bumper")
 
     def max_tangent_stiffness(self, indentation_bound: float) -> np.ndarray:
         """(B,) stiffest contact tangent (N/m) each member can reach; 0 without a wall."""
@@ -172,7 +161,6 @@ class Contact:
                 out[sel] = module.max_tangent_stiffness(self[np.flatnonzero(sel)],
                                                         indentation_bound)
         return out
-
 
 
 def law_blocks(contact: Contact):
@@ -217,33 +205,3 @@ def implicit_force(elastic, dashpot, delta_dot_free, compliance):
     """
     trial = elastic + dashpot * delta_dot_free
     return np.maximum(trial / (1 + 0.5 * dashpot * compliance), 0.0)
-
-
-def _replace(contact: Contact, **arrays) -> Contact:
-    values = {f.name: getattr(contact, f.name) for f in fields(contact)}
-    values.update({k: np.broadcast_to(np.asarray(v, float), contact.law.shape).copy()
-                   for k, v in arrays.items()})
-    return Contact(**values)
-
-
-def _check_positive(**values):
-    for name, v in values.items():
-        v = np.asarray(v, dtype=float)
-        if np.any(~(v > 0)):
-            raise EngineError(f"{name} must be positive, got {v}")
-
-
-def _check_cor(cor):
-    cor = np.asarray(cor, dtype=float)
-    if np.any(~((cor > 0) & (cor <= 1))):
-        raise EngineError(f"cor must be in (0, 1], got {cor}")
-
-
-def _check_exponent(n):
-    if np.any(~(np.asarray(n, dtype=float) >= 1)):
-        raise EngineError(f"exponent n must be >= 1, got {n}")
-
-
-def _check_rule(name, value, allowed):
-    if value not in allowed:
-        raise EngineError(f"{name} must be one of {allowed}, got {value!r}")

@@ -10,8 +10,23 @@ Two rules give chi from the coefficient of restitution:
 import numpy as np
 
 from .calibration import hunt_crossley_chi
+from .parameters import GAP, M_EFF, REQUIRED, Declaration, Option, Parameter
 
 CHI_RULES = ("lankarani", "calibrated")
+
+PARAMETERS = Declaration(
+    GAP,
+    # The unit is N/m^n; the string is that of the default exponent, which sweeps keep.
+    Parameter("k", "N m-1.5", "moat wall Hertz stiffness k (N/m^n)", REQUIRED, "(0, inf)",
+              equation="Muthukumar & DesRoches 2006", sweep="wall_k"),
+    Parameter("n", "1", "Hertz exponent n", 1.5, "[1, inf)"),
+    Parameter("cor", "1", "coefficient of restitution of the wall impacts", 0.5, "(0, 1]",
+              sweep="cor"),
+    M_EFF,
+    Option("chi_rule", CHI_RULES, "lankarani",
+           "damping factor chi from the COR: 3 (1 - COR^2) / 4 as published, or calibrated "
+           "to realise the COR"),
+)
 
 
 def chi(cor, n, rule="lankarani"):
@@ -21,14 +36,18 @@ def chi(cor, n, rule="lankarani"):
     return hunt_crossley_chi(cor, n, restitution_only=False)
 
 
+def contact_fields(gap, k, n, cor, m_eff, chi_rule):
+    """The Contact fields of this law from its checked, broadcast (B,) parameters."""
+    return {"clear_gap": gap, "k": k, "n": n, "chi": chi(cor, n, chi_rule)}
+
+
 def force_terms(delta, delta_dot, v_imp, p):
     """(elastic force N, dashpot N*s/m), (B,) each: F = k delta^n + (k delta^n chi / v_imp)
-    delta_dot. p.k (N/m^n), p.n, p.coef = chi; v_imp (m/s) > 0."""
+    delta_dot. p.k (N/m^n), p.n, p.chi; v_imp (m/s) > 0."""
     elastic = p.k * np.maximum(delta, 0.0) ** p.n
-    return elastic, elastic * p.coef / v_imp
+    return elastic, elastic * p.chi / v_imp
 
 
 def max_tangent_stiffness(p, indentation_bound):
     """Tangent n k delta^(n-1) at the indentation bound (m): the law itself has no cap."""
     return p.n * p.k * indentation_bound ** (p.n - 1)
-

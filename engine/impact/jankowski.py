@@ -7,7 +7,18 @@ xi = 9 sqrt(5) (1 - COR^2) / (2 COR (COR (9 pi - 16) + 16))  (Jankowski 2006).
 """
 import numpy as np
 
+from .parameters import GAP, M_EFF, REQUIRED, Declaration, Parameter
+
 EXPONENT = 1.5
+
+PARAMETERS = Declaration(
+    GAP,
+    Parameter("beta", "N m-1.5", "moat wall impact stiffness beta", REQUIRED, "(0, inf)",
+              equation="Jankowski 2005", sweep="wall_k"),
+    Parameter("cor", "1", "coefficient of restitution of the wall impacts", 0.5, "(0, 1]",
+              equation="Jankowski 2006", sweep="cor"),
+    M_EFF,
+)
 
 
 def damping_ratio(cor):
@@ -15,17 +26,21 @@ def damping_ratio(cor):
     return 9 * np.sqrt(5) * (1 - cor**2) / (2 * cor * (cor * (9 * np.pi - 16) + 16))
 
 
+def contact_fields(gap, beta, cor, m_eff):
+    """The Contact fields of this law from its checked, broadcast (B,) parameters."""
+    return {"clear_gap": gap, "k": beta, "n": EXPONENT, "damping_ratio": damping_ratio(cor)}
+
+
 def force_terms(delta, delta_dot, v_imp, p):
     """(elastic force N, dashpot N*s/m), (B,) each; the dashpot acts on approach only.
 
-    p.k = beta (N/m^1.5), p.coef = xi, p.m_eff (kg).
+    p.k = beta (N/m^1.5), p.damping_ratio = xi, p.m_eff (kg).
     """
     d = np.maximum(delta, 0.0)
-    dashpot = 2 * p.coef * np.sqrt(p.k * np.sqrt(d) * p.m_eff)
+    dashpot = 2 * p.damping_ratio * np.sqrt(p.k * np.sqrt(d) * p.m_eff)
     return p.k * d**EXPONENT, np.where(delta_dot > 0, dashpot, 0.0)
 
 
 def max_tangent_stiffness(p, indentation_bound):
     """Tangent 1.5 beta delta^0.5 at the indentation bound (m): the law itself has no cap."""
     return EXPONENT * p.k * np.sqrt(indentation_bound)
-

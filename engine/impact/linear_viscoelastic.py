@@ -9,11 +9,27 @@ Two rules give xi from the coefficient of restitution:
 - "no_tension" (default): the xi for which the *clipped* law realises the target COR. The
   clipped oscillator separates when its acceleration vanishes, which gives in closed form
   COR = exp(-r * (pi - 2 * atan(r))), r = xi / sqrt(1 - xi^2); it is inverted here.
+
+The paper's bare moat wall (the no-bumper reference of every figure) is this law at its
+defaults: k = 2500 kN/mm, COR 0.5 (SPEC decision).
 """
 import numpy as np
 from scipy.optimize import brentq
 
+from .parameters import GAP, M_EFF, Declaration, Option, Parameter
+
 XI_RULES = ("no_tension", "eq3")
+
+PARAMETERS = Declaration(
+    GAP,
+    Parameter("k", "N m-1", "moat wall contact stiffness k", 2.5e9, "(0, inf)",
+              equation="Eq. 1", sweep="wall_k"),
+    Parameter("cor", "1", "coefficient of restitution of the wall impacts", 0.5, "(0, 1]",
+              equation="Eq. 3", sweep="cor"),
+    M_EFF,
+    Option("xi_rule", XI_RULES, "no_tension",
+           "damping ratio from the COR: exact for the no-tension contact, or Eq. 3"),
+)
 
 
 def xi_eq3(cor):
@@ -44,15 +60,20 @@ def damping_coefficient(k, cor, m_eff, xi_rule="no_tension"):
     return 2 * xi * np.sqrt(k * m_eff)
 
 
+def contact_fields(gap, k, cor, m_eff, xi_rule):
+    """The Contact fields of this law from its checked, broadcast (B,) parameters."""
+    return {"clear_gap": gap, "k": k, "n": 1.0,
+            "dashpot": damping_coefficient(k, cor, m_eff, xi_rule)}
+
+
 def force_terms(delta, delta_dot, v_imp, p):
     """(elastic force N, dashpot N*s/m), (B,) each: F = k delta + c delta_dot.
 
-    p.k: N/m; p.coef: dashpot c. delta_dot and v_imp are unused (uniform signature).
+    p.k: N/m; p.dashpot: c (N*s/m). delta_dot and v_imp are unused (uniform signature).
     """
-    return p.k * delta, p.coef
+    return p.k * delta, p.dashpot
 
 
 def max_tangent_stiffness(p, indentation_bound):
     """Largest contact stiffness the member can reach (N/m), for the stability limit."""
     return p.k
-

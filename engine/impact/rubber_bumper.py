@@ -6,15 +6,22 @@ Approach (delta_dot > 0), Eq. 4 and 14:
 Restitution (delta_dot <= 0), Eq. 6:  F = F_A(delta) (1 + C_imp delta_dot), floored at 0.
 Eq. 9 (SI, s/m): C_imp = 1.55 (1 - COR^2) / (COR^0.7076 m_eff^0.0025 v_imp^0.9755).
 Alternative "calibrated" rule: C_imp = chi / v_imp with chi solved so that the pure power law
-realises the target COR exactly (calibration.py).
+realises the target COR exactly (calibration.py). Either way C_imp = c_imp_coef /
+v_imp^c_imp_exponent, the two constants a Contact holds.
 
 Bumper stiffness, Eq. 11-12: k_st = A K_r / t^n, k_imp = alpha k_st, and bumpers on one side
 act in parallel. With the paper's material (K_r = 55,835 kN/m^2, n = 2.65, alpha = 2.25) one
 150 x 150 x 50 mm bumper gives 0.089 kN/mm^2.65.
+
+Geometry (SPEC section 2): bumpers of thickness t are fixed to the wall, set into a cavity of
+depth c_d (0 by default), so they protrude t - c_d and the clear gap is gap - (t - c_d); they
+are crushed at delta_u = min(strain t, t - c_d), past which the slab bears on the wall (k_w).
 """
 import numpy as np
 
+from ..errors import EngineError
 from .calibration import hunt_crossley_chi
+from .parameters import GAP, M_EFF, Declaration, Option, Parameter
 
 C_IMP_RULES = ("eq9", "calibrated")
 EQ9_COEFFICIENT = 1.55
@@ -22,29 +29,49 @@ EQ9_COR_EXPONENT = 0.7076
 EQ9_MASS_EXPONENT = 0.0025
 EQ9_VELOCITY_EXPONENT = 0.9755
 
-# The paper's rubber (section 3.4, from the Kajita et al. static test): SI units.
-K_R = 55_835e3  # Pa (55,835 kN/m^2)
-EXPONENT = 2.65
-ALPHA = 2.25
-BUMPER_AREA = 0.150 * 0.150  # m^2
+PARAMETERS = Declaration(
+    GAP,
+    Parameter("thickness", "m", "bumper thickness t", 0.05, "(0, inf)", equation="Eq. 11",
+              sweep="thickness"),
+    Parameter("strain", "1", "ultimate compressive strain of the bumper rubber", 0.8,
+              "(0, 1]", equation="Eq. 14", sweep="strain"),
+    Parameter("n_bumpers", "1", "number of bumpers on each side, acting in parallel", 4,
+              "[1, inf)", integer=True, equation="Eq. 12", sweep="n_bumpers"),
+    Parameter("k_w", "N m-1", "moat wall stiffness k_w behind the crushed bumpers", 1.5e9,
+              "(0, inf)", equation="Eq. 14", sweep="wall_k"),
+    # 0.45: the paper's rubber, section 3.4 (SPEC decision).
+    Parameter("cor", "1", "coefficient of restitution of the bumper impacts", 0.45, "(0, 1]",
+              equation="Eq. 9", sweep="cor"),
+    M_EFF,
+    Parameter("cavity", "m", "depth c_d of the wall cavity holding each bumper", 0.0,
+              "[0, inf)", equation="section 5.3"),
+    Parameter("area", "m2", "contact area A of one bumper (150 x 150 mm)", 0.150 * 0.150,
+              "(0, inf)", equation="Eq. 11"),
+    Parameter("k_r", "Pa", "rubber stiffness K_r (55,835 kN/m^2, Kajita et al. static test)",
+              55_835e3, "(0, inf)", equation="Eq. 11"),
+    Parameter("n", "1", "exponent n of the rubber's power law", 2.65, "[1, inf)",
+              equation="Eq. 4"),
+    Parameter("alpha", "1", "impact-to-static stiffness ratio alpha", 2.25, "(0, inf)",
+              equation="Eq. 12"),
+    Option("c_imp_rule", C_IMP_RULES, "eq9",
+           "impact damping coefficient C_imp: the paper's Eq. 9, or calibrated to realise "
+           "the COR exactly"),
+    Parameter("c_imp", "s m-1", "a fixed C_imp instead of the rule's, the same at every "
+              "impact velocity (to re-derive Eq. 9, section 3.2)", None, "(0, inf)",
+              equation="Eq. 8"),
+)
 
 
-def kn_mm_to_si(k, n):
-    """Convert a stiffness from kN/mm^n to N/m^n."""
-    return np.asarray(k, dtype=float) * 1e3 * 1e3**n
+_RUBBER = {name: PARAMETERS[name].default for name in ("k_r", "n", "alpha")}
 
 
-def si_to_kn_mm(k, n):
-    """Convert a stiffness from N/m^n to kN/mm^n."""
-    return np.asarray(k, dtype=float) / (1e3 * 1e3**n)
-
-
-def static_stiffness(area, thickness, k_r=K_R, n=EXPONENT):
+def static_stiffness(area, thickness, k_r=_RUBBER["k_r"], n=_RUBBER["n"]):
     """Eq. 11: k_st = A K_r / t^n in N/m^n (area m^2, thickness m, k_r Pa)."""
     return area * k_r / np.asarray(thickness, dtype=float) ** n
 
 
-def impact_stiffness(area, thickness, k_r=K_R, n=EXPONENT, alpha=ALPHA, count=1):
+def impact_stiffness(area, thickness, k_r=_RUBBER["k_r"], n=_RUBBER["n"],
+                     alpha=_RUBBER["alpha"], count=1):
     """Eq. 12 for `count` identical bumpers acting in parallel: alpha * count * k_st (N/m^n)."""
     return alpha * count * static_stiffness(area, thickness, k_r, n)
 
@@ -55,11 +82,32 @@ def damping_prefactor(cor, m_eff):
 
 
 def damping_constants(cor, m_eff, n, rule="eq9"):
-    """(coef, vexp) with C_imp = coef / v_imp^vexp for the chosen rule, (B,) each."""
+    """(c_imp_coef, c_imp_exponent) with C_imp = c_imp_coef / v_imp^c_imp_exponent for the
+    chosen rule, (B,) each."""
     cor = np.asarray(cor, dtype=float)
     if rule == "eq9":
         return damping_prefactor(cor, m_eff), np.full(cor.shape, EQ9_VELOCITY_EXPONENT)
     return hunt_crossley_chi(cor, n, restitution_only=True), np.ones(cor.shape)
+
+
+def contact_fields(gap, thickness, strain, n_bumpers, k_w, cor, m_eff, cavity, area, k_r, n,
+                   alpha, c_imp_rule, c_imp):
+    """The Contact fields of this law from its checked, broadcast (B,) parameters."""
+    if np.any(cavity >= thickness):
+        raise EngineError(f"cavity must be smaller than thickness, got cavity {cavity} m, "
+                          f"thickness {thickness} m")
+    protrusion = thickness - cavity
+    if np.any(protrusion >= gap):
+        raise EngineError("thickness - cavity must be smaller than gap: the bumpers would "
+                          f"close the gap (gap {gap}, thickness {thickness}, cavity {cavity})")
+    if c_imp is None:
+        c_imp_coef, c_imp_exponent = damping_constants(cor, m_eff, n, c_imp_rule)
+    else:
+        c_imp_coef, c_imp_exponent = c_imp, 0.0
+    return {"clear_gap": gap - protrusion, "k": impact_stiffness(area, thickness, k_r, n, alpha,
+                                                                 n_bumpers),
+            "n": n, "delta_u": np.minimum(strain * thickness, protrusion), "k_w": k_w,
+            "c_imp_coef": c_imp_coef, "c_imp_exponent": c_imp_exponent}
 
 
 def approach_force(delta, p):
@@ -73,11 +121,10 @@ def force_terms(delta, delta_dot, v_imp, p):
     """(elastic force N, dashpot N*s/m), (B,) each: F_A on approach, F_A (1 + C_imp
     delta_dot) in restitution, i.e. a dashpot F_A C_imp that acts in restitution only."""
     elastic = approach_force(delta, p)
-    c_imp = p.coef / v_imp**p.vexp
+    c_imp = p.c_imp_coef / v_imp**p.c_imp_exponent
     return elastic, np.where(delta_dot > 0, 0.0, elastic * c_imp)
 
 
 def max_tangent_stiffness(p, indentation_bound):
     """The stiffer of the rubber's tangent at delta_u and the wall k_w (N/m)."""
     return np.maximum(p.n * p.k * p.delta_u ** (p.n - 1), p.k_w)
-

@@ -1,0 +1,176 @@
+"""Provenance of every archive: versions, the engine's fingerprint, record hashes, the model
+settings and decisions, and the arguments of the run, as NetCDF global attributes.
+
+The engine fingerprint and the record hashes are also the keys of resumable runs (run.py):
+a changed engine or record is a new key.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import re
+import subprocess
+from datetime import datetime, timezone
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+
+import engine
+from engine.impact import LAWS
+
+from .grid import BASELINE, BASELINE_LAW, Grid
+
+
+def project_version() -> str:
+    """The installed bumpers version, or 'unknown'."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("bumpers")
+    except PackageNotFoundError:
+        return "unknown"
+
+
+@lru_cache(maxsize=1)
+def engine_fingerprint() -> str:
+    """Hash of the engine's source, the project and NumPy versions: a changed engine is a new
+    key (NumPy too, since its kernels set the last bits of a result)."""
+    digest = hashlib.sha256(f"{project_version()} numpy {np.__version__}".encode())
+    root = Path(engine.__file__).parent
+    for path in sorted(root.rglob("*.py")):
+        digest.update(path.relative_to(root).as_posix().encode())
+        digest.update(path.read_bytes())
+    return digest.hexdigest()
+
+
+def record_hash(accel: np.ndarray, accel_dt: float) -> str:
+    """sha256 of a record's samples (float64) and its step."""
+    digest = hashlib.sha256(np.ascontiguousarray(accel, dtype="<f8").tobytes())
+    digest.update(float(accel_dt).hex().encode())
+    return digest.hexdigest()
+
+
+def git_commit() -> str:
+    """HEAD of the project's checkout (+ '-dirty' with local changes), or 'unknown'."""
+    root = Path(__file__).resolve().parents[1]
+    try:
+        commit = subprocess.run(["git", "rev-parse", "HEAD"], cwd=root, capture_output=True,
+                                text=True, timeout=10, check=True).stdout.strip()
+        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"],
+                               cwd=root, capture_output=True, text=True, timeout=10,
+                               check=True).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+    return commit + ("-dirty" if dirty else "")
+
+
+def plain(value):
+    """JSON-friendly copy of arguments (numpy arrays and scalars to lists and floats)."""
+    if isinstance(value, dict):
+        return {k: plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [plain(v) for v in value]
+    if hasattr(value, "tolist"):
+        return value.tolist()
+    return value
+
+
+def law_defaults(law: str) -> dict:
+    """The declared defaults of a wall law (engine.impact.LAWS[law].PARAMETERS); {} for none."""
+    if law not in LAWS:
+        return {}
+    return plain(LAWS[law].PARAMETERS.defaults())
+
+
+def attributes(grid: Grid, records, names: list[str], dt: float, building: engine.Building,
+               arguments: dict | None = None) -> dict:
+    """Global attributes: versions, every model setting and decision, records, arguments."""
+    law = grid.impact
+    bare = LAWS[BASELINE_LAW].PARAMETERS.swept()
+    baseline = ", ".join(bare[k].value_text(v) for k, v in BASELINE.items())
+    attrs = {
+        "title": "bumpers: peak responses of a seismically isolated building pounding on its "
+                 "moat wall",
+        "Conventions": "CF-1.8",
+        "project": "bumpers",
+        "project_version": project_version(),
+        "git_commit": git_commit(),
+        "engine_fingerprint": engine_fingerprint(),
+        "date_created": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+        "dt": dt,
+        "dt_units": "s",
+        "integrator": "explicit central differences (engine.simulate); ground motion "
+                      "linearly interpolated onto dt",
+        "impact_law": law,
+        "swept_parameters": " ".join(grid.coords) or "none",
+        "fixed_parameters": " ".join(grid.fixed) or "none",
+        "m_eff": grid.m_eff,
+        "m_eff_units": "kg",
+        "m_eff_decision": "wall mass infinite, so m_eff = m1 m2 / (m1 + m2) -> base-slab mass",
+        "cor_decision": "COR 0.45 for bumper impacts (the paper's rubber, section 3.4) unless "
+                        "swept; COR 0.5 for bare-wall (no-bumper) impacts",
+        "gap_decision": "gap is the seismic gap before bumpers; bumper runs use the clear gap "
+                        "gap - thickness (Fig. 14), the no-bumper baseline the full gap",
+        "baseline": (f"{BASELINE_LAW} viscoelastic wall (Eq. 1-3), {baseline}, at the full "
+                     "gap" if grid.block("baseline_") is not None else "none"),
+        "unconstrained": ("no moat wall (engine.Contact.none)"
+                          if grid.block("unconstrained_") is not None else "none"),
+        "impact_law_defaults": json.dumps(law_defaults(law)),
+    }
+    if law == "hertzdamp":  # its exponent is not a sweep parameter: sweeps use the default
+        attrs["hertzdamp_exponent"] = LAWS[law].PARAMETERS.n.default
+    attrs.update(building_attributes(building))
+    for name, rec in zip(names, records, strict=True):
+        name = re.sub(r"[^A-Za-z0-9_]", "_", name)  # a valid attribute name
+        attrs[f"record_{name}_source"] = str(rec.source)
+        note = getattr(rec, "note", "") or ""
+        if note:
+            attrs[f"record_{name}_note"] = note
+        found_in = getattr(rec, "found_in", None)
+        if found_in:
+            attrs[f"record_{name}_found_in"] = found_in
+            if found_in == "stand-in":
+                attrs[f"record_{name}_substitution"] = note
+    attrs["records"] = json.dumps([record_meta(name, rec)
+                                   for name, rec in zip(names, records, strict=True)])
+    if arguments is not None:
+        attrs["sweep_arguments"] = json.dumps(arguments, sort_keys=True)
+    return attrs
+
+
+def building_attributes(building: engine.Building) -> dict:
+    """The building's every property, its units and the damping decision, as attributes."""
+    attrs = {}
+    for name, value in vars(building).items():
+        attrs[f"building_{name}"] = _attr_value(value)
+    attrs["building_units"] = ("masses kg, story_stiffness k1 k2 N/m, fy_ratio of the total "
+                               "weight, g m s-2")
+    attrs["building_yield_displacement"] = building.yield_displacement
+    attrs["damping_decision"] = (
+        "paper: isolation dashpot 2 zeta_iso sqrt(k1 M_tot), stiffness-proportional story "
+        "dashpots 2 zeta_sup k / omega_1 (fixed-base)" if building.damping == "paper" else
+        "modal: classical damping, zeta_iso in mode 1, zeta_sup in modes 2-5")
+    return attrs
+
+
+def _attr_value(value):
+    """A NetCDF-storable attribute: numbers, number arrays and strings pass, the rest as text."""
+    if isinstance(value, (bool, np.bool_)) or value is None:
+        return str(value)
+    if isinstance(value, (int, float, str, np.number)):
+        return value
+    array = np.asarray(value)
+    return array if array.dtype.kind in "iuf" else str(value)
+
+
+def record_meta(name: str, rec) -> dict:
+    """A record's identity for the archive: name, step, length, PGA, sha256, catalogue data."""
+    meta = {"name": name, "record_name": str(rec.name), "dt": float(rec.dt),
+            "npts": len(rec.accel), "pga": float(np.max(np.abs(rec.accel))),
+            "sha256": record_hash(rec.accel, rec.dt)}
+    for field in ("rsn", "event", "station", "component", "source", "found_in", "note"):
+        value = getattr(rec, field, None)
+        if value not in (None, ""):
+            meta[field] = value if isinstance(value, (int, float)) else str(value)
+    return meta
