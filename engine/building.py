@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -165,13 +166,16 @@ def building_arrays(building: Building | Sequence[Building], size: int) -> Build
         if not all(isinstance(b, Building) for b in members):
             raise EngineError("building must be a Building or a sequence of Building")
     unique = {b: i for i, b in enumerate(dict.fromkeys(members))}
-    rows = [
-        (
-            np.asarray(b.masses, float), np.asarray(b.story_stiffness, float), b.k2, b.k1 - b.k2,
-            (b.k1 - b.k2) * b.yield_displacement, b.damping_matrix(), b.stiffness_matrix(),
-        )
-        for b in unique
-    ]
+    rows = [_building_row(b) for b in unique]
     fields = [np.array(col) for col in zip(*rows, strict=True)]
     which = np.array([unique[b] for b in members]) if len(members) > 1 else np.zeros(size, int)
     return BuildingArrays(*(f[which] for f in fields))
+
+
+@lru_cache(maxsize=4096)
+def _building_row(b: Building) -> tuple:
+    """One building's batch arrays (its damping needs eigenvalues: computed once per Building;
+    the arrays are copied into the batch, never handed out)."""
+    return (np.asarray(b.masses, float), np.asarray(b.story_stiffness, float), b.k2,
+            b.k1 - b.k2, (b.k1 - b.k2) * b.yield_displacement, b.damping_matrix(),
+            b.stiffness_matrix())

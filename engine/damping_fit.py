@@ -82,7 +82,7 @@ def bumper_impacts(cor, m_eff, c_imp, bumper: dict) -> Contact:
                           **bumper)
 
 
-def impact(cor, m_eff, v, c_imp, bumper: dict, steps_per_contact=None):
+def impact(cor, m_eff, v, c_imp, bumper: dict, steps_per_contact=None, backend=None):
     """One two-body impact per point (two equal bodies of 2 m_eff each, relative velocity v
     m/s) through the bumper with C_imp = c_imp (s/m): (`engine.TwoBodyResult`, the (P,)
     `Contact` used)."""
@@ -90,11 +90,11 @@ def impact(cor, m_eff, v, c_imp, bumper: dict, steps_per_contact=None):
                                                  for x in (cor, m_eff, v, c_imp)))
     contact = bumper_impacts(cor, m_eff, c_imp, bumper)
     options = {} if steps_per_contact is None else {"steps_per_contact": steps_per_contact}
-    return two_body(2 * m_eff, 2 * m_eff, v, contact, **options), contact
+    return two_body(2 * m_eff, 2 * m_eff, v, contact, backend=backend, **options), contact
 
 
 def find_a1(cor, m_eff, v, bumper: dict, bracket=DEFAULT_BRACKET, rtol=1e-6,
-            max_iter=100, steps_per_contact=None) -> EquilibriumResult:
+            max_iter=100, steps_per_contact=None, backend=None) -> EquilibriumResult:
     """Energy equilibrium of section 3.2: a1 (s/m) such that the hysteresis area of the impact
     with C_imp = a1 (1 - COR^2) (Eq. 8) equals Delta E of Eq. 5, for every grid point at once.
 
@@ -103,6 +103,7 @@ def find_a1(cor, m_eff, v, bumper: dict, bracket=DEFAULT_BRACKET, rtol=1e-6,
     a1, so a batched bisection in log(a1) runs until every point's bracket is narrower than
     rtol (relative). `bracket` (lower, upper) bounds the dimensionless C_imp v_imp, i.e.
     a1 in bracket / ((1 - COR^2) v); EngineError if it does not enclose the equilibrium.
+    backend: engine.two_body's (None: the compiled kernel when numba is importable).
     """
     cor, m_eff, v = np.broadcast_arrays(*(np.atleast_1d(np.asarray(x, dtype=float))
                                           for x in (cor, m_eff, v)))
@@ -112,7 +113,7 @@ def find_a1(cor, m_eff, v, bumper: dict, bracket=DEFAULT_BRACKET, rtol=1e-6,
     energy_loss = 0.5 * m_eff * damping * v**2
 
     def excess(a1):  # A_h - Delta E, J: < 0 with too little damping
-        res, _ = impact(cor, m_eff, v, a1 * damping, bumper, steps_per_contact)
+        res, _ = impact(cor, m_eff, v, a1 * damping, bumper, steps_per_contact, backend)
         return res.hysteresis_area - energy_loss
 
     lower = float(bracket[0]) / (damping * v)
@@ -130,7 +131,7 @@ def find_a1(cor, m_eff, v, bumper: dict, bracket=DEFAULT_BRACKET, rtol=1e-6,
         lower = np.where(too_much, lower, middle)
         iterations += 1
     a1 = np.sqrt(lower * upper)
-    res, contact = impact(cor, m_eff, v, a1 * damping, bumper, steps_per_contact)
+    res, contact = impact(cor, m_eff, v, a1 * damping, bumper, steps_per_contact, backend)
     return EquilibriumResult(
         a1=a1, c_imp=a1 * damping, hysteresis_area=res.hysteresis_area,
         energy_loss=energy_loss, cor_realised=res.cor, peak_indentation=res.peak_indentation,

@@ -11,6 +11,11 @@ computes the velocities without contact force, then solves the one scalar equati
 force exactly (impact.implicit_force) and adds its effect. A dashpot on a lagged velocity
 instead makes peaks jitter by ~1% with dt. The matrices that multiply p - f and v_{n-1/2} are
 inverted once per member before the loop, so a step is a fixed number of array operations.
+
+Two backends run this scheme: the compiled kernel (kernel.py, numba; the default) and the
+vectorised NumPy loop below (`backend="numpy"`), the readable reference that needs no
+compiler. Both call the same physics functions (impact laws, isolator, implicit_force) and
+agree to round-off; each is bitwise independent of the batch a member runs in.
 """
 from __future__ import annotations
 
@@ -19,9 +24,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .backends import resolve_backend
 from .building import N_LEVELS, Building, BuildingArrays, building_arrays
 from .errors import EngineError, UnstableTimeStep
-from .impact import Contact, fill_force_terms, implicit_force, law_blocks
+from .impact import Contact, fill_force_terms, implicit_force, law_blocks, onset_weight
 from .isolator import isolator_force, plastic_spring_force
 
 # s: the coarsest step at which halving dt moves every peak of the paper's practical example
@@ -89,7 +95,13 @@ def _stable_dt(arrays: BuildingArrays, contact: Contact, indentation_bound: floa
 
 def ground_motion_on_grid(accel, accel_dt: float, dt: float) -> np.ndarray:
     """Linearly interpolate a record (m/s^2 every accel_dt s) onto the step dt, (N,)."""
-    accel = np.asarray(accel, dtype=float)
+    accel, n_steps = _checked_record(accel, accel_dt, dt)
+    return np.interp(np.arange(n_steps) * dt, np.arange(accel.size) * accel_dt, accel)
+
+
+def _checked_record(accel, accel_dt: float, dt: float) -> tuple[np.ndarray, int]:
+    """The record as a float array, and the number of steps of dt it spans."""
+    accel = np.ascontiguousarray(accel, dtype=float)
     if accel.ndim != 1 or accel.size < 2:
         raise EngineError(f"accel must be a 1-D record with at least 2 samples, got {accel.shape}")
     if not np.all(np.isfinite(accel)):
@@ -97,14 +109,14 @@ def ground_motion_on_grid(accel, accel_dt: float, dt: float) -> np.ndarray:
     if not accel_dt > 0:
         raise EngineError(f"accel_dt must be positive, got {accel_dt}")
     duration = (accel.size - 1) * accel_dt
-    n_steps = int(np.floor(duration / dt + 1e-9)) + 1
-    return np.interp(np.arange(n_steps) * dt, np.arange(accel.size) * accel_dt, accel)
+    return accel, int(np.floor(duration / dt + 1e-9)) + 1
 
 
 def simulate(accel, accel_dt: float, contact: Contact,
              building: Building | Sequence[Building] = Building(), dt: float = DEFAULT_DT,
              history: History | None = None,
-             progress: Callable[[int, int], None] | None = None) -> Result:
+             progress: Callable[[int, int], None] | None = None,
+             backend: str | None = None) -> Result:
     """Integrate B isolated buildings under one ground motion, pounding on their moat walls.
 
     accel: (N,) ground acceleration in m/s^2 every accel_dt s, linearly interpolated onto dt;
@@ -113,7 +125,9 @@ def simulate(accel, accel_dt: float, contact: Contact,
     history: record time histories for some members every `every` steps: the result's history
     dict holds time (T,) s, members (M,), isolator_disp (M, T) m, total_accel (M, T, 5) m/s^2,
     impact_force (M, T) N, indentation (M, T) m;
-    progress: called as progress(step, n_steps) about every 1% of the run.
+    progress: called as progress(step, n_steps) about every 1% of the run;
+    backend: "numba" (the compiled kernel), "numpy" (the vectorised reference loop) or None:
+    numba when it can be imported, else numpy with a one-line notice.
     """
     if not isinstance(contact, Contact):
         raise EngineError("contact must be an engine.Contact")
@@ -129,7 +143,21 @@ def simulate(accel, accel_dt: float, contact: Contact,
         raise UnstableTimeStep(
             f"dt = {dt:g} s is unstable: the central-difference limit is {limit[worst]:.4g} s "
             f"(member {worst}, {contact.law_names[worst]} contact); use dt < {limit[worst]:.4g} s")
-    ag = ground_motion_on_grid(accel, accel_dt, dt)
+    accel, n_steps = _checked_record(accel, accel_dt, dt)
+    if history is not None:
+        members = np.asarray(history.members, dtype=int)
+        if members.ndim != 1 or np.any((members < -size) | (members >= size)):
+            raise EngineError(f"history.members must index the batch of {size}, got "
+                              f"{history.members!r}")
+        if not (isinstance(history.every, (int, np.integer)) and history.every >= 1):
+            raise EngineError(f"history.every must be a positive integer, got {history.every!r}")
+
+    if resolve_backend(backend) == "numba":
+        from .kernel import ground_motion, run_simulation
+        ag = ground_motion(accel, float(accel_dt), float(dt), n_steps)  # == np.interp's
+        peaks, hist = run_simulation(ag, dt, arrays, contact, history, progress)
+        return Result(**peaks, dt=dt, history=hist)
+    ag = np.interp(np.arange(n_steps) * dt, np.arange(accel.size) * accel_dt, accel)
 
     order, blocks = law_blocks(contact)
     inverse = np.argsort(order)
@@ -143,18 +171,25 @@ def simulate(accel, accel_dt: float, contact: Contact,
     return Result(**peaks, dt=dt, history=hist)
 
 
-def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every, progress):
-    size = b.masses.shape[0]
+def step_operators(b: BuildingArrays, dt: float):
+    """Per-member operators of the scheme, shared by both backends: the (B, 5, 10) step
+    operator mapping [p - f(u_n), v_{n-1/2}] to v_{n+1/2}; the (B, 5) wall response, the
+    velocity change of every level per newton pushing level 0 back; and its level-0 entry,
+    the (B,) compliance (m/s/N)."""
     mass = b.masses
-    # One (B, 5, 10) operator maps [p - f, v_{n-1/2}] to v_{n+1/2}.
     lhs = mass[:, :, None] * np.eye(N_LEVELS) / dt**2 + b.damping / (2 * dt)
     lhs_inv = np.linalg.inv(lhs)
     carry = mass[:, :, None] * np.eye(N_LEVELS) / dt - b.damping / 2
     step_op = np.concatenate([lhs_inv / dt, lhs_inv @ carry / dt], axis=2)
-
-    # Velocity change of every level per newton pushing level 0 back, and its level-0 entry.
     wall_response = step_op[:, :, 0].copy()
-    compliance = wall_response[:, 0].copy()
+    return step_op, wall_response, wall_response[:, 0].copy()
+
+
+def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every, progress):
+    """The NumPy reference: every step is a fixed number of array operations over the batch."""
+    size = b.masses.shape[0]
+    mass = b.masses
+    step_op, wall_response, compliance = step_operators(b, dt)
 
     u = np.zeros((size, N_LEVELS))
     v_half = np.zeros((size, N_LEVELS))
@@ -212,11 +247,8 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
         rate_free = side * 0.5 * (v_half[:, 0] + v_next[:, 0])
         fill_force_terms(blocks, delta, rate_free, v_imp, elastic, dashpot)
         # A dashpot that is already loaded at first touch (Kelvin-Voigt) would push for the
-        # whole step [t_n - dt/2, t_n + dt/2]; weight it by the part after the touch, located
-        # by linear interpolation of the indentation. Without this, peaks jitter with dt.
-        travel = np.maximum(delta - np.minimum(delta_prev, 0.0), 1e-300)
-        onset = np.minimum(delta / travel + 0.5, 1.0)
-        np.multiply(dashpot, onset, out=dashpot, where=new)
+        # whole step; weight it by the part after the touch (impact.onset_weight).
+        np.multiply(dashpot, onset_weight(delta, delta_prev), out=dashpot, where=new)
         delta_prev = delta
         force = np.where(touching, implicit_force(elastic, dashpot, rate_free, compliance), 0.0)
         v_next -= wall_response * (side * force)[:, None]

@@ -6,12 +6,14 @@ import numpy as np
 def plastic_spring_force(f_prev, du, k_plastic, f_yield):
     """Return-mapped force (N) of the elastic-perfectly-plastic spring after an increment du (m).
 
-    All arguments are (B,) arrays; the elastic trial force is clipped to +-f_yield, which is the
-    exact return mapping for a perfectly plastic spring.
+    Scalars or (B,) arrays alike (the kernel compiles this very function); the elastic trial
+    force is clipped to +-f_yield, which is the exact return mapping for a perfectly plastic
+    spring.
     """
-    return np.clip(f_prev + k_plastic * du, -f_yield, f_yield)
+    return np.minimum(np.maximum(f_prev + k_plastic * du, -f_yield), f_yield)
 
 
 def isolator_force(u0, f_plastic, k2):
-    """Total isolator force (N), (B,): elastic k2 branch plus the plastic spring's force."""
+    """Total isolator force (N): elastic k2 branch plus the plastic spring's force (scalars or
+    (B,) arrays)."""
     return k2 * u0 + f_plastic

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .backends import resolve_backend
 from .errors import EngineError
 from .impact import NONE, Contact, fill_force_terms, implicit_force, law_blocks
 
@@ -43,10 +44,12 @@ def contact_time_scale(m_eff, v, k, n):
 
 
 def two_body(m1, m2, v, contact: Contact, steps_per_contact: int = DEFAULT_STEPS_PER_CONTACT,
-             max_contacts: float = 20.0) -> TwoBodyResult:
+             max_contacts: float = 20.0, backend: str | None = None) -> TwoBodyResult:
     """Collide B pairs of bodies. m1, m2 kg and v m/s broadcast to (B,); contact: B members
     whose gap is ignored (the bodies touch at t = 0) and whose m_eff must equal
-    m1 m2 / (m1 + m2), since the laws' damping constants were built with it."""
+    m1 m2 / (m1 + m2), since the laws' damping constants were built with it.
+    backend: "numba" (the compiled kernel), "numpy" or None (numba when importable), as in
+    engine.simulate."""
     m1, m2, v = (np.asarray(x, dtype=float) for x in (m1, m2, v))
     m1, m2, v = (np.broadcast_to(x, (len(contact),)) for x in (m1, m2, v))
     for name, x in (("m1", m1), ("m2", m2), ("v", v)):
@@ -62,6 +65,18 @@ def two_body(m1, m2, v, contact: Contact, steps_per_contact: int = DEFAULT_STEPS
     dt = contact_time_scale(m_eff, v, contact.k, contact.n) / steps_per_contact
     max_steps = int(max_contacts * steps_per_contact)
     size = len(contact)
+    expected_loss = 0.5 * m_eff * (1 - contact.cor**2) * v**2
+    if resolve_backend(backend) == "numba":
+        from .kernel import run_two_body
+        steps, out, deltas, forces = run_two_body(contact, v, dt, m_eff, max_steps)
+        if steps is None:
+            raise EngineError(f"two_body: contact did not end within {max_steps} steps")
+        v_out = -out[:, 1]
+        return TwoBodyResult(
+            peak_force=out[:, 2], peak_indentation=out[:, 3], cor=v_out / v,
+            dissipated_energy=0.5 * m_eff * (v**2 - v_out**2), hysteresis_area=out[:, 0],
+            expected_energy_loss=expected_loss, dt=dt, indentation=deltas, force=forces)
+
     order, blocks = law_blocks(contact)
     v_sorted, dt_sorted, m_sorted = v[order], dt[order], m_eff[order]
 
@@ -98,7 +113,7 @@ def two_body(m1, m2, v, contact: Contact, steps_per_contact: int = DEFAULT_STEPS
         cor=v_out / v,
         dissipated_energy=0.5 * m_eff * (v**2 - v_out**2),
         hysteresis_area=area[inverse],
-        expected_energy_loss=0.5 * m_eff * (1 - contact.cor**2) * v**2,
+        expected_energy_loss=expected_loss,
         dt=dt,
         indentation=np.array(deltas).T[inverse],
         force=np.array(forces).T[inverse],

@@ -29,3 +29,14 @@ def kn_per_mm_n(n) -> np.ndarray:
     1 kN/mm^n = 1e3 N / (1e-3 m)^n = 1e3 * 1e3^n N/m^n; n may be an array.
     """
     return KN * 1e3 ** np.asarray(n, dtype=float)  # 1e3 = 1 / MM, exact
+
+
+def power_law_units(n) -> str:
+    """Units string of a power-law stiffness F = k delta^n (N/m^n), for archives.
+
+    UDUNITS has no fractional powers: "N m-1.5" would parse as 1.5 N/m, wrongly. An integer n
+    gets the UDUNITS string ("N m-1"); any other n a string UDUNITS refuses ("N m^(-1.5)"), so
+    that no reader converts it silently; say the unit in long_name as well.
+    """
+    n = float(n)
+    return f"N m-{n:g}" if n.is_integer() else f"N m^(-{n:g})"

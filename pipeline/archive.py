@@ -98,6 +98,11 @@ def record_coords(records, names: list[str]) -> dict:
                               "record sampling step"),
         "record_duration": variable("record", [len(r.accel) * float(r.dt) for r in records],
                                     "s", "record length"),
+        "record_found_in": variable("record", np.array(
+            [getattr(r, "found_in", None) or "given" for r in records], dtype=str), "1",
+            "where the record came from: records_dir, built-in or library for a paper record "
+            "found, stand-in for a substitute (see the record's note), given for a record "
+            "named or passed directly"),
     }
 
 

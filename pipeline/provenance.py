@@ -34,9 +34,19 @@ def project_version() -> str:
 
 @lru_cache(maxsize=1)
 def engine_fingerprint() -> str:
-    """Hash of the engine's source, the project and NumPy versions: a changed engine is a new
-    key (NumPy too, since its kernels set the last bits of a result)."""
-    digest = hashlib.sha256(f"{project_version()} numpy {np.__version__}".encode())
+    """Hash of the engine's source, the project, NumPy and numba versions and the time loop
+    that runs: a changed engine is a new key (the libraries and the backend too, since they
+    set the last bits of a result)."""
+    from engine.backends import resolve_backend
+
+    backend = resolve_backend(None)
+    numba_version = "none"
+    if backend == "numba":
+        import numba
+
+        numba_version = numba.__version__
+    digest = hashlib.sha256(f"{project_version()} numpy {np.__version__} numba "
+                            f"{numba_version} backend {backend}".encode())
     root = Path(engine.__file__).parent
     for path in sorted(root.rglob("*.py")):
         digest.update(path.relative_to(root).as_posix().encode())

@@ -103,6 +103,11 @@ _UNITS_RE = re.compile(r"\bUNITS?\s+OF\s+([A-Za-z][A-Za-z0-9/^*\-]*)", re.IGNORE
 _FIELD_SEP_RE = re.compile(r"\s*,\s*|\s+")
 
 
+class StandInWarning(UserWarning):
+    """A paper record was not found and a stand-in is used: said when the record is resolved,
+    before any simulation; silence it with ``warnings.simplefilter("ignore", StandInWarning)``."""
+
+
 class RecordError(ValueError):
     """A record cannot be read, found or trusted. The message names the file (and line)."""
 
@@ -294,13 +299,13 @@ def read_at2(path: str | os.PathLike) -> Record:
     Event, station and component come from header line 2, the RSN from an ``RSN<n>`` file name.
     Raises :class:`RecordError` (file name and line number in the message) on anything odd.
     """
-    at2 = _parse_at2(Path(path))
+    at2 = parse_at2(Path(path))
     return Record(name=at2.path.stem, rsn=at2.rsn, event=at2.event, station=at2.station,
                   component=at2.component, dt=at2.dt, accel=_to_si(at2.values, at2.units),
                   source=str(at2.path))
 
 
-def _parse_at2(path: Path) -> _AT2:
+def parse_at2(path: Path) -> _AT2:
     lines = _read_lines(path)
     if not any(line.strip() for line in lines):
         raise RecordError(f"{path}: file is empty")
@@ -656,6 +661,11 @@ class PaperSpec:
     file_patterns: tuple  # file-name globs, case-insensitive
     stand_ins: tuple  # (library name, why) pairs, tried in order
 
+    def matches(self, event: str, station: str, component: str) -> bool:
+        """Whether a header's event, station and component are this record's."""
+        return (self.event_word in _norm(event) and _norm(station) in self.stations
+                and _norm_component(component) == self.component)
+
 
 PAPER_RECORDS: dict[str, PaperSpec] = {s.key: s for s in (
     PaperSpec("kobe", "Kobe 1995, KJMA 000", 1106, "000", 0.821, "kobe", frozenset({"kjma"}),
@@ -683,7 +693,7 @@ PAPER_RECORDS: dict[str, PaperSpec] = {s.key: s for s in (
 
 # --------------------------------------------------------------------------- built-in data
 
-_BUILTIN_KEYS = ("kobe", "sylmar_converter")  # one variable each in the data file
+BUILTIN_KEYS = ("kobe", "sylmar_converter")  # one variable each in the data file
 _BUILTIN_CACHE: dict[str, dict[str, Record]] = {}  # by resource path; {} once it failed
 
 
@@ -709,21 +719,21 @@ def builtin_records() -> dict[str, Record]:
     cache_key = str(resource)
     if cache_key not in _BUILTIN_CACHE:
         try:
-            _BUILTIN_CACHE[cache_key] = _parse_builtin(resource)
+            _BUILTIN_CACHE[cache_key] = read_builtin(resource)
         except Exception as exc:  # a damaged or missing file must leave the stand-ins usable
             warnings.warn(f"built-in records ({BUILTIN_DATA}) unavailable, so stand-ins are "
-                          f"used for {', '.join(_BUILTIN_KEYS)}: {exc}", stacklevel=2)
+                          f"used for {', '.join(BUILTIN_KEYS)}: {exc}", stacklevel=2)
             _BUILTIN_CACHE[cache_key] = {}
     return dict(_BUILTIN_CACHE[cache_key])
 
 
-def _parse_builtin(resource) -> dict[str, Record]:
+def read_builtin(resource) -> dict[str, Record]:
     import netCDF4
 
     records = {}
     with importlib.resources.as_file(resource) as path, netCDF4.Dataset(path) as nc:
         nc.set_auto_maskandscale(False)
-        for key in _BUILTIN_KEYS:
+        for key in BUILTIN_KEYS:
             if key not in nc.variables:
                 raise RecordError(f"{path}: no variable {key!r}")
             var = nc.variables[key]
@@ -785,8 +795,7 @@ def _find_in_dir(spec: PaperSpec, directory: Path) -> Path | None:
     # Renamed files are recognised by header line 2 (event, station, component).
     for p in files:
         header = _read_header(p)
-        if header and spec.event_word in _norm(header[0]) and \
-                _norm(header[1]) in spec.stations and header[2] == spec.component:
+        if header and spec.matches(*header):
             return p
     return None
 
@@ -865,13 +874,15 @@ def paper_record(key: str, records_dir: str | os.PathLike | None = None) -> Reco
         if name.lower() in by_name:
             rec = _load_library(by_name[name.lower()])
             where = f"in {directory}" if directory else "in a records directory (none given)"
-            return dataclasses.replace(
+            rec = dataclasses.replace(
                 rec, found_in="stand-in", paper_key=key,
                 note=f"STAND-IN: {spec.title} (RSN {spec.rsn}) was not found {where}, in "
                      f"the built-in data nor in the embedded library; using {rec.name} "
                      f"instead: {why}. Put the AT2 "
                      f"file ({spec.file_patterns[0]}) in --records-dir or ${RECORDS_DIR_ENV} "
                      "to use the real record.")
+            warnings.warn(rec.note, StandInWarning, stacklevel=2)
+            return rec
     raise RecordError(f"{spec.title} (RSN {spec.rsn}): not found and no stand-in available")
 
 

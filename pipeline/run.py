@@ -43,8 +43,10 @@ PEAKS = {
     "n_impacts": ((), np.int64),
     "impact_energy": ((), np.float64),
 }
-# One BLAS thread per worker process: workers are the parallelism; more threads only contend.
-BLAS_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
+# One BLAS and one numba thread per worker process: workers are the parallelism; more threads
+# only contend for the same cores.
+BLAS_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1",
+            "NUMBA_NUM_THREADS": "1"}
 CACHE_FORMAT = 2  # bump when the work-folder layout, the member record or the peak set change
 
 
@@ -190,15 +192,33 @@ def _clock(seconds: float) -> str:
 
 
 def default_batch_size(n_members: int, n_records: int, workers: int,
-                       max_batch: int = 512) -> int:
-    """Default members per engine batch.
+                       max_batch: int = 4096, *, steps: int = 80_000,
+                       member_step_seconds: float = 35e-9, min_batch_seconds: float = 0.5) -> int:
+    """Default members per engine batch, sized for the compiled kernel.
 
-    A time step costs a fixed ~50 us plus ~0.2 us per member, so batches should be large; but
-    a sweep should give every worker something to do, and no batch exceeds max_batch members
-    (memory stays small: a few (B, 5, 10) arrays).
+    With the kernel a batch costs ~35 ns per member-step and nearly nothing else, so the only
+    reasons for large batches are dask's overhead per task (a few ms: a batch of at least
+    min_batch_seconds keeps it under 5%) and memory (max_batch members, ~2 KB each). Batches
+    should be small enough that every worker has several (4 per worker), so that no worker
+    idles while another finishes a long record; `run` further splits the batches of records
+    longer than the typical one. steps: a typical record's number of steps (80,000 = 40 s at
+    0.5 ms).
     """
-    per_record = max(math.ceil(n_members / max_batch), math.ceil(max(workers, 1) / n_records))
-    return max(1, min(max_batch, math.ceil(n_members / per_record)))
+    workers = max(workers, 1)
+    floor = math.ceil(min_batch_seconds / (max(steps, 1) * member_step_seconds))
+    wanted = 4 * workers if workers > 1 else 1
+    per_record = max(math.ceil(n_members / max_batch), math.ceil(wanted / max(n_records, 1)))
+    size = math.ceil(n_members / per_record)
+    return max(1, min(max_batch, n_members, max(size, floor)))
+
+
+def _record_batch_sizes(records, batch_size: int) -> list[int]:
+    """Members per batch for each record: batch_size for records up to the median length,
+    fewer for longer ones so that every batch is about as long as a typical one (a long
+    record's batch would otherwise keep one worker busy after the others finish)."""
+    lengths = [max(len(rec.accel) * rec.dt, 1e-9) for rec in records]
+    typical = float(np.median(lengths)) if lengths else 1.0
+    return [max(1, math.floor(batch_size * min(1.0, typical / length))) for length in lengths]
 
 
 def run(grid: Grid, records, dt: float, building: engine.Building, *, workers: int = 2,
@@ -219,6 +239,7 @@ def run(grid: Grid, records, dt: float, building: engine.Building, *, workers: i
     cached = work.load() if work is not None else {}
 
     batches = []
+    record_sizes = _record_batch_sizes(records, batch_size)
     for r, context in enumerate(contexts):
         missing = []
         for i, member in enumerate(members):
@@ -228,8 +249,9 @@ def run(grid: Grid, records, dt: float, building: engine.Building, *, workers: i
             else:
                 for name, value in peaks.items():
                     results[r][name][i] = value
-        for start in range(0, len(missing), batch_size):
-            which = np.array(missing[start:start + batch_size])
+        size = record_sizes[r]
+        for start in range(0, len(missing), size):
+            which = np.array(missing[start:start + size])
             key = hashlib.sha256(context.encode() + members[which].tobytes()).hexdigest()
             batches.append(Batch(r, which, key))
     # Longest records first: a long record's batch starting last would leave workers idle.

@@ -86,6 +86,18 @@ def plot(ds, dim: str, label: Callable[[float], str], title: str,
     return fig
 
 
+def lowered(ds, dim: str, new, old, where) -> tuple[list[int], list[float]]:
+    """How `dim` = new rather than old changes the peak floor acceleration and the peak
+    interstory deflection at the points `where`: ([points lowered], [mean relative change])."""
+    counts, changes = [], []
+    for quantity in (accel_g(ds), drift_cm(ds)):
+        lower = quantity.sel({dim: new}) < quantity.sel({dim: old})
+        counts.append(int((lower & where).sum()))
+        changes.append(float((quantity.sel({dim: new}) / quantity.sel({dim: old}) - 1)
+                             .where(where).mean()))
+    return counts, changes
+
+
 def indentation_cm(ds, prefix: str = ""):
     """Maximum indentation at the moat wall in cm."""
     return ds[prefix + "max_indentation"] / CM

@@ -1,16 +1,24 @@
 """What every recipe shares: its command line, the archive, the figure, the paper check.
 
 A recipe module declares a `Recipe` (its grid in `compute`, its figure in `plot`, its check of
-the paper's conclusion in `check`) and ends with `main = recipe.main`. Running it:
+the paper's conclusions in `check`) and ends with `main = recipe.main`. Running it:
     compute (or, with --replot, reopen the archive) -> check -> NAME.nc -> NAME.png / .pdf
 No physics here: grids go to pipeline.sweep or engine.two_body, peaks come back labelled.
+
+The check returns one `Verdict` per conclusion of the paper the figure covers. The archive
+keeps them twice: as prose (attribute `paper_check`) and for scripts (attribute
+`paper_verdicts`, a JSON list of {conclusion, claim, finding, verdict, numbers}), e.g.
+    json.loads(xr.open_dataset("results/gap_size.nc").attrs["paper_verdicts"])
 """
 from __future__ import annotations
 
 import argparse
+import json
 import sys
+import warnings
 from collections.abc import Callable
-from dataclasses import dataclass
+from contextlib import contextmanager
+from dataclasses import dataclass, field
 from pathlib import Path
 
 PAPER_RECORDS = ("kobe", "sylmar_converter", "olive_view", "pacoima")
@@ -22,7 +30,7 @@ class Recipe:
     chosen: values the paper does not state, and what was chosen (shown in --help, stored in
     the archive); records: the paper's records for this figure (None: no records, e.g. the
     two-body studies); compute(args) -> Dataset; plot(ds) -> matplotlib Figure;
-    check(ds) -> the paper's conclusion against what was computed, a short text."""
+    check(ds) -> list of Verdict, one per conclusion of the paper against what was computed."""
 
     name: str
     figure: str
@@ -72,7 +80,8 @@ class Recipe:
         from pipeline.records import RecordError
 
         try:
-            return self._run(args)
+            with announce_stand_ins():
+                return self._run(args)
         except (EngineError, SweepError, RecordError) as err:
             # Bad input: one line. Anything else is a bug and keeps its traceback.
             print(f"{self.name}: error: {' '.join(str(err).split())}", file=sys.stderr)
@@ -97,10 +106,13 @@ class Recipe:
             ds = self.compute(args)
             ds.attrs.update(recipe=self.name, paper_figure=self.figure, quick=int(args.quick),
                             values_chosen=self.chosen or "none")
-            ds.attrs["paper_check"] = self.check(ds)
+            verdicts = self.check(ds)
+            ds.attrs["paper_check"] = "\n".join(v.text() for v in verdicts)
+            ds.attrs["paper_verdicts"] = json.dumps([v.as_dict() for v in verdicts])
             write_netcdf(ds, archive)
-        for line in _substitutions(ds):
-            print(line)
+        if args.replot:
+            for line in _substitutions(ds):
+                print(line)
         print(ds.attrs["paper_check"])
         figures = save_figure(self.plot(ds), args.out / self.name)
         print("wrote", archive, *figures)
@@ -112,10 +124,67 @@ def verdict(agrees) -> str:
     return "not tested" if agrees is None else ("agrees" if bool(agrees) else "differs")
 
 
+@dataclass(frozen=True)
+class Verdict:
+    """One conclusion of the paper against what was computed.
+
+    conclusion: where the paper draws it ("5.1", "4", "3.4", "Eq. 9"); claim: the paper's
+    conclusion in one line; finding: what was computed, with its numbers; agrees: True,
+    False, or None when the grid holds nothing to compare; numbers: the numbers behind the
+    verdict (JSON-able: numbers, strings, lists, dicts), in SI units unless a key says
+    otherwise.
+    """
+
+    conclusion: str
+    claim: str
+    finding: str
+    agrees: bool | None
+    numbers: dict = field(default_factory=dict)
+
+    @property
+    def verdict(self) -> str:
+        return verdict(self.agrees)
+
+    def text(self) -> str:
+        return f"{self.claim} (paper {self.conclusion}); here: {self.finding} -> {self.verdict}."
+
+    def as_dict(self) -> dict:
+        from pipeline.provenance import plain
+
+        return {"conclusion": self.conclusion, "claim": self.claim, "finding": self.finding,
+                "verdict": self.verdict, "numbers": plain(self.numbers)}
+
+
+def verdicts(ds) -> list[dict]:
+    """The structured verdicts stored in a recipe's archive (a Dataset)."""
+    return json.loads(ds.attrs["paper_verdicts"])
+
+
 def sweep_options(args) -> dict:
     """The pipeline.sweep keywords every record-based recipe passes through."""
     return dict(records=args.records, records_dir=args.records_dir, workers=args.workers,
                 scheduler=args.scheduler, dt=args.dt, quiet=args.quiet)
+
+
+@contextmanager
+def announce_stand_ins():
+    """Print a stand-in warning as one 'warning: ...' line on stderr, when it is raised (as the
+    records are resolved, before any compute); other warnings keep their usual form."""
+    from pipeline.records import StandInWarning
+
+    default = warnings.showwarning
+
+    def show(message, category, filename, lineno, file=None, line=None):
+        if issubclass(category, StandInWarning):
+            print(f"warning: {message}", file=sys.stderr)
+        else:
+            default(message, category, filename, lineno, file, line)
+
+    warnings.showwarning = show
+    try:
+        yield
+    finally:
+        warnings.showwarning = default
 
 
 def _substitutions(ds) -> list[str]:

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._plot import plt
-from ._recipe import Recipe
+from ._recipe import Recipe, Verdict
 
 # One large pad of the paper's rubber (K_r 55,835 kN/m^2, n 2.65, alpha 2.25), thick enough
 # that the heaviest, fastest impact of the grid (320 t at 4 m/s) stays below delta_u.
@@ -34,6 +34,7 @@ def grid(quick: bool) -> dict[str, np.ndarray]:
 def compute(args):
     from engine import damping_fit
     from engine.impact import rubber_bumper
+    from engine.units import power_law_units
     from pipeline.archive import labelled_dataset, variable
 
     axes = grid(args.quick)
@@ -70,8 +71,8 @@ def compute(args):
         "bisection_steps": var(found.iterations, "1", "bisection steps run", False),
         "bisection_rtol": var(1e-4 if args.quick else 1e-6, "1",
                               "relative width of the final a1 bracket", False),
-        "k_imp": var(contact.k[0], f"N m-{n:g}",
-                     "impact stiffness k_imp of the pad (Eq. 12)", False),
+        "k_imp": var(contact.k[0], power_law_units(n),
+                     f"impact stiffness k_imp of the pad (Eq. 12), {power_law_units(n)}", False),
         "exponent": var(n, "1", "exponent n of the bumper law", False),
         "thickness": var(BUMPER["thickness"], "m", "pad thickness", False),
         "bumper_area": var(BUMPER["area"], "m2", "pad contact area", False),
@@ -98,9 +99,10 @@ def compute(args):
     return ds
 
 
-_UNITS = {"c0": "SI (C_imp in s m-1 with m_eff in kg and v_imp in m s-1)",
-          "p1": "1", "p2": "1", "p3": "1"}
-_MEANING = {"c0": "coefficient c0 of C_imp = c0 (1-COR^2) / (COR^p1 m_eff^p2 v_imp^p3)",
+# c0's unit depends on the fitted exponents: a string UDUNITS refuses, repeated in long_name.
+_UNITS = {"c0": "SI: C_imp s m-1 with m_eff kg, v_imp m s-1", "p1": "1", "p2": "1", "p3": "1"}
+_MEANING = {"c0": "coefficient c0 of C_imp = c0 (1-COR^2) / (COR^p1 m_eff^p2 v_imp^p3), in "
+                  + _UNITS["c0"],
             "p1": "COR exponent p1", "p2": "effective-mass exponent p2",
             "p3": "impact-velocity exponent p3"}
 
@@ -184,49 +186,40 @@ def _law_text(name, p) -> str:
             f"$v^{{{p['p3']:.3f}}}$)")
 
 
-def check(ds) -> str:
+def check(ds) -> list[Verdict]:
     """Paper 3.2: the energy-equilibrium a1 over (COR, m_eff, v_imp) fits Eq. 9:
     c0 = 1.55, p1 = 0.7076, p2 = 0.0025, p3 = 0.9755."""
     fit = {p: float(ds[f"fit_{p}"]) for p in PAPER}
-    rows, agree = [], []
+    balance = float(np.abs(ds.hysteresis_area / ds.energy_loss - 1).max())
+    crushed = bool(np.any(ds.peak_indentation >= ds.delta_u))
+    common = (f"{ds.a1.size} points, A_h = dE within {balance:.1e}, pad "
+              f"{'CRUSHED' if crushed else 'not crushed'}, rms log misfit "
+              f"{float(ds.fit_rms_log_error):.4f}")
+    eq9 = (ds.cor_eq9 / ds.cor - 1).values
+    refit = (ds.cor_fit / ds.cor - 1).values
+    common += (f"; realised COR with Eq. 9 {eq9.min():+.1%} to {eq9.max():+.1%} of the target, "
+               f"with the refit {refit.min():+.1%} to {refit.max():+.1%}")
+    numbers = {"fit": fit, "paper": PAPER, "tolerance": TOLERANCE, "energy_balance": balance,
+               "crushed": crushed, "eq9_cor_error": [float(eq9.min()), float(eq9.max())],
+               "refit_cor_error": [float(refit.min()), float(refit.max())]}
+    out = []
     for p, meaning in (("c0", "coefficient"), ("p1", "COR exponent"),
                        ("p2", "mass exponent"), ("p3", "velocity exponent")):
         paper = PAPER[p]
         if p == "c0":
-            off, ok = fit[p] / paper - 1, abs(fit[p] / paper - 1) <= TOLERANCE[p]
-            rows.append(f"{meaning} c0 = {fit[p]:.3f} (paper {paper}, {off:+.1%}; "
-                        f"tolerance {TOLERANCE[p]:.0%})")
+            ok = abs(fit[p] / paper - 1) <= TOLERANCE[p]
+            finding = (f"c0 = {fit[p]:.3f} ({fit[p] / paper - 1:+.1%}; tolerance "
+                       f"{TOLERANCE[p]:.0%})")
         elif p == "p2":
             ok = abs(fit[p]) <= TOLERANCE[p]
-            rows.append(f"{meaning} p2 = {round(fit[p], 4) + 0.0:.4f} (paper {paper}; expected 0, "
-                        f"tolerance |p2| <= {TOLERANCE[p]})")
+            finding = (f"p2 = {round(fit[p], 4) + 0.0:.4f} (a pure power law is "
+                       f"scale-invariant: expected 0; tolerance |p2| <= {TOLERANCE[p]})")
         else:
             ok = abs(fit[p] - paper) <= TOLERANCE[p]
-            rows.append(f"{meaning} {p} = {fit[p]:.4f} (paper {paper}, "
-                        f"{fit[p] - paper:+.4f}; tolerance {TOLERANCE[p]})")
-        rows[-1] += ": agrees" if ok else ": differs"
-        agree.append(ok)
-    balance = float(np.abs(ds.hysteresis_area / ds.energy_loss - 1).max())
-    eq9 = (ds.cor_eq9 / ds.cor - 1).values
-    refit = (ds.cor_fit / ds.cor - 1).values
-    worst = np.unravel_index(np.argmax(np.abs(eq9)), eq9.shape)
-    crushed = bool(np.any(ds.peak_indentation >= ds.delta_u))
-    verdict = "agrees" if all(agree) else "differs in part"
-    return (
-        "Paper 3.2 / Eq. 9: energy equilibrium A_h = dE (Eq. 5) over (COR, m_eff, v_imp) gives "
-        "C_imp = 1.55 (1-COR^2) / (COR^0.7076 m_eff^0.0025 v_imp^0.9755).\n"
-        f"  here ({ds.a1.size} points, A_h = dE within {balance:.1e}, peak indentation "
-        f"{float(ds.peak_indentation.max()) * 1e3:.0f} mm vs delta_u "
-        f"{float(ds.delta_u) * 1e3:.0f} mm: {'CRUSHED' if crushed else 'not crushed'}, "
-        f"rms log misfit {float(ds.fit_rms_log_error):.4f}): {verdict}\n  "
-        + "\n  ".join(rows)
-        + "\n  (a pure power law is scale-invariant: the realised COR depends on C_imp v_imp and "
-        "n only, so p2 = 0 and p3 = 1 exactly, and two_body keeps that invariance by scaling "
-        "its step with the contact time; the paper's 0.0025 and 0.9755 are near these)\n"
-        f"  realised COR with Eq. 9: {eq9.min():+.1%} to {eq9.max():+.1%} of the target "
-        f"(worst at COR {float(ds.cor[worst[0]]):g}, m_eff {_mass(float(ds.m_eff[worst[1]]))}, "
-        f"v_imp {float(ds.v_imp[worst[2]]):.2g} m/s); "
-        f"with the refit: {refit.min():+.1%} to {refit.max():+.1%}.")
+            finding = f"{p} = {fit[p]:.4f} ({fit[p] - paper:+.4f}; tolerance {TOLERANCE[p]})"
+        out.append(Verdict("Eq. 9", f"Energy equilibrium gives the {meaning} {p} = {paper}",
+                           f"{finding}; {common}", ok, numbers))
+    return out
 
 
 recipe = Recipe(

@@ -12,7 +12,7 @@ from engine.units import CM
 
 from ._peaks_vs_gap import gaps, ranges
 from ._plot import FLOOR_LABELS, STORY_LABELS, plt, record_label
-from ._recipe import Recipe, sweep_options, verdict
+from ._recipe import Recipe, Verdict, sweep_options
 
 THICKNESS = 0.05  # m
 N_BUMPERS = 4
@@ -49,34 +49,49 @@ def plot(ds):
     return fig
 
 
-def check(ds) -> str:
+HELPED_RECORDS = ("sylmar_converter", "pacoima")  # where the paper sees bumpers help (5.1)
+
+
+def check(ds) -> list[Verdict]:
     """Paper 5.1: bumpers amplify the response at wide gaps, where the bare wall is not hit;
-    they help at narrow gaps under the strongest motions, at the base more than above."""
-    lines = []
+    they help at narrow gaps under the strongest motions (Sylmar Converter, San Fernando), at
+    the base more than above."""
     accel = ds.amplification_total_accel
-    base_amp = accel.sel(floor=0)
     worst = accel.max("floor")
-    no_bare_pounding = ds.baseline_n_impacts == 0
-    for record in ds.record.values:
-        r = {"record": record}
-        gap_cm = ds.gap.values / CM
-        wide = no_bare_pounding.sel(**r).values & (ds.n_impacts.sel(**r).values > 0)
-        amplified = worst.sel(**r).values > 1
-        helped = base_amp.sel(**r).values < 1
-        wide_text = (f"amplified at {amplified[wide].sum()}/{wide.sum()} gaps where only the "
-                     "bumpers are hit" if wide.any() else "no gap where only the bumpers are hit")
-        help_text = (f"base acceleration reduced at gaps {ranges(gap_cm, helped)} cm"
-                     if helped.any() else "base acceleration never reduced")
-        lines.append(f"  {record}: unconstrained peak "
-                     f"{float(ds.unconstrained_peak_isolator_disp.sel(**r)) / CM:.1f} cm; "
-                     f"{wide_text}; {help_text}")
-    wide_all = (no_bare_pounding & (ds.n_impacts > 0)).values
-    agree_wide = bool(np.all(worst.values[wide_all] > 1)) if wide_all.any() else None
-    return ("Wide gaps: bumpers amplify the response (paper 5.1); here: at every gap where only "
-            f"the bumpers are hit, peak floor acceleration amplification > 1: "
-            f"{verdict(agree_wide)}.\n"
-            "Narrow gaps: bumpers can help under Sylmar Converter and San Fernando (paper 5.1); "
-            "here:\n" + "\n".join(lines))
+    base_amp = accel.sel(floor=0)
+    gap_cm = ds.gap.values / CM
+    only_bumpers = (ds.baseline_n_impacts == 0) & (ds.n_impacts > 0)
+    per_record, helped_at = {}, {}
+    for record in (str(r) for r in ds.record.values):
+        wide = only_bumpers.sel(record=record).values
+        helped = base_amp.sel(record=record).values < 1
+        helped_at[record] = gap_cm[helped].tolist()
+        per_record[record] = {
+            "unconstrained_peak_isolator_disp": float(
+                ds.unconstrained_peak_isolator_disp.sel(record=record)),
+            "gaps_only_bumpers_hit_cm": gap_cm[wide].tolist(),
+            "amplified_there": int((worst.sel(record=record).values[wide] > 1).sum()),
+            "gaps_base_accel_reduced_cm": helped_at[record]}
+    wide_all = only_bumpers.values
+    amplified = worst.values[wide_all]
+    wide = Verdict(
+        "5.1", "Wide gaps (only the bumpers are hit): bumpers amplify the peak floor "
+        "acceleration",
+        f"amplification > 1 at {int((amplified > 1).sum())}/{amplified.size} such (record, gap) "
+        f"points, smallest {amplified.min() if amplified.size else float('nan'):.2f}",
+        bool(np.all(amplified > 1)) if amplified.size else None,
+        {"points": int(amplified.size), "amplified": int((amplified > 1).sum()),
+         "smallest_amplification": float(amplified.min()) if amplified.size else None,
+         "per_record": per_record})
+    strong = [r for r in HELPED_RECORDS if r in helped_at]
+    narrow = Verdict(
+        "5.1", "Narrow gaps: bumpers can reduce the peak base acceleration under the strongest "
+        "motions, Sylmar Converter and San Fernando",
+        "; ".join(f"{r}: reduced at gaps {ranges(gap_cm, np.isin(gap_cm, helped_at[r]))} cm"
+                  for r in strong) or "neither record run",
+        all(helped_at[r] for r in strong) if strong else None,
+        {"gaps_base_accel_reduced_cm": {r: helped_at[r] for r in strong}})
+    return [wide, narrow]
 
 
 recipe = Recipe(

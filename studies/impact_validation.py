@@ -12,10 +12,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from engine.units import KN, MM, kn_per_mm_n
+from engine.units import KN, MM, kn_per_mm_n, power_law_units
 
 from ._plot import plt
-from ._recipe import Recipe, verdict
+from ._recipe import Recipe, Verdict
 
 M_ROD = 300.0  # kg, each steel rod
 THICKNESS = 0.010  # m
@@ -104,10 +104,12 @@ def compute(args):
                      "(proposed model)"),
         "chi_hertzdamp": var((), contact.chi[-1], "1",
                              "Hertzdamp damping factor chi = 3 (1 - COR^2) / 4"),
-        "k_imp": var((), k, f"N m-{EXPONENT:g}",
-                     "impact stiffness k_imp (Eq. 12), also Hertzdamp's k"),
-        "k_st": var((), K_ST_KN_MM * kn_per_mm_n(EXPONENT), f"N m-{EXPONENT:g}",
-                    "static stiffness k_st of the static test fit (Fig. 6a)"),
+        "k_imp": var((), k, power_law_units(EXPONENT),
+                     f"impact stiffness k_imp (Eq. 12), also Hertzdamp's k, "
+                     f"{power_law_units(EXPONENT)}"),
+        "k_st": var((), K_ST_KN_MM * kn_per_mm_n(EXPONENT), power_law_units(EXPONENT),
+                    "static stiffness k_st of the static test fit (Fig. 6a), "
+                    f"{power_law_units(EXPONENT)}"),
         "exponent": var((), EXPONENT, "1", "exponent n of both laws"),
         "cor": var((), COR, "1", "target coefficient of restitution"),
         "rod_mass": var((), M_ROD, "kg", "mass of each steel rod (m1 = m2)"),
@@ -179,7 +181,7 @@ def plot(ds):
     return fig
 
 
-def check(ds) -> str:
+def check(ds) -> list[Verdict]:
     """Paper 3.4: the proposed loop's area matches the Eq. 5 energy loss with COR 0.45 and its
     approach follows k delta^n; Hertzdamp's loop area differs significantly."""
     def listed(values, fmt="{:.3f}"):
@@ -187,26 +189,32 @@ def check(ds) -> str:
 
     prop, hertz = ds.sel(model="proposed"), ds.sel(model="hertzdamp")
     v_text = listed(ds.velocity.values, "{:g}")
-    prop_ok = bool(np.all(np.abs(prop.area_ratio - 1) < 0.05))
-    hertz_ok = bool(np.all(np.abs(hertz.area_ratio - 1) > 0.2))
-    approach_ok = bool(float(prop.approach_deviation.max()) < 1e-6)
     crushed = bool(np.any(ds.peak_indentation >= ds.delta_u))
-    return (
-        "Paper 3.4: the proposed model's hysteresis area matches the kinetic energy loss of "
-        f"Eq. 5 (COR {float(ds.cor):g}); Hertzdamp's loop area differs significantly; the "
-        "approach branch follows k delta^n.\n"
-        f"  here, v_imp = {v_text} m/s: proposed A_h / dE(Eq. 5) = "
-        f"{listed(prop.area_ratio)} (measured COR {listed(prop.cor_measured)}): "
-        f"{verdict(prop_ok)} (within 5%);\n"
-        f"  Hertzdamp (chi = {float(ds.chi_hertzdamp):.3f}) A_h / dE = "
-        f"{listed(hertz.area_ratio)} (measured COR {listed(hertz.cor_measured)}): "
-        f"{'differs significantly' if hertz_ok else 'close'} -> {verdict(hertz_ok)};\n"
-        "  proposed approach branch vs k_imp delta^2.65: max relative deviation "
-        f"{float(prop.approach_deviation.max()):.1e} -> {verdict(approach_ok)}.\n"
-        f"  Peak force {listed(prop.peak_force / KN, '{:.1f}')} kN (proposed), "
-        f"{listed(hertz.peak_force / KN, '{:.1f}')} kN (Hertzdamp); peak indentation "
-        f"{listed(prop.peak_indentation / MM, '{:.2f}')} mm vs delta_u "
-        f"{float(ds.delta_u) / MM:g} mm: {'crushed' if crushed else 'not crushed (k_w unused)'}.")
+    context = (f"v_imp = {v_text} m/s; peak force {listed(prop.peak_force / KN, '{:.1f}')} kN "
+               f"(proposed), {listed(hertz.peak_force / KN, '{:.1f}')} kN (Hertzdamp); peak "
+               f"indentation {listed(prop.peak_indentation / MM, '{:.2f}')} mm vs delta_u "
+               f"{float(ds.delta_u) / MM:g} mm: {'crushed' if crushed else 'not crushed'}")
+    deviation = float(prop.approach_deviation.max())
+    return [
+        Verdict("3.4", "The proposed model's hysteresis area matches the kinetic energy loss "
+                f"of Eq. 5 (COR {float(ds.cor):g})",
+                f"A_h / dE(Eq. 5) = {listed(prop.area_ratio)} (measured COR "
+                f"{listed(prop.cor_measured)}), within 5%; {context}",
+                bool(np.all(np.abs(prop.area_ratio - 1) < 0.05)),
+                {"area_ratio": prop.area_ratio.values, "cor_measured": prop.cor_measured.values,
+                 "velocity": ds.velocity.values, "peak_force": prop.peak_force.values,
+                 "peak_indentation": prop.peak_indentation.values}),
+        Verdict("3.4", "Hertzdamp's loop area differs significantly from the Eq. 5 loss",
+                f"Hertzdamp (chi = {float(ds.chi_hertzdamp):.3f}) A_h / dE = "
+                f"{listed(hertz.area_ratio)} (measured COR {listed(hertz.cor_measured)}); "
+                "significant: more than 20% off",
+                bool(np.all(np.abs(hertz.area_ratio - 1) > 0.2)),
+                {"area_ratio": hertz.area_ratio.values,
+                 "cor_measured": hertz.cor_measured.values}),
+        Verdict("3.4", "The proposed approach branch follows k_imp delta^n",
+                f"max relative deviation {deviation:.1e} (below 1e-6)", deviation < 1e-6,
+                {"max_relative_deviation": deviation}),
+    ]
 
 
 recipe = Recipe(

@@ -11,7 +11,7 @@ from __future__ import annotations
 from engine.units import CM
 
 from . import _peaks_vs_gap as pvg
-from ._recipe import Recipe, sweep_options, verdict
+from ._recipe import Recipe, Verdict, sweep_options
 
 STRAINS = (0.6, 0.8, 1.0)
 THICKNESS = 0.05  # m
@@ -30,28 +30,25 @@ def plot(ds):
                     "$\\varepsilon_u$ of the bumpers (4 x 5 cm)")
 
 
-def check(ds) -> str:
+def check(ds) -> list[Verdict]:
     """Paper 5.3: both floor accelerations and interstory deflections decrease as the ultimate
     compressive strain increases."""
-    accel, drift = pvg.accel_g(ds), pvg.drift_cm(ds)
     low, high = ds.strain.values.min(), ds.strain.values.max()
     # eps_u can only matter where some bumper is compressed past the smallest delta_u
     crushed = ds.max_indentation.max("strain") > low * float(ds.thickness)
     n = int(crushed.sum())
-    counts, changes = [], []
-    for quantity in (accel, drift):
-        lower = quantity.sel(strain=high) < quantity.sel(strain=low)
-        counts.append(int((lower & crushed).sum()))
-        changes.append(float((quantity.sel(strain=high) / quantity.sel(strain=low) - 1)
-                             .where(crushed).mean()))
-    agrees = all(c > n / 2 for c in counts) if n else None
-    return ("Both peak floor accelerations and interstory deflections decrease as eps_u "
-            f"increases (paper 5.3); here, at the {n} (record, gap) points where the bumpers "
-            f"are compressed past the smallest delta_u = {low:g} x {float(ds.thickness) / CM:g} cm "
-            f"(elsewhere eps_u plays no part), eps_u = {high:g} rather than {low:g} gives a "
-            f"lower peak acceleration at {counts[0]}/{n} (mean {changes[0]:+.0%}) and a lower "
-            f"peak interstory deflection at {counts[1]}/{n} (mean {changes[1]:+.0%}) -> "
-            f"{verdict(agrees)}.")
+    counts, changes = pvg.lowered(ds, "strain", high, low, crushed)
+    return [Verdict(
+        "5.3", "Both peak floor accelerations and interstory deflections decrease as eps_u "
+        "increases",
+        f"at the {n} (record, gap) points where the bumpers are compressed past the smallest "
+        f"delta_u = {low:g} x {float(ds.thickness) / CM:g} cm (elsewhere eps_u plays no part), "
+        f"eps_u = {high:g} rather than {low:g} gives a lower peak acceleration at "
+        f"{counts[0]}/{n} (mean {changes[0]:+.0%}) and a lower peak interstory deflection at "
+        f"{counts[1]}/{n} (mean {changes[1]:+.0%})",
+        all(c > n / 2 for c in counts) if n else None,
+        {"points": n, "lower_accel": counts[0], "lower_drift": counts[1],
+         "mean_change_accel": changes[0], "mean_change_drift": changes[1]})]
 
 
 recipe = Recipe(

@@ -107,24 +107,27 @@ def main(argv: list[str] | None = None) -> int:
     import pipeline
     from pipeline.errors import SweepError
 
+    from ._recipe import announce_stand_ins
+
     try:
         if args.wall_k_kn_mm is not None and args.impact not in ("bumper", "linear"):
             raise SweepError(f"wall_k: --wall-k-kn-mm is for N/m stiffnesses (bumper, linear); "
                              f"give --wall-k in N/m^1.5 for impact={args.impact!r}")
         building = engine.Building(damping=args.damping)
-        ds = pipeline.sweep(
-            records=args.records,
-            gap=_one_or_many(args.gap) if args.gap else _one_or_many(args.gap_cm, CM),
-            thickness=_one_or_many(args.thickness) if args.thickness
-            else _one_or_many(args.thickness_cm, CM),
-            strain=_one_or_many(args.strain),
-            n_bumpers=_one_or_many(args.n_bumpers),
-            wall_k=_one_or_many(args.wall_k) if args.wall_k
-            else _one_or_many(args.wall_k_kn_mm, KN_PER_MM),
-            cor=_one_or_many(args.cor), impact=args.impact, dt=args.dt, workers=args.workers,
-            scheduler=args.scheduler, out=args.out, baseline=args.baseline,
-            unconstrained=args.unconstrained, building=building, m_eff=args.m_eff,
-            batch_size=args.batch_size, records_dir=args.records_dir, quiet=args.quiet)
+        with announce_stand_ins():
+            ds = pipeline.sweep(
+                records=args.records,
+                gap=_one_or_many(args.gap) if args.gap else _one_or_many(args.gap_cm, CM),
+                thickness=_one_or_many(args.thickness) if args.thickness
+                else _one_or_many(args.thickness_cm, CM),
+                strain=_one_or_many(args.strain),
+                n_bumpers=_one_or_many(args.n_bumpers),
+                wall_k=_one_or_many(args.wall_k) if args.wall_k
+                else _one_or_many(args.wall_k_kn_mm, KN_PER_MM),
+                cor=_one_or_many(args.cor), impact=args.impact, dt=args.dt, workers=args.workers,
+                scheduler=args.scheduler, out=args.out, baseline=args.baseline,
+                unconstrained=args.unconstrained, building=building, m_eff=args.m_eff,
+                batch_size=args.batch_size, records_dir=args.records_dir, quiet=args.quiet)
     except (SweepError, engine.EngineError) as err:
         print("error: " + " ".join(str(err).split()), file=sys.stderr)  # one line
         return 2

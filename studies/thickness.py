@@ -10,7 +10,7 @@ from __future__ import annotations
 from engine.units import CM
 
 from . import _peaks_vs_gap as pvg
-from ._recipe import Recipe, sweep_options, verdict
+from ._recipe import Recipe, Verdict, sweep_options
 
 THICKNESSES = (0.03, 0.05, 0.08)  # m
 N_BUMPERS = 4
@@ -32,7 +32,7 @@ def plot(ds):
                     "(4 bumpers, $k_w$ = 1500 kN/mm)")
 
 
-def check(ds) -> str:
+def check(ds) -> list[Verdict]:
     """Paper 5.2: thicker bumpers lower the floor accelerations at very narrow gaps, hardly
     change them at medium and wide gaps, raise the interstory deflections; overall the
     thickness does not significantly affect the response."""
@@ -49,21 +49,28 @@ def check(ds) -> str:
     spread_a = float(pvg.spread(accel, "thickness").where(hit).median())
     spread_d = float(pvg.spread(drift, "thickness").where(hit).median())
     n_hit, n_higher = int(hit.sum()), int((higher & hit).sum())
-    return "\n".join([
-        f"Very narrow gaps (< {NARROW} x the unconstrained peak isolator displacement): thicker "
-        "bumpers reduce the peak floor acceleration (paper 5.2); here: "
-        f"{names[0]} below {names[1]} at {n_lower}/{n_narrow} such gaps -> "
-        f"{verdict(n_lower > n_narrow / 2 if n_narrow else None)}.",
-        "Medium and wide gaps: negligible effect of the thickness on the acceleration "
-        f"(paper 5.2); here: median spread over t {wide_spread:.0%} at the other gaps with "
-        f"impacts (negligible: < 10%) -> {verdict(wide_spread < 0.1 if wide.any() else None)}.",
-        f"Interstory deflections increase with the thickness (paper 5.2); here: {names[0]} above "
-        f"{names[1]} at {n_higher}/{n_hit} gaps with impacts -> "
-        f"{verdict(n_higher > n_hit / 2 if n_hit else None)}.",
-        "Overall the thickness does not significantly affect the response (paper 5.2); here: "
-        f"median spread over t {spread_a:.0%} (acceleration), {spread_d:.0%} (interstory "
-        "deflection) at the gaps with impacts (not significant: < 15%) -> "
-        f"{verdict(max(spread_a, spread_d) < 0.15 if n_hit else None)}."])
+    return [
+        Verdict("5.2", f"Very narrow gaps (< {NARROW} x the unconstrained peak isolator "
+                "displacement): thicker bumpers reduce the peak floor acceleration",
+                f"{names[0]} below {names[1]} at {n_lower}/{n_narrow} such gaps",
+                n_lower > n_narrow / 2 if n_narrow else None,
+                {"narrow_points": n_narrow, "thicker_lower": n_lower}),
+        Verdict("5.2", "Medium and wide gaps: negligible effect of the thickness on the "
+                "acceleration", f"median spread over t {wide_spread:.0%} at the other gaps "
+                "with impacts (negligible: < 10%)",
+                wide_spread < 0.1 if bool(wide.any()) else None,
+                {"median_spread": wide_spread, "threshold": 0.1}),
+        Verdict("5.2", "Interstory deflections increase with the thickness",
+                f"{names[0]} above {names[1]} at {n_higher}/{n_hit} gaps with impacts",
+                n_higher > n_hit / 2 if n_hit else None,
+                {"points_with_impacts": n_hit, "thicker_higher": n_higher}),
+        Verdict("5.2", "Overall the thickness does not significantly affect the response",
+                f"median spread over t {spread_a:.0%} (acceleration), {spread_d:.0%} "
+                "(interstory deflection) at the gaps with impacts (not significant: < 15%)",
+                max(spread_a, spread_d) < 0.15 if n_hit else None,
+                {"median_spread_accel": spread_a, "median_spread_drift": spread_d,
+                 "threshold": 0.15}),
+    ]
 
 
 recipe = Recipe(

@@ -9,7 +9,7 @@ from __future__ import annotations
 from engine.units import CM, KN_PER_MM
 
 from . import _peaks_vs_gap as pvg
-from ._recipe import Recipe, sweep_options, verdict
+from ._recipe import Recipe, Verdict, sweep_options
 
 WALL_KS = (2.5e9, 1.5e9, 5e8)  # N/m: 2500, 1500, 500 kN/mm
 SIGNIFICANT = 0.1  # mean relative reduction of the peak acceleration
@@ -28,32 +28,30 @@ def plot(ds):
                     "(4 x 5 cm bumpers)")
 
 
-def check(ds) -> str:
+def check(ds) -> list[Verdict]:
     """Paper 5.5: a lower k_w significantly lowers the peak responses, the floor accelerations
     especially."""
-    accel, drift = pvg.accel_g(ds), pvg.drift_cm(ds)
     soft, stiff = ds.wall_k.values.min(), ds.wall_k.values.max()
     # k_w only acts where the bumpers are crushed past delta_u
     crushed = ds.max_indentation.max("wall_k") > float(ds.strain * ds.thickness)
     n = int(crushed.sum())
-    counts, changes = [], []
-    for quantity in (accel, drift):
-        lower = quantity.sel(wall_k=soft) < quantity.sel(wall_k=stiff)
-        counts.append(int((lower & crushed).sum()))
-        changes.append(float((quantity.sel(wall_k=soft) / quantity.sel(wall_k=stiff) - 1)
-                             .where(crushed).mean()))
+    counts, changes = pvg.lowered(ds, "wall_k", soft, stiff, crushed)
     untouched = [str(r) for r in ds.record.values if not crushed.sel(record=r).any()]
-    agrees = (all(c > n / 2 for c in counts) and changes[0] < -SIGNIFICANT
-              and changes[0] < changes[1]) if n else None
-    return ("Lower k_w: significantly lower peak responses, especially floor accelerations "
-            f"(paper 5.5); here, at the {n} (record, gap) points where the bumpers are crushed "
-            f"past delta_u = {float(ds.strain * ds.thickness) / CM:g} cm (elsewhere k_w plays no "
-            f"part{'; never under ' + ', '.join(untouched) if untouched else ''}), "
-            f"k_w = {soft / KN_PER_MM:g} rather than {stiff / KN_PER_MM:g} kN/mm gives a lower "
-            f"peak acceleration at {counts[0]}/{n} (mean {changes[0]:+.0%}) and a lower peak "
-            f"interstory deflection at {counts[1]}/{n} (mean {changes[1]:+.0%}) -> "
-            f"{verdict(agrees)} (significant: acceleration down by more than "
-            f"{SIGNIFICANT:.0%} on average, and more than the deflection).")
+    return [Verdict(
+        "5.5", "Lower k_w: significantly lower peak responses, especially floor accelerations",
+        f"at the {n} (record, gap) points where the bumpers are crushed past delta_u = "
+        f"{float(ds.strain * ds.thickness) / CM:g} cm (elsewhere k_w plays no part"
+        f"{'; never under ' + ', '.join(untouched) if untouched else ''}), k_w = "
+        f"{soft / KN_PER_MM:g} rather than {stiff / KN_PER_MM:g} kN/mm gives a lower peak "
+        f"acceleration at {counts[0]}/{n} (mean {changes[0]:+.0%}) and a lower peak "
+        f"interstory deflection at {counts[1]}/{n} (mean {changes[1]:+.0%}); significant: "
+        f"acceleration down by more than {SIGNIFICANT:.0%} on average, and more than the "
+        "deflection",
+        (all(c > n / 2 for c in counts) and changes[0] < -SIGNIFICANT
+         and changes[0] < changes[1]) if n else None,
+        {"points": n, "lower_accel": counts[0], "lower_drift": counts[1],
+         "mean_change_accel": changes[0], "mean_change_drift": changes[1],
+         "records_never_crushed": untouched})]
 
 
 recipe = Recipe(

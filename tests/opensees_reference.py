@@ -39,6 +39,11 @@ Modelling choices
       wrong sign (-n Kh d^(n-1)); the force is right, so Newton still converges here because
       the inertia term 4 M / dt^2 dominates, but more slowly.  It also prints a line to
       stderr for every impact.
+    - ``contact="hertzdamp"``: ``Hertzdamp Kh xiNorm gap <n>`` (P. J. Hughes' material after
+      Muthukumar & DesRoches 2006), Kh = k, xiNorm = chi = 3 (1 - COR^2) / 4, n = 1.5; the
+      elements as for Jankowski. At the first step in contact it takes the deformation rate
+      as the impact velocity v_imp and then gives F = Kh d^n (1 + chi d_dot / v_imp) (not
+      clipped at zero; with chi < 1 and |d_dot| <= v_imp it never pulls).
 * Analysis: ``Transient``, ``Newmark`` gamma = 1/2, beta = 1/4, fixed step dt (default
   1 ms with contact, 2 ms without), ``Newton`` with ``NormDispIncr`` 1e-10 m; when a step
   fails it is retried with ModifiedNewton -initial, then KrylovNewton, then split in halves
@@ -121,7 +126,7 @@ def jankowski_xi(cor: float) -> float:
     return num / (2.0 * cor * (cor * (9.0 * math.pi - 16.0) + 16.0))
 
 
-def _build(ag, ag_dt, contact, gap, k, beta, cor, m_eff):
+def _build(ag, ag_dt, contact, gap, k, beta, cor, m_eff, n=1.5):
     ops.wipe()
     ops.model("basic", "-ndm", 1, "-ndf", 1)
     ops.node(_GROUND, 0.0)
@@ -154,9 +159,14 @@ def _build(ag, ag_dt, contact, gap, k, beta, cor, m_eff):
         ops.uniaxialMaterial("ElasticPPGap", 8, float(k), -_FY_NEVER, -float(gap), 0.0, "noDamage")
         ops.element("zeroLength", _GAP_ELES[0], _GROUND, _LEVEL_NODES[0], "-mat", 7, "-dir", 1)
         ops.element("zeroLength", _GAP_ELES[1], _GROUND, _LEVEL_NODES[0], "-mat", 8, "-dir", 1)
-    elif contact == "jankowski":
-        xi = jankowski_xi(float(cor))
-        ops.uniaxialMaterial("JankowskiImpact", 7, float(beta), xi, float(m_eff), -float(gap), 1.5)
+    elif contact in ("jankowski", "hertzdamp"):
+        if contact == "jankowski":
+            xi = jankowski_xi(float(cor))
+            ops.uniaxialMaterial("JankowskiImpact", 7, float(beta), xi, float(m_eff),
+                                 -float(gap), 1.5)
+        else:
+            chi = 0.75 * (1.0 - float(cor) ** 2)
+            ops.uniaxialMaterial("Hertzdamp", 7, float(k), chi, -float(gap), float(n))
         # "-" wall: deformation u_0 closes when u_0 < -gap
         ops.element("zeroLength", _GAP_ELES[1], _GROUND, _LEVEL_NODES[0], "-mat", 7, "-dir", 1)
         # "+" wall: reversed node order, deformation -u_0 closes when u_0 > gap
@@ -179,18 +189,21 @@ def opensees_peaks(ag, ag_dt, *, contact=None, gap=None, k=None, beta=None, cor=
                    m_eff=320e3, dt=None) -> dict:
     """Run the OpenSees reference model under ground acceleration ``ag`` (m/s^2, step ag_dt s).
 
-    contact: None (no wall), "elastic" (needs gap [m], k [N/m]; cor is ignored) or
-    "jankowski" (needs gap [m], beta [N/m^1.5], cor; m_eff [kg]).
+    contact: None (no wall), "elastic" (needs gap [m], k [N/m]; cor is ignored),
+    "jankowski" (needs gap [m], beta [N/m^1.5], cor; m_eff [kg]) or "hertzdamp" (needs gap
+    [m], k [N/m^1.5], cor).
     dt: analysis step, default 0.001 s with contact, 0.002 s without.
     Returns peak_total_accel (5,), peak_interstory_drift (4,), peak_isolator_disp,
     max_indentation, max_impact_force, n_impacts.
     """
-    if contact not in (None, "elastic", "jankowski"):
+    if contact not in (None, "elastic", "jankowski", "hertzdamp"):
         raise ValueError(f"unknown contact {contact!r}")
     if contact is not None and (gap is None or gap < 0):
         raise ValueError("contact needs a gap >= 0")
-    if contact == "elastic" and k is None:
-        raise ValueError("elastic contact needs k")
+    if contact in ("elastic", "hertzdamp") and k is None:
+        raise ValueError(f"{contact} contact needs k")
+    if contact == "hertzdamp" and cor is None:
+        raise ValueError("hertzdamp contact needs cor")
     if contact == "jankowski" and (beta is None or cor is None):
         raise ValueError("jankowski contact needs beta and cor")
     ag = np.asarray(ag, dtype=float).ravel()

@@ -35,26 +35,27 @@ def _mixed_batch(size, rng):
     return contact[perm], [buildings[i] for i in perm]
 
 
-def test_member_peaks_do_not_depend_on_the_batch(short_record):
+def test_member_peaks_do_not_depend_on_the_batch(short_record, backend):
     accel, accel_dt = short_record
     contact, buildings = _mixed_batch(520, np.random.default_rng(7))
     dt = 1e-3
-    batch = engine.simulate(accel, accel_dt, contact, buildings, dt=dt)
+    batch = engine.simulate(accel, accel_dt, contact, buildings, dt=dt, backend=backend)
     assert np.count_nonzero(batch.n_impacts) > 300      # the batch really pounds
     for i in (0, 1, 137, 311, 519):
-        alone = engine.simulate(accel, accel_dt, contact[i], [buildings[i]], dt=dt)
+        alone = engine.simulate(accel, accel_dt, contact[i], [buildings[i]], dt=dt,
+                                backend=backend)
         for name, value in alone.peaks().items():
             np.testing.assert_allclose(getattr(batch, name)[i], value[0], rtol=1e-12, atol=0,
                                        err_msg=f"{name}, member {i}")
 
 
-def test_unstable_dt_is_refused_with_the_limit():
+def test_unstable_dt_is_refused_with_the_limit(backend):
     contact = Contact.linear([0.1, 0.2], k=[2.5e9, 2.5e11])
     limit = engine.stable_dt(contact, Building())
     assert limit[1] < limit[0] < 0.02
     with pytest.raises(engine.UnstableTimeStep, match=f"{limit[1]:.4g} s"):
-        engine.simulate(np.zeros(100), 0.01, contact, dt=1.01 * limit[1])
-    engine.simulate(np.zeros(100), 0.01, contact, dt=0.99 * limit[1])
+        engine.simulate(np.zeros(100), 0.01, contact, dt=1.01 * limit[1], backend=backend)
+    engine.simulate(np.zeros(100), 0.01, contact, dt=0.99 * limit[1], backend=backend)
 
 
 def test_stability_limit_is_the_central_difference_limit():
@@ -71,10 +72,11 @@ def test_stability_limit_is_the_central_difference_limit():
     assert free == pytest.approx(2 / (2 * np.pi / b.natural_periods().min()), rel=1e-12)
 
 
-def test_history_matches_peaks(short_record):
+def test_history_matches_peaks(short_record, backend):
     accel, accel_dt = short_record
     contact = Contact.concat([Contact.none(1), Contact.bumper([0.2, 0.25]), Contact.linear(0.2)])
-    res = engine.simulate(accel, accel_dt, contact, dt=1e-3, history=History([3, 1], every=1))
+    res = engine.simulate(accel, accel_dt, contact, dt=1e-3, history=History([3, 1], every=1),
+                          backend=backend)
     h = res.history
     assert h["isolator_disp"].shape == (2, h["time"].size)
     assert h["time"][1] == pytest.approx(1e-3)
@@ -84,20 +86,22 @@ def test_history_matches_peaks(short_record):
             res.peak_total_accel[member], rel=0, abs=0)
         assert h["impact_force"][row].max() == res.max_impact_force[member]
         assert h["indentation"][row].max() == res.max_indentation[member]
-    sparse = engine.simulate(accel, accel_dt, contact, dt=1e-3, history=History([1], every=10))
+    sparse = engine.simulate(accel, accel_dt, contact, dt=1e-3, history=History([1], every=10),
+                             backend=backend)
     np.testing.assert_array_equal(sparse.history["isolator_disp"][0], h["isolator_disp"][1, ::10])
 
 
-def test_energy_balance_of_an_elastic_wall(short_record):
+def test_energy_balance_of_an_elastic_wall(short_record, backend):
     """With COR = 1 the wall dissipates nothing: the work done on it over the record is zero
     to within the discretisation (contacts that are closed at the end excepted)."""
     accel, accel_dt = short_record
     contact = Contact.linear([0.15, 0.20], k=2.5e9, cor=1.0)
-    res = engine.simulate(accel, accel_dt, contact, dt=5e-4)
+    res = engine.simulate(accel, accel_dt, contact, dt=5e-4, backend=backend)
     elastic_energy_scale = res.max_impact_force**2 / (2 * 2.5e9)
     assert np.all(res.n_impacts > 0)
     np.testing.assert_allclose(res.impact_energy, 0, atol=1e-3 * elastic_energy_scale.max())
-    damped = engine.simulate(accel, accel_dt, Contact.linear([0.15, 0.20], cor=0.5), dt=5e-4)
+    damped = engine.simulate(accel, accel_dt, Contact.linear([0.15, 0.20], cor=0.5), dt=5e-4,
+                             backend=backend)
     assert np.all(damped.impact_energy > 0.05 * elastic_energy_scale)
 
 

@@ -51,17 +51,18 @@ def _exact_linear_peaks(building, ag, dt):
 
 
 @pytest.mark.parametrize("damping", ["paper", "modal"])
-def test_linear_building_matches_exact_solution(paper_record, damping):
-    """No isolator yield (huge Fy), no wall: the engine's peaks are within 0.5% of the exact
-    state-space solution on the same time grid."""
+def test_linear_building_matches_exact_solution(paper_record, damping, backend):
+    """No isolator yield (huge Fy), no wall: the engine's peaks are within 0.01% of the exact
+    state-space solution on the same time grid (measured: 0.0012% paper, 0.0032% modal)."""
     rec = paper_record("olive_view")
     building = Building(fy_ratio=100.0, damping=damping)
     dt = engine.DEFAULT_DT
-    res = engine.simulate(rec.accel, rec.dt, engine.Contact.none(1), building, dt=dt)
+    res = engine.simulate(rec.accel, rec.dt, engine.Contact.none(1), building, dt=dt,
+                          backend=backend)
     ag = engine.integrate.ground_motion_on_grid(rec.accel, rec.dt, dt)
     exact = _exact_linear_peaks(building, ag, dt)
     for name, value in exact.items():
-        np.testing.assert_allclose(getattr(res, name)[0], value, rtol=5e-3, err_msg=name)
+        np.testing.assert_allclose(getattr(res, name)[0], value, rtol=1e-4, err_msg=name)
 
 
 def test_isolator_hysteresis_is_exact_bilinear():

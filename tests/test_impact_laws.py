@@ -25,22 +25,28 @@ def _laws(cor, rule_variant=False):
     }
 
 
+# Measured worst deviation from the target COR, plus a margin: the calibrated rules (linear
+# no-tension, Hertzdamp calibrated) 0.04% and 0.01%; Jankowski's published formula 2.7%.
+COR_TOLERANCE = {"linear": 1e-3, "jankowski": 0.03, "hertzdamp": 1e-3}
+
+
 @pytest.mark.parametrize("law", ["linear", "jankowski", "hertzdamp"])
-def test_realised_cor_matches_target(law):
-    res = engine.two_body(M_BODY, M_BODY, V_GRID, _laws(COR_GRID)[law])
-    np.testing.assert_allclose(res.cor, COR_GRID, rtol=0.03)
+def test_realised_cor_matches_target(law, backend):
+    res = engine.two_body(M_BODY, M_BODY, V_GRID, _laws(COR_GRID)[law], backend=backend)
+    np.testing.assert_allclose(res.cor, COR_GRID, rtol=COR_TOLERANCE[law])
 
 
-def test_bumper_calibrated_rule_realises_target_cor():
-    res = engine.two_body(M_BODY, M_BODY, V_GRID, _laws(COR_GRID, rule_variant=True)["bumper"])
-    np.testing.assert_allclose(res.cor, COR_GRID, rtol=0.03)
+def test_bumper_calibrated_rule_realises_target_cor(backend):
+    res = engine.two_body(M_BODY, M_BODY, V_GRID, _laws(COR_GRID, rule_variant=True)["bumper"],
+                          backend=backend)
+    np.testing.assert_allclose(res.cor, COR_GRID, rtol=1e-3)  # measured 0.03%
 
 
-def test_bumper_eq9_realises_target_cor_within_its_known_band():
+def test_bumper_eq9_realises_target_cor_within_its_known_band(backend):
     """Eq. 9 is a power-law fit: it holds the target within 3% over most of the range, and
     reaches 3.6% at the corners (COR 0.3, v 0.5 m/s: too high; COR 0.4-0.5, v 4 m/s: too low).
     The independent solution below confirms those corner values are Eq. 9's, not numerics."""
-    res = engine.two_body(M_BODY, M_BODY, V_GRID, _laws(COR_GRID)["bumper"])
+    res = engine.two_body(M_BODY, M_BODY, V_GRID, _laws(COR_GRID)["bumper"], backend=backend)
     deviation = res.cor / COR_GRID - 1
     corner = ((COR_GRID == 0.3) & (V_GRID == 0.5)) | ((COR_GRID < 0.55) & (V_GRID == 4.0))
     assert np.all(np.abs(deviation[~corner]) < 0.03)
@@ -49,18 +55,18 @@ def test_bumper_eq9_realises_target_cor_within_its_known_band():
 
 
 @pytest.mark.parametrize("law", ["linear", "jankowski", "hertzdamp", "bumper"])
-def test_elastic_contact_conserves_energy(law):
+def test_elastic_contact_conserves_energy(law, backend):
     v = np.array([0.5, 1.0, 2.0, 4.0])
-    res = engine.two_body(M_BODY, M_BODY, v, _laws(np.ones(4))[law])
+    res = engine.two_body(M_BODY, M_BODY, v, _laws(np.ones(4))[law], backend=backend)
     kinetic = 0.5 * M_EFF * v**2
     np.testing.assert_allclose(res.dissipated_energy / kinetic, 0.0, atol=5e-3)
     np.testing.assert_allclose(res.cor, 1.0, rtol=5e-3)
 
 
 @pytest.mark.parametrize("law", ["linear", "jankowski", "hertzdamp", "bumper"])
-def test_hysteresis_area_equals_kinetic_energy_loss(law):
+def test_hysteresis_area_equals_kinetic_energy_loss(law, backend):
     """The loop's area (integral of F d delta) is the energy lost, Eq. 5 with the realised COR."""
-    res = engine.two_body(M_BODY, M_BODY, V_GRID, _laws(COR_GRID)[law])
+    res = engine.two_body(M_BODY, M_BODY, V_GRID, _laws(COR_GRID)[law], backend=backend)
     np.testing.assert_allclose(res.hysteresis_area, res.dissipated_energy, rtol=1e-6)
 
 
@@ -79,7 +85,7 @@ def _independent_cor(force, v, m_eff):
 
 
 @pytest.mark.parametrize("cor,v", [(0.3, 0.5), (0.45, 1.0), (0.5, 4.0), (0.9, 2.0)])
-def test_published_rules_against_independent_solution(cor, v):
+def test_published_rules_against_independent_solution(cor, v, backend):
     """The published closed forms, run literally, realise the COR an independent ODE solver
     finds for the same law: Eq. 9, Hertzdamp's 3(1-COR^2)/4, and Eq. 3 with no tension."""
     k_bumper = rubber_bumper.impact_stiffness(rubber_bumper.PARAMETERS.area.default, 0.05, count=4)
@@ -95,16 +101,17 @@ def test_published_rules_against_independent_solution(cor, v):
          lambda d, dd: 2.5e7 * d + c_kv * dd),
     ]
     for contact, law in cases:
-        measured = engine.two_body(M_BODY, M_BODY, v, contact).cor[0]
+        measured = engine.two_body(M_BODY, M_BODY, v, contact, backend=backend).cor[0]
         assert measured == pytest.approx(_independent_cor(law, v, M_EFF), rel=2e-3)
 
 
-def test_eq3_with_no_tension_has_the_closed_form_cor():
+def test_eq3_with_no_tension_has_the_closed_form_cor(backend):
     """Clipped Kelvin-Voigt separates when its acceleration vanishes:
     COR = exp(-r (pi - 2 atan r)), r = xi / sqrt(1 - xi^2). 0.5 becomes 0.550."""
     cor = np.array([0.3, 0.5, 0.7])
     res = engine.two_body(M_BODY, M_BODY, 1.0, Contact.linear(1.0, k=2.5e7, cor=cor,
-                                                              m_eff=M_EFF, xi_rule="eq3"))
+                                                              m_eff=M_EFF, xi_rule="eq3"),
+                          backend=backend)
     expected = linear_viscoelastic.cor_no_tension(linear_viscoelastic.xi_eq3(cor))
     np.testing.assert_allclose(res.cor, expected, rtol=1e-3)
     assert expected[1] == pytest.approx(0.550, abs=1e-3)

@@ -8,11 +8,13 @@ import signal
 import subprocess
 import sys
 import textwrap
+import warnings
 from pathlib import Path
 
 import numpy as np
 import pytest
 import xarray as xr
+from conftest import assert_udunits
 
 import pipeline
 from pipeline import run as run_module
@@ -102,6 +104,7 @@ def test_small_sweep_dims_coords_units(reference, tmp_path):
     assert ds.gap.attrs["units"] == "m" and ds.wall_k.attrs["units"] == "N m-1"
     for name, var in ds.variables.items():
         assert var.attrs.get("units") and var.attrs.get("long_name"), name
+    assert_udunits(ds)
     # The sweep really pounds, and the ratios are what they say.
     assert ds.n_impacts.min() > 0 and ds.baseline_n_impacts.min() > 0
     assert (ds.unconstrained_peak_isolator_disp > max(GAPS)).all()
@@ -136,14 +139,15 @@ def test_unconstrained_peaks_helper(reference):
 
 
 @pytest.mark.parametrize("impact, wall_k, units", [("linear", None, "N m-1"),
-                                                     ("jankowski", 2.75e9, "N m-1.5"),
-                                                     ("hertzdamp", 2.75e9, "N m-1.5")])
+                                                     ("jankowski", 2.75e9, "N m^(-1.5)"),
+                                                     ("hertzdamp", 2.75e9, "N m^(-1.5)")])
 def test_other_impact_laws(impact, wall_k, units):
     ds = pipeline.sweep(RECORDS[:1], gap=[0.06, 0.10], wall_k=wall_k, cor=[0.5, 0.8],
                         impact=impact, dt=DT, workers=0, quiet=True)
     assert ds.peak_isolator_disp.dims == ("record", "gap", "cor")
     assert "thickness" not in ds.coords and "n_bumpers" not in ds.coords
     assert ds.wall_k.attrs["units"] == units and ds.attrs["impact_law"] == impact
+    assert_udunits(ds)
     assert ds.n_impacts.min() > 0
 
 
@@ -422,3 +426,41 @@ def test_paper_records_keep_their_provenance(paper_record):
     assert ds.gap.dims == () and ds.peak_isolator_disp.dims == ("record",)
     assert ds.attrs["record_kobe_found_in"] == recs[0].found_in
     assert ds.attrs["record_kobe_note"] == recs[0].note
+
+
+# --------------------------------------------------------------------------- stand-ins
+
+
+class Computed(Exception):
+    """Raised by a simulation that must not have started yet."""
+
+
+def test_stand_in_is_announced_before_any_compute(monkeypatch, tmp_path, capsys):
+    from pipeline import records as records_module
+    from pipeline.archive import record_coords
+    from studies import sweep as sweep_cli
+
+    monkeypatch.setattr(records_module, "_builtin_resource", lambda: tmp_path / "missing.nc")
+    monkeypatch.delenv(records_module.RECORDS_DIR_ENV, raising=False)
+
+    def computed(*args, **kwargs):
+        raise Computed
+
+    monkeypatch.setattr(run_module, "simulate_batch", computed)
+    with pytest.warns(records_module.StandInWarning, match="STAND-IN: Kobe"), \
+            pytest.raises(Computed):
+        pipeline.sweep(["kobe"], gap=0.3, workers=0, quiet=True)
+    # The command line says it on one line, before computing.
+    with pytest.raises(Computed):
+        sweep_cli.main(["--records", "kobe", "--gap", "0.3", "--workers", "0", "--quiet",
+                        "--out", str(tmp_path / "x.nc")])
+    err = capsys.readouterr().err
+    assert err.startswith("warning: STAND-IN: Kobe 1995") and "\n" in err
+    # Silenced like any warning, and the archive's record coordinate names it a stand-in.
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        warnings.simplefilter("ignore", records_module.StandInWarning)
+        rec = records_module.paper_record("kobe")
+    assert rec.found_in == "stand-in"
+    found = record_coords([rec, RECORDS[0]], ["kobe", "own"])["record_found_in"]
+    assert found.values.tolist() == ["stand-in", "given"]

@@ -655,7 +655,7 @@ def test_build_script(records_dir, tmp_path):
     out = subprocess.run([sys.executable, str(script), "--records", str(records_dir),
                           "--output", str(target)], capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr
-    rebuilt, shipped = R._parse_builtin(target), R.builtin_records()
+    rebuilt, shipped = R.read_builtin(target), R.builtin_records()
     for key in BUILTIN_FILES:
         assert np.array_equal(rebuilt[key].accel, shipped[key].accel)
         assert rebuilt[key].source == shipped[key].source

@@ -2,8 +2,10 @@
 import numpy as np
 import pytest
 import xarray as xr
+from conftest import assert_udunits
 
 from studies import gap_size
+from studies._recipe import verdicts
 
 
 @pytest.fixture(scope="module")
@@ -29,6 +31,8 @@ def test_archive_is_labelled_and_complete(quick_run):
         ratio = ds.peak_total_accel / ds.baseline_peak_total_accel
         np.testing.assert_allclose(ds.amplification_total_accel, ratio)
         assert "paper 5.1" in ds.attrs["paper_check"]
+        assert [v["conclusion"] for v in verdicts(ds)] == ["5.1", "5.1"]
+        assert_udunits(ds)
         assert ds.attrs["recipe"] == "gap_size" and ds.attrs["quick"] == 1
 
 

@@ -3,6 +3,7 @@ numbers: a history's maxima are the engine's peaks."""
 import numpy as np
 import pytest
 import xarray as xr
+from conftest import assert_udunits
 
 from pipeline.errors import SweepError
 from pipeline.histories import concat_records, histories
@@ -11,7 +12,8 @@ from studies import practical_example
 PEAKS = ("peak_total_accel", "peak_interstory_drift", "peak_isolator_disp", "max_indentation",
          "max_impact_force", "n_impacts")
 HISTORIES = ("base_total_accel", "impact_force", "indentation", "isolator_disp")
-CONFIGS = ["no_pounding", "no_bumpers", "bumpers"]
+CONFIGS = ["no_pounding", "no_bumpers", "bumpers", "no_bumpers_at_paper_gap",
+           "bumpers_at_paper_gap"]
 
 
 @pytest.fixture(scope="module")
@@ -55,7 +57,9 @@ def test_archive_is_labelled_and_complete(quick_run):
             np.testing.assert_allclose(sel.clear_gap, ds.chosen_gap - clear)
             assert (sel.n_impacts > 0).all(), config  # the gaps are hit: strong motion kept
         np.testing.assert_allclose(ds.crush_indentation.sel(configuration="bumpers"), 0.04)
-        assert list(ds.impact.values) == ["none", "linear", "bumper"]
+        assert list(ds.impact.values) == ["none", "linear", "bumper", "linear", "bumper"]
+        for config in ("no_bumpers_at_paper_gap", "bumpers_at_paper_gap"):
+            np.testing.assert_allclose(ds.gap.sel(configuration=config), ds.paper_gap)
 
         # Histories every 2 ms: their maxima within a whisker under the exact peaks.
         base_peak = ds.peak_total_accel.sel(floor=0)
@@ -66,6 +70,7 @@ def test_archive_is_labelled_and_complete(quick_run):
         assert (force_max >= 0.95 * ds.max_impact_force).all()
 
         assert "kobe" in ds.attrs["paper_check"] and "pacoima" in ds.attrs["paper_check"]
+        assert_udunits(ds)
         assert "15 cm" in ds.attrs["gap_rule"] and "24 cm" in ds.attrs["gap_rule"]
         assert ds.attrs["recipe"] == "practical_example" and ds.attrs["quick"] == 1
         assert ds.attrs["record_kobe_source"] and ds.attrs["record_pacoima_source"]
@@ -103,7 +108,7 @@ def segment_run(paper_record):
 
 def test_history_maxima_are_the_peaks(segment_run):
     ds = segment_run
-    assert list(ds.configuration.values) == CONFIGS
+    assert list(ds.configuration.values) == CONFIGS[:3]
     np.testing.assert_allclose(ds.time[1] - ds.time[0], 5e-4)
     assert float(ds.time[-1]) == pytest.approx(6.0)
     assert (ds.n_impacts.sel(configuration=["no_bumpers", "bumpers"]) > 0).all()

@@ -3,6 +3,7 @@ engine.damping_fit, the energy-equilibrium procedure of section 3.2."""
 import numpy as np
 import pytest
 import xarray as xr
+from conftest import assert_udunits
 
 from engine import EngineError, damping_fit
 from engine.impact.calibration import hunt_crossley_chi
@@ -85,6 +86,7 @@ def test_archive_is_labelled_and_complete(quick_runs, name):
             if ds[var].dtype.kind == "f":
                 assert not ds[var].isnull().any(), var
         assert ds.attrs["paper_check"].strip()
+        assert_udunits(ds)
         assert ds.attrs["recipe"] == name and ds.attrs["quick"] == 1
 
 
@@ -111,7 +113,7 @@ def test_damping_calibration_numbers(quick_runs):
         assert float(ds.fit_p1) == pytest.approx(0.7076, abs=0.1)
         assert np.all(ds.peak_indentation < ds.delta_u)
         np.testing.assert_allclose(ds.cor_fit / ds.cor, 1.0, atol=0.01)
-        assert "paper 1.55" in ds.attrs["paper_check"]
+        assert "c0 = 1.55" in ds.attrs["paper_check"]
 
 
 @pytest.mark.parametrize("name", RECIPES)

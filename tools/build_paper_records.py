@@ -70,14 +70,13 @@ def _read(key: str, records: Path) -> tuple[np.ndarray, dict]:
     spec = R.PAPER_RECORDS[key]
     path = records / meta["file"]
     rec = R.read_at2(path)
-    parsed = R._parse_at2(path)
+    parsed = R.parse_at2(path)
     if parsed.units != "g":
         raise SystemExit(f"{path}: values in {parsed.units}, expected g")
     values = parsed.values
     if not np.array_equal(values * R.G, rec.accel):
         raise SystemExit(f"{path}: parsed samples disagree with read_at2")
-    if rec.component != spec.component or spec.event_word not in R._norm(rec.event) or \
-            R._norm(rec.station) not in spec.stations:
+    if not spec.matches(rec.event, rec.station, rec.component):
         raise SystemExit(f"{path}: header says {rec.event}, {rec.station}, {rec.component}; "
                          f"expected {spec.title}")
     pga_g = float(np.max(np.abs(values)))
@@ -127,12 +126,12 @@ def build(records: Path, output: Path) -> Path:
     now = datetime.datetime.now(datetime.timezone.utc).replace(microsecond=0).isoformat()
     ds = xr.Dataset()
     encoding = {}
-    for key in R._BUILTIN_KEYS:
+    for key in R.BUILTIN_KEYS:
         values, attrs = _read(key, records)
         ds[key] = xr.DataArray(values, dims=(f"{key}_sample",), attrs=attrs)
         encoding[key] = {"dtype": "float64", "zlib": True, "complevel": 9, "shuffle": True,
                          "fletcher32": True, "_FillValue": None}
-    files = " and ".join(CATALOGUE[k]["file"] for k in R._BUILTIN_KEYS)
+    files = " and ".join(CATALOGUE[k]["file"] for k in R.BUILTIN_KEYS)
     ds.attrs = {
         "Conventions": "CF-1.10",
         "title": "bumpers built-in ground motions: the paper's Table 1 records that no "
@@ -162,8 +161,8 @@ def build(records: Path, output: Path) -> Path:
 
 def _check(path: Path, records: Path):
     """The written file must give back read_at2 of the AT2 files exactly."""
-    built = R._parse_builtin(path)
-    for key in R._BUILTIN_KEYS:
+    built = R.read_builtin(path)
+    for key in R.BUILTIN_KEYS:
         rec = R.read_at2(records / CATALOGUE[key]["file"])
         if not (np.array_equal(built[key].accel, rec.accel) and built[key].dt == rec.dt):
             raise SystemExit(f"{path}: {key} does not read back equal to {rec.source}")
@@ -182,7 +181,7 @@ def main(argv: list[str] | None = None) -> int:
                         default=ROOT / "pipeline" / "data" / "paper_records.nc",
                         help="file to write (default: pipeline/data/paper_records.nc)")
     args = parser.parse_args(argv)
-    missing = [CATALOGUE[k]["file"] for k in R._BUILTIN_KEYS
+    missing = [CATALOGUE[k]["file"] for k in R.BUILTIN_KEYS
                if not (args.records / CATALOGUE[k]["file"]).is_file()]
     if missing:
         parser.error(f"{args.records}: missing {', '.join(missing)}")

@@ -2,12 +2,17 @@
 
 Each law module declares its parameters once (`PARAMETERS`: unit, valid range, default,
 meaning, the paper's equation; see parameters.py), turns them into Contact fields
-(`contact_fields`), and offers the same pure functions over (B,) arrays:
-    force_terms(delta, delta_dot, v_imp, p) -> (elastic force N, dashpot N*s/m)
+(`contact_fields`), and offers
+    force_terms(delta, delta_dot, v_imp, *LAW_ARGUMENTS) -> (elastic force N, dashpot N*s/m)
         with F = max(elastic + dashpot * delta_dot, 0); delta_dot only selects the phase;
-    max_tangent_stiffness(p, indentation_bound) -> N/m
-where p is a `Contact` (or a slice of one) holding that law's members. Integrators put the
-dashpot on the central velocity (see integrate.py); `force` evaluates a law directly.
+    max_tangent_stiffness(p, indentation_bound) -> N/m  (p: a Contact holding that law's members)
+`force_terms` is the law's physics, written once: plain arithmetic and NumPy ufuncs on scalars
+or (B,) arrays alike, so the NumPy time loop calls it on arrays and the compiled kernel
+(kernel.py) compiles the very same function for scalars. Every law takes the same arguments,
+the Contact fields named in LAW_ARGUMENTS (`law_arguments(p)`), and ignores those it does not
+use. The same holds for `implicit_force` and `onset_weight` below and for isolator.py.
+Integrators put the dashpot on the central velocity (see integrate.py); `force` evaluates a
+law directly.
 """
 from __future__ import annotations
 
@@ -32,6 +37,10 @@ LAWS = {LAW_NAMES[code]: module for code, module in LAW_MODULES.items()}
 DEFAULT_M_EFF = M_EFF.default
 
 # Contact fields a law leaves unset, and their neutral values.
+# The Contact fields every law's force_terms takes after (delta, delta_dot, v_imp), in order.
+LAW_ARGUMENTS = ("k", "n", "m_eff", "delta_u", "k_w", "dashpot", "damping_ratio", "chi",
+                 "c_imp_coef", "c_imp_exponent")
+
 _UNSET = {"delta_u": np.inf, "k_w": 0.0, "dashpot": 0.0, "damping_ratio": 0.0, "chi": 0.0,
           "c_imp_coef": 0.0, "c_imp_exponent": 0.0}
 
@@ -180,17 +189,33 @@ def law_blocks(contact: Contact):
     return order, blocks
 
 
+def law_arguments(p: Contact) -> tuple:
+    """The (B,) Contact fields a law's force_terms takes after (delta, delta_dot, v_imp)."""
+    return tuple(getattr(p, name) for name in LAW_ARGUMENTS)
+
+
 def fill_force_terms(blocks, delta, delta_dot, v_imp, elastic, dashpot):
     """Evaluate every law on its block of the sorted batch into elastic and dashpot, (B,)."""
     for block, module, params in blocks:
         elastic[block], dashpot[block] = module.force_terms(
-            delta[block], delta_dot[block], v_imp[block], params)
+            delta[block], delta_dot[block], v_imp[block], *law_arguments(params))
 
 
 def force(module, delta, delta_dot, v_imp, p):
     """Contact force (N, >= 0) of one law at indentation delta (m), rate delta_dot (m/s)."""
-    elastic, dashpot = module.force_terms(delta, delta_dot, v_imp, p)
+    elastic, dashpot = module.force_terms(delta, delta_dot, v_imp, *law_arguments(p))
     return np.where(delta > 0, np.maximum(elastic + dashpot * delta_dot, 0.0), 0.0)
+
+
+def onset_weight(delta, delta_prev):
+    """Part of the step [t_n - dt/2, t_n + dt/2] after first touch, located by linear
+    interpolation of the indentation from delta_prev (m, previous step) to delta (m, > 0).
+
+    A dashpot that is already loaded at first touch (Kelvin-Voigt) would otherwise push for the
+    whole step, and peaks would jitter with dt. Scalars or arrays alike.
+    """
+    travel = np.maximum(delta - np.minimum(delta_prev, 0.0), 1e-300)
+    return np.minimum(delta / travel + 0.5, 1.0)
 
 
 def implicit_force(elastic, dashpot, delta_dot_free, compliance):

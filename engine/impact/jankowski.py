@@ -7,13 +7,15 @@ xi = 9 sqrt(5) (1 - COR^2) / (2 COR (COR (9 pi - 16) + 16))  (Jankowski 2006).
 """
 import numpy as np
 
+from ..units import power_law_units
 from .parameters import GAP, M_EFF, REQUIRED, Declaration, Parameter
 
 EXPONENT = 1.5
 
 PARAMETERS = Declaration(
     GAP,
-    Parameter("beta", "N m-1.5", "moat wall impact stiffness beta", REQUIRED, "(0, inf)",
+    Parameter("beta", power_law_units(EXPONENT), "moat wall impact stiffness beta, "
+              f"{power_law_units(EXPONENT)}", REQUIRED, "(0, inf)",
               equation="Jankowski 2005", sweep="wall_k"),
     Parameter("cor", "1", "coefficient of restitution of the wall impacts", 0.5, "(0, 1]",
               equation="Jankowski 2006", sweep="cor"),
@@ -31,14 +33,16 @@ def contact_fields(gap, beta, cor, m_eff):
     return {"clear_gap": gap, "k": beta, "n": EXPONENT, "damping_ratio": damping_ratio(cor)}
 
 
-def force_terms(delta, delta_dot, v_imp, p):
-    """(elastic force N, dashpot N*s/m), (B,) each; the dashpot acts on approach only.
+def force_terms(delta, delta_dot, v_imp, k, n, m_eff, delta_u, k_w, dashpot, damping_ratio, chi,
+                c_imp_coef, c_imp_exponent):
+    """(elastic force N, dashpot N*s/m); the dashpot acts on approach only.
 
-    p.k = beta (N/m^1.5), p.damping_ratio = xi, p.m_eff (kg).
+    k = beta (N/m^1.5), damping_ratio = xi, m_eff (kg); scalars or (B,) arrays alike (the
+    laws' uniform signature, impact.LAW_ARGUMENTS), compiled as is by the kernel.
     """
     d = np.maximum(delta, 0.0)
-    dashpot = 2 * p.damping_ratio * np.sqrt(p.k * np.sqrt(d) * p.m_eff)
-    return p.k * d**EXPONENT, np.where(delta_dot > 0, dashpot, 0.0)
+    dashpot = 2 * damping_ratio * np.sqrt(k * np.sqrt(d) * m_eff)
+    return k * d**EXPONENT, (delta_dot > 0) * dashpot
 
 
 def max_tangent_stiffness(p, indentation_bound):

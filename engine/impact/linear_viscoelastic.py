@@ -66,12 +66,14 @@ def contact_fields(gap, k, cor, m_eff, xi_rule):
             "dashpot": damping_coefficient(k, cor, m_eff, xi_rule)}
 
 
-def force_terms(delta, delta_dot, v_imp, p):
-    """(elastic force N, dashpot N*s/m), (B,) each: F = k delta + c delta_dot.
+def force_terms(delta, delta_dot, v_imp, k, n, m_eff, delta_u, k_w, dashpot, damping_ratio, chi,
+                c_imp_coef, c_imp_exponent):
+    """(elastic force N, dashpot N*s/m): F = k delta + c delta_dot; k N/m, dashpot c N*s/m.
 
-    p.k: N/m; p.dashpot: c (N*s/m). delta_dot and v_imp are unused (uniform signature).
+    The laws' uniform signature (impact.LAW_ARGUMENTS); scalars or (B,) arrays alike, compiled
+    as is by the kernel. The other arguments are unused.
     """
-    return p.k * delta, p.dashpot
+    return k * delta, dashpot
 
 
 def max_tangent_stiffness(p, indentation_bound):
