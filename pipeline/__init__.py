@@ -18,7 +18,7 @@ __all__ = ["SweepError", "sweep", "unconstrained_peaks"]
 
 
 def sweep(records, *, gap=None, thickness=None, strain=None, n_bumpers=None, wall_k=None,
-          cor=None, impact: str = "bumper", dt: float | None = None, workers: int = 2,
+          cor=None, impact: str = "bumper", dt: float | None = None, workers: int = 1,
           scheduler=None, out=None, baseline: bool = False, unconstrained: bool = False,
           building=None, m_eff: float | None = None, batch_size: int | None = None,
           records_dir=None, quiet: bool = False):
@@ -35,9 +35,11 @@ def sweep(records, *, gap=None, thickness=None, strain=None, n_bumpers=None, wal
     impact: "bumper" (the paper's rubber bumpers, default), "linear", "jankowski", "hertzdamp".
     dt: integration step (s), default engine.DEFAULT_DT; refused at or above the stability
         limit (engine.stable_dt).
-    workers: local worker processes (one thread each); 0 or 1 runs in this process. Worker
-        processes are spawned: a script calling sweep with workers >= 2 needs the
-        `if __name__ == "__main__":` guard.
+    workers: 0 or 1 (default) runs in this process, the compiled kernel spreading each batch's
+        members over every core with threads (measured the fastest on one machine: no worker
+        start-up, no copies); >= 2 starts that many local dask worker processes, one thread
+        each. Worker processes are spawned: a script calling sweep with workers >= 2 needs
+        the `if __name__ == "__main__":` guard.
     scheduler: a dask.distributed scheduler address (or Client) to run on instead.
     out: NetCDF path, written atomically; finished batches are kept in `<out>.work/` so that a
         rerun after a crash computes only what is missing; the folder goes once out is written.
@@ -47,7 +49,7 @@ def sweep(records, *, gap=None, thickness=None, strain=None, n_bumpers=None, wal
     unconstrained: also run each record without wall; adds unconstrained_* variables.
     building: engine.Building (default: the paper's); m_eff: effective impact mass (kg;
         default: the declared one, 320 t, the base slab).
-    batch_size: members per engine call (default: up to 512, and at least `workers` batches).
+    batch_size: members per engine call (default: pipeline.run.default_batch_size).
     records_dir: folder of AT2 files for the records' lookup; quiet: no progress bar.
 
     Returns an xarray.Dataset, dims: record, the swept parameters (in the order gap,

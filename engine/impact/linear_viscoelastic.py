@@ -14,7 +14,6 @@ The paper's bare moat wall (the no-bumper reference of every figure) is this law
 defaults: k = 2500 kN/mm, COR 0.5 (SPEC decision).
 """
 import numpy as np
-from scipy.optimize import brentq
 
 from .parameters import GAP, M_EFF, Declaration, Option, Parameter
 
@@ -46,6 +45,8 @@ def cor_no_tension(xi):
 
 def xi_no_tension(cor):
     """Damping ratio for which the clipped contact realises `cor` exactly, (B,)."""
+    from scipy.optimize import brentq  # here: scipy takes 0.6 s to import, rarely needed
+
     cor = np.atleast_1d(np.asarray(cor, dtype=float))
     xi = np.zeros_like(cor)
     for i, c in enumerate(cor):  # setup only, never inside the time loop
