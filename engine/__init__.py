@@ -1,9 +1,11 @@
-"""bumpers engine: a vectorised NumPy simulator of isolated buildings pounding on a moat wall.
+"""bumpers engine: a batched simulator of isolated buildings pounding on a moat wall.
 
 Arrays in, arrays out; SI units (units.py converts the paper's cm, g, kN); a leading batch
 axis B on every state array. building.py holds the structure, isolator.py the bilinear law,
 impact/ one module per wall law, each declaring its parameters once (impact/parameters.py),
-integrate.py the time loop, two_body.py section 3's impacts. The contract is in API.md.
+kernel.py the compiled time loop (the default), integrate.py the vectorised NumPy one (the
+readable reference; both call the same law functions), two_body.py section 3's impacts. The
+contract is in API.md.
 """
 from . import units
 from .building import Building
