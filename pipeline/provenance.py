@@ -118,8 +118,9 @@ def attributes(grid: Grid, records, names: list[str], dt: float, building: engin
         "m_eff": grid.m_eff,
         "m_eff_units": "kg",
         "m_eff_decision": "wall mass infinite, so m_eff = m1 m2 / (m1 + m2) -> base-slab mass",
-        "cor_decision": "COR 0.45 for bumper impacts (the paper's rubber, section 3.4) unless "
-                        "swept; COR 0.5 for bare-wall (no-bumper) impacts",
+        "cor_decision": f"COR {LAWS['bumper'].PARAMETERS.cor.default:g} for bumper impacts "
+                        "(the paper's rubber, section 3.4) unless swept; COR "
+                        f"{BASELINE['cor']:g} for bare-wall (no-bumper) impacts",
         "gap_decision": "gap is the seismic gap before bumpers; bumper runs use the clear gap "
                         "gap - thickness (Fig. 14), the no-bumper baseline the full gap",
         "baseline": (f"{BASELINE_LAW} viscoelastic wall (Eq. 1-3), {baseline}, at the full "

@@ -51,11 +51,11 @@ def compute(args):
     ds = pipeline.sweep(gap=gaps, thickness=THICKNESS, cor=cors(args.quick),
                         unconstrained=True, **options)
     ds = ds.assign(impact_sequence(ds, options["records"][0], args))
-    ds.coords["gap_source"] = ("gap", np.array(
-        ["paper (28.5 cm)" if g == PAPER_GAP else f"{GAP_FRACTION} x unconstrained peak"
-         for g in ds.gap.values] if gap != PAPER_GAP else ["both"], dtype=str),
-        {"units": "1", "long_name": "where the gap comes from: the paper's rule applied to "
-                                    "this engine, or the paper's stated gap"})
+    sources = {gap: f"{GAP_FRACTION} x unconstrained peak"}
+    sources[PAPER_GAP] = " and ".join(filter(None, [sources.get(PAPER_GAP), "the paper's"]))
+    ds.coords["gap_source"] = ("gap", np.array([sources[g] for g in ds.gap.values], dtype=str),
+                               {"units": "1", "long_name": "where the gap comes from: the "
+                                "paper's rule applied to this engine, or the paper's gap"})
     ds.attrs.update(
         gap_rule=f"gap = {GAP_FRACTION} x unconstrained peak isolator displacement "
                  f"({peak / CM:.2f} cm) = {gap / CM:.1f} cm, to the mm; clear gap with "
