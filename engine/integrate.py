@@ -116,7 +116,7 @@ def simulate(accel, accel_dt: float, contact: Contact,
              building: Building | Sequence[Building] = Building(), dt: float = DEFAULT_DT,
              history: History | None = None,
              progress: Callable[[int, int], None] | None = None,
-             backend: str | None = None) -> Result:
+             backend: str | None = None, scale=None) -> Result:
     """Integrate B isolated buildings under one ground motion, pounding on their moat walls.
 
     accel: (N,) ground acceleration in m/s^2 every accel_dt s, linearly interpolated onto dt;
@@ -127,7 +127,11 @@ def simulate(accel, accel_dt: float, contact: Contact,
     impact_force (M, T) N, indentation (M, T) m;
     progress: called as progress(step, n_steps) about every 1% of the run;
     backend: "numba" (the compiled kernel), "numpy" (the vectorised reference loop) or None:
-    numba when it can be imported, else numpy with a one-line notice.
+    numba when it can be imported, else numpy with a one-line notice;
+    scale: None or (B,) positive factors (-) multiplying the ground acceleration member by
+    member, so that one call runs one record at several intensities (e.g. the search for the
+    factor that brings a record to a design displacement). None is 1 for every member, and a
+    factor of 1 leaves a member's result bit for bit unchanged.
     """
     if not isinstance(contact, Contact):
         raise EngineError("contact must be an engine.Contact")
@@ -144,6 +148,7 @@ def simulate(accel, accel_dt: float, contact: Contact,
             f"dt = {dt:g} s is unstable: the central-difference limit is {limit[worst]:.4g} s "
             f"(member {worst}, {contact.law_names[worst]} contact); use dt < {limit[worst]:.4g} s")
     accel, n_steps = _checked_record(accel, accel_dt, dt)
+    scale = _checked_scale(scale, size)
     if history is not None:
         members = np.asarray(history.members, dtype=int)
         if members.ndim != 1 or np.any((members < -size) | (members >= size)):
@@ -155,20 +160,34 @@ def simulate(accel, accel_dt: float, contact: Contact,
     if resolve_backend(backend) == "numba":
         from .kernel import ground_motion, run_simulation
         ag = ground_motion(accel, float(accel_dt), float(dt), n_steps)  # == np.interp's
-        peaks, hist = run_simulation(ag, dt, arrays, contact, history, progress)
+        peaks, hist = run_simulation(ag, dt, arrays, contact, history, progress, scale)
         return Result(**peaks, dt=dt, history=hist)
     ag = np.interp(np.arange(n_steps) * dt, np.arange(accel.size) * accel_dt, accel)
 
     order, blocks = law_blocks(contact)
     inverse = np.argsort(order)
-    contact, arrays = contact[order], arrays.take(order)
+    contact, arrays, scale = contact[order], arrays.take(order), scale[order]
     hist_members = None if history is None else inverse[np.asarray(history.members, dtype=int)]
     peaks, hist = _time_loop(ag, dt, arrays, contact.clear_gap, blocks, hist_members,
-                             None if history is None else history.every, progress)
+                             None if history is None else history.every, progress, scale)
     peaks = {name: value[inverse] for name, value in peaks.items()}
     if hist is not None:
         hist["members"] = np.asarray(history.members, dtype=int)
     return Result(**peaks, dt=dt, history=hist)
+
+
+def _checked_scale(scale, size: int) -> np.ndarray:
+    """(B,) ground-motion factors: ones for None, a scalar broadcast, else checked."""
+    if scale is None:
+        return np.ones(size)
+    try:
+        factors = np.broadcast_to(np.asarray(scale, dtype=float), (size,)).copy()
+    except (TypeError, ValueError):
+        raise EngineError(f"scale must be a number or {size} numbers (one per member), "
+                          f"got {np.shape(scale)}") from None
+    if not np.all(np.isfinite(factors) & (factors > 0)):
+        raise EngineError(f"scale must be positive and finite, got {factors.tolist()[:8]}")
+    return factors
 
 
 def step_operators(b: BuildingArrays, dt: float):
@@ -185,7 +204,8 @@ def step_operators(b: BuildingArrays, dt: float):
     return step_op, wall_response, wall_response[:, 0].copy()
 
 
-def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every, progress):
+def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every, progress,
+               scale):
     """The NumPy reference: every step is a fixed number of array operations over the batch."""
     size = b.masses.shape[0]
     mass = b.masses
@@ -223,13 +243,14 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
     report_every = max(n_steps // 100, 1)
 
     for step in range(n_steps):
+        a = ag[step] * scale  # (B,): x 1.0 is exact, unscaled members are unchanged
         u0 = u[:, 0]
         # Structure without wall force this step: p - f and the free velocities.
         chain[:, 0] = isolator_force(u0, f_plastic, b.k2)
         drift = np.diff(u, axis=1)
         np.multiply(b.story_k, drift, out=chain[:, 1:N_LEVELS])
         np.subtract(chain[:, 1:], chain[:, :-1], out=rhs[:, :N_LEVELS])
-        rhs[:, :N_LEVELS] -= mass * ag[step]
+        rhs[:, :N_LEVELS] -= mass * a[:, None]
         rhs[:, N_LEVELS:] = v_half
         v_next = np.einsum("bij,bj->bi", step_op, rhs)
 
@@ -253,7 +274,7 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
         force = np.where(touching, implicit_force(elastic, dashpot, rate_free, compliance), 0.0)
         v_next -= wall_response * (side * force)[:, None]
 
-        total_accel = (v_next - v_half) / dt + ag[step]
+        total_accel = (v_next - v_half) / dt + a[:, None]
         np.maximum(peak_accel, np.abs(total_accel), out=peak_accel)
         np.maximum(peak_drift, np.abs(drift), out=peak_drift)
         np.maximum(peak_iso, np.abs(u0), out=peak_iso)

@@ -85,7 +85,7 @@ _JIT = {"cache": True, "nogil": True, "error_model": "numpy"}
 
 # Columns of the per-member parameter matrix.
 _WALL, _COMPLIANCE, _MASS, _STORY_K = 0, 5, 6, 11
-_K2, _K_PLASTIC, _F_YIELD, _GAP, _LAW_ARGS = 15, 16, 17, 18, 19
+_K2, _K_PLASTIC, _F_YIELD, _GAP, _SCALE, _LAW_ARGS = 15, 16, 17, 18, 19, 20
 _N_PAR = _LAW_ARGS + len(LAW_ARGUMENTS)
 # Columns of the per-member state carried between chunks of steps.
 _U, _V, _FP, _V_IMP, _DELTA_PREV, _IN_CONTACT = 0, 5, 10, 11, 12, 13
@@ -136,6 +136,7 @@ def _member(b, s0, s1, ag, dt, op, law, par, state, peaks, n_impacts, hist_row, 
     m0, m1, m2, m3, m4 = p[_MASS], p[_MASS + 1], p[_MASS + 2], p[_MASS + 3], p[_MASS + 4]
     sk1, sk2, sk3, sk4 = p[_STORY_K], p[_STORY_K + 1], p[_STORY_K + 2], p[_STORY_K + 3]
     k2, kp, fy, gap = p[_K2], p[_K_PLASTIC], p[_F_YIELD], p[_GAP]
+    scale = p[_SCALE]
     q = _LAW_ARGS
     k, n, m_eff, delta_u, k_w = p[q], p[q + 1], p[q + 2], p[q + 3], p[q + 4]
     dashpot, xi, chi, c_coef, c_exp = p[q + 5], p[q + 6], p[q + 7], p[q + 8], p[q + 9]
@@ -156,7 +157,7 @@ def _member(b, s0, s1, ag, dt, op, law, par, state, peaks, n_impacts, hist_row, 
     half_dt = 0.5 * dt
 
     for step in range(s0, s1):
-        a = ag[step]
+        a = ag[step] * scale  # x 1.0 is exact: unscaled members are unchanged
         # Structure without wall force: p - f(u_n), then the free velocities v_{n+1/2}.
         c0 = _isolator_force(u0, fp, k2)
         d1 = u1 - u0
@@ -304,7 +305,7 @@ def threads() -> int:
     return numba.get_num_threads()
 
 
-def member_parameters(arrays, contact, wall_response, compliance) -> np.ndarray:
+def member_parameters(arrays, contact, wall_response, compliance, scale) -> np.ndarray:
     """(B, _N_PAR) float matrix of every per-member constant the step reads."""
     size = len(contact)
     par = np.empty((size, _N_PAR))
@@ -316,12 +317,13 @@ def member_parameters(arrays, contact, wall_response, compliance) -> np.ndarray:
     par[:, _K_PLASTIC] = arrays.k_plastic
     par[:, _F_YIELD] = arrays.f_plastic_yield
     par[:, _GAP] = contact.clear_gap
+    par[:, _SCALE] = scale
     for i, name in enumerate(LAW_ARGUMENTS):
         par[:, _LAW_ARGS + i] = getattr(contact, name)
     return par
 
 
-def run_simulation(ag, dt, arrays, contact, history, progress):
+def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
     """engine.simulate's time loop on the kernel: (peaks dict, history dict or None).
 
     ag (N,) on the step grid; arrays: BuildingArrays and contact: Contact, both of B members in
@@ -334,7 +336,7 @@ def run_simulation(ag, dt, arrays, contact, history, progress):
     size = len(contact)
     n_steps = ag.size
     op, wall_response, compliance = step_operators(arrays, dt)
-    par = member_parameters(arrays, contact, wall_response, compliance)
+    par = member_parameters(arrays, contact, wall_response, compliance, scale)
     law = np.ascontiguousarray(contact.law, dtype=np.int64)
     state = np.zeros((size, _N_STATE))
     state[:, _V_IMP] = 1.0

@@ -8,13 +8,14 @@ Data flows one way: records (records.py: AT2 files, the embedded library, lookup
 grid (grid.py: parameters checked against the impact laws' declarations, one member record
 per simulation) -> engine batches, here or on dask, resumable (run.py) -> labelled Dataset
 with its provenance (archive.py, provenance.py) -> NetCDF (archive.py). histories.py keeps
-time histories of a few configurations; errors.py holds SweepError. Imports happen inside the
+time histories of a few configurations; scaling.py scales records to a design displacement;
+errors.py holds SweepError. Imports happen inside the
 functions, so that light entry points such as `python -m pipeline.records` load neither
 xarray nor dask.
 """
 from __future__ import annotations
 
-__all__ = ["SweepError", "sweep", "unconstrained_peaks"]
+__all__ = ["SweepError", "scale_to_displacement", "sweep", "unconstrained_peaks"]
 
 
 def sweep(records, *, gap=None, thickness=None, strain=None, n_bumpers=None, wall_k=None,
@@ -134,6 +135,16 @@ def _execute(grid, records, dt, workers, scheduler, out, building, batch_size, r
         write_netcdf(ds, out)
         shutil.rmtree(work_dir, ignore_errors=True)
     return ds
+
+
+def scale_to_displacement(records, displacement: float = 0.30,
+                          limits: tuple[float, float] = (0.2, 5.0), **options):
+    """Scale records so that the building without wall reaches `displacement` (m): see
+    pipeline.scaling.scale_to_displacement (options: dt, building, records_dir, tolerance,
+    quiet). Returns a pipeline.scaling.ScaledSuite."""
+    from .scaling import scale_to_displacement as scale
+
+    return scale(records, displacement, limits, **options)
 
 
 def __getattr__(name):

@@ -86,14 +86,20 @@ def peak_variables(peaks: dict, lead_dims: tuple[str, ...], prefix: str = "",
 
 
 def record_coords(records, names: list[str]) -> dict:
-    """Coordinates along `record`: names, sources, PGA (m/s^2), sampling step and length (s)."""
+    """Coordinates along `record`: names, sources, PGA as run and unscaled (m/s^2), scale
+    factor, sampling step and length (s)."""
     return {
         "record": variable("record", np.array(names, dtype=str), "1", "ground-motion record"),
         "record_source": variable("record", np.array([str(r.source) for r in records],
                                                      dtype=str),
                                   "1", "where the record was read from"),
         "record_pga": variable("record", [np.max(np.abs(r.accel)) for r in records], "m s-2",
-                               "peak ground acceleration"),
+                               "peak ground acceleration (of the record as run)"),
+        "record_scale": variable("record", [float(getattr(r, "scale", 1.0)) for r in records],
+                                 "1", "factor the original record was multiplied by"),
+        "record_unscaled_pga": variable(
+            "record", [getattr(r, "unscaled_pga", None) or np.max(np.abs(r.accel))
+                       for r in records], "m s-2", "peak ground acceleration before scaling"),
         "record_dt": variable("record", [float(r.dt) for r in records], "s",
                               "record sampling step"),
         "record_duration": variable("record", [len(r.accel) * float(r.dt) for r in records],

@@ -97,6 +97,8 @@ _NPTS_RE = re.compile(r"\bNPTS\s*=?\s*([^\s,]+)", re.IGNORECASE)
 _DT_RE = re.compile(r"\bDT\s*=?\s*([^\s,]+)", re.IGNORECASE)
 _NUMBERS_FIRST_RE = re.compile(r"^\s*(\S+)\s+(\S+)\s+NPTS\s*,?\s*DT\b", re.IGNORECASE)
 _DATE_RE = re.compile(r"\d+/\d+/\d+")
+# "<record>*<factor>": a record scaled by a factor, wherever records are given by name.
+_SCALED_RE = re.compile(r"^(?P<record>.+?)\s*\*\s*(?P<factor>[^*]+?)\s*$")
 _SELECTOR_RE = re.compile(r"^\s*RSN\s*(\d+)\s*:\s*(\S+)\s*$", re.IGNORECASE)
 # "UNITS OF G.", "UNITS OF CM/S/S", "UNITS OF CM/SEC^2,", "UNITS OF M/S**2": the token ends at
 # the first character that cannot be part of a units spelling (space, '.', ',', ';', ')').
@@ -160,7 +162,8 @@ class Record:
 
     ``accel`` is in m/s^2 (read-only float64 array, sample i at t = i*dt), ``dt`` in s,
     ``pga`` in m/s^2. ``found_in``/``note``/``paper_key`` are set only for the paper's
-    records (see :func:`paper_record`).
+    records (see :func:`paper_record`). ``scale`` (-) is the factor the original record was
+    multiplied by (1 unscaled; see :meth:`scaled`), ``unscaled_pga`` its PGA before (m/s^2).
     """
 
     name: str
@@ -174,6 +177,8 @@ class Record:
     found_in: str | None = None
     note: str = ""
     paper_key: str | None = None
+    scale: float = 1.0
+    unscaled_pga: float | None = None
     pga: float = field(init=False)
 
     def __post_init__(self):
@@ -189,6 +194,22 @@ class Record:
         object.__setattr__(self, "accel", accel)
         object.__setattr__(self, "dt", float(self.dt))
         object.__setattr__(self, "pga", float(np.max(np.abs(accel))))
+        if not (math.isfinite(self.scale) and self.scale > 0):
+            raise RecordError(f"{self.source}: scale must be positive, got {self.scale!r}")
+        if self.unscaled_pga is None:
+            object.__setattr__(self, "unscaled_pga", self.pga / self.scale)
+
+    def scaled(self, factor: float) -> Record:
+        """This record times `factor` (-): accel * factor, named ``<name>*<factor>`` (the
+        factor as given, shortest form), with ``scale`` and ``unscaled_pga`` kept, so that
+        two scales of one record are two archive coordinates. Raises RecordError for a
+        factor that is not a positive finite number."""
+        factor = _scale_factor(factor, self.name)
+        suffix = f"*{factor!r}"
+        return dataclasses.replace(
+            self, accel=self.accel * factor, name=self.name + suffix,
+            paper_key=None if self.paper_key is None else self.paper_key + suffix,
+            scale=self.scale * factor, unscaled_pga=self.unscaled_pga)
 
     @property
     def pga_g(self) -> float:
@@ -904,10 +925,23 @@ def paper_records(records_dir: str | os.PathLike | None = None) -> list[Record]:
 # --------------------------------------------------------------------------- one entry point
 
 
+def _scale_factor(factor, what: str) -> float:
+    """A record's scale factor as a float, or RecordError."""
+    try:
+        value = float(factor)
+    except (TypeError, ValueError):
+        raise RecordError(f"{what}: scale factor must be a number, got {factor!r}") from None
+    if not (math.isfinite(value) and value > 0):
+        raise RecordError(f"{what}: scale factor must be positive and finite, got {factor!r}")
+    return value
+
+
 def load_record(name_or_path: str | os.PathLike,
                 records_dir: str | os.PathLike | None = None, units: str | None = None,
                 dt: float | None = None) -> Record:
-    """A record by library name, ``RSN<n>:<component>`` selector, paper key, AT2 or text path.
+    """A record by library name, ``RSN<n>:<component>`` selector, paper key, AT2 or text path;
+    any of them followed by ``*<factor>`` (e.g. ``kobe*1.5``) is that record scaled
+    (:meth:`Record.scaled`).
 
     A bare file name that is not found as given is looked up in ``records_dir``. Selectors of
     the paper's records (e.g. ``RSN1086:090``) resolve like :func:`paper_record`; the built-in
@@ -917,6 +951,10 @@ def load_record(name_or_path: str | os.PathLike,
     own units and DT, so ``units``/``dt`` are refused for it, as they are for names.
     """
     text = os.fspath(name_or_path)
+    scaled = None if isinstance(name_or_path, os.PathLike) else _SCALED_RE.match(text)
+    if scaled and not Path(text).exists():
+        record = load_record(scaled["record"], records_dir, units, dt)
+        return record.scaled(_scale_factor(scaled["factor"], scaled["record"]))
     is_path = isinstance(name_or_path, os.PathLike) or os.sep in text \
         or Path(text).suffix.lower() in (".at2", *TEXT_SUFFIXES) or Path(text).is_file()
     if is_path:
@@ -967,7 +1005,8 @@ def resolve_records(records, records_dir=None) -> tuple[list[Record], list[str]]
     coordinate (a paper record is named by its key, others by their name).
 
     records: one or a list of paper keys, library names, ``RSN<n>:<component>`` selectors,
-    AT2 paths (see :func:`load_record`) or :class:`Record` objects. Raises
+    AT2 paths, each optionally scaled as ``name*factor`` (see :func:`load_record`), or
+    :class:`Record` objects. Raises
     :class:`RecordError` (message starting "records:") for an empty list, a record that
     cannot be found or read, or one given twice.
     """
