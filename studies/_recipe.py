@@ -30,7 +30,8 @@ class Recipe:
     chosen: values the paper does not state, and what was chosen (shown in --help, stored in
     the archive); records: the paper's records for this figure (None: no records, e.g. the
     two-body studies); compute(args) -> Dataset; plot(ds) -> matplotlib Figure;
-    check(ds) -> list of Verdict, one per conclusion of the paper against what was computed."""
+    check(ds) -> list of Verdict, one per conclusion of the paper against what was computed;
+    options(parser): adds the recipe's own command-line options (None: none)."""
 
     name: str
     figure: str
@@ -40,6 +41,7 @@ class Recipe:
     check: Callable
     chosen: str = ""
     records: tuple[str, ...] | None = PAPER_RECORDS
+    options: Callable | None = None
 
     def parser(self) -> argparse.ArgumentParser:
         epilog = f"Values the paper does not state: {self.chosen}" if self.chosen else None
@@ -72,6 +74,8 @@ class Recipe:
         p.add_argument("--replot", action="store_true",
                        help=f"redraw the figure from an existing {self.name}.nc, no computing")
         p.add_argument("--quiet", action="store_true", help="no progress bar")
+        if self.options is not None:
+            self.options(p)
         return p
 
     def main(self, argv=None) -> int:
