@@ -18,21 +18,22 @@ from __future__ import annotations
 __all__ = ["SweepError", "scale_to_displacement", "sweep", "unconstrained_peaks"]
 
 
-def sweep(records, *, gap=None, thickness=None, strain=None, n_bumpers=None, wall_k=None,
-          cor=None, impact: str = "bumper", dt: float | None = None, workers: int = 1,
-          scheduler=None, out=None, baseline: bool = False, unconstrained: bool = False,
-          building=None, m_eff: float | None = None, batch_size: int | None = None,
-          records_dir=None, quiet: bool = False):
+def sweep(records, *, gap=None, thickness=None, cavity=None, strain=None, n_bumpers=None,
+          wall_k=None, cor=None, impact: str = "bumper", dt: float | None = None,
+          workers: int = 1, scheduler=None, out=None, baseline: bool = False,
+          unconstrained: bool = False, building=None, m_eff: float | None = None,
+          batch_size: int | None = None, records_dir=None, quiet: bool = False):
     """Simulate every combination of the parameters under every record; label the peaks.
 
     records: paper keys ("kobe", "sylmar_converter", "olive_view", "pacoima"), library names,
         AT2 paths (see pipeline.records.load_record) or Record objects; one or a list.
     Every parameter after `records` is given by keyword.
-    gap (m, the seismic gap before any bumper), thickness (m), strain (-), n_bumpers (-),
-        wall_k (N/m; N/m^1.5 for jankowski and hertzdamp), cor (-): a scalar is held fixed
-        (scalar coordinate), a sequence is swept (a dimension). None takes the impact law's
+    gap (m, the seismic gap before any bumper), thickness (m), cavity (m, depth of the wall
+        cavity holding each bumper, paper 5.3), strain (-), n_bumpers (-), wall_k (N/m;
+        N/m^1.5 for jankowski and hertzdamp), cor (-): a scalar is held fixed (scalar
+        coordinate), a sequence is swept (a dimension). None takes the impact law's
         declared default (engine.impact.LAWS[impact].PARAMETERS, where each law states what
-        wall_k means for it); thickness, strain, n_bumpers apply to bumpers only.
+        wall_k means for it); thickness, cavity, strain, n_bumpers apply to bumpers only.
     impact: "bumper" (the paper's rubber bumpers, default), "linear", "jankowski", "hertzdamp".
     dt: integration step (s), default engine.DEFAULT_DT; refused at or above the stability
         limit (engine.stable_dt).
@@ -54,7 +55,7 @@ def sweep(records, *, gap=None, thickness=None, strain=None, n_bumpers=None, wal
     records_dir: folder of AT2 files for the records' lookup; quiet: no progress bar.
 
     Returns an xarray.Dataset, dims: record, the swept parameters (in the order gap,
-    thickness, strain, n_bumpers, wall_k, cor), floor (0-4) or story (1-4). Variables:
+    thickness, cavity, strain, n_bumpers, wall_k, cor), floor (0-4) or story (1-4). Variables:
     peak_total_accel (m/s^2; floor), peak_interstory_drift (m; story), peak_isolator_disp (m),
     max_indentation (m), max_impact_force (N), n_impacts, impact_energy (J); with baseline,
     baseline_<same> (record, gap, ...) and amplification_total_accel,
@@ -68,10 +69,11 @@ def sweep(records, *, gap=None, thickness=None, strain=None, n_bumpers=None, wal
     if gap is None:
         raise SweepError("gap is required (m)")
     grid = make_grid(gap, thickness, strain, n_bumpers, wall_k, cor, impact=impact,
-                     m_eff=m_eff, baseline=baseline, unconstrained=unconstrained)
-    arguments = {"gap": gap, "thickness": thickness, "strain": strain, "n_bumpers": n_bumpers,
-                 "wall_k": wall_k, "cor": cor, "impact": impact, "baseline": baseline,
-                 "unconstrained": unconstrained, "m_eff": grid.m_eff}
+                     m_eff=m_eff, baseline=baseline, unconstrained=unconstrained,
+                     cavity=cavity)
+    arguments = {"gap": gap, "thickness": thickness, "cavity": cavity, "strain": strain,
+                 "n_bumpers": n_bumpers, "wall_k": wall_k, "cor": cor, "impact": impact,
+                 "baseline": baseline, "unconstrained": unconstrained, "m_eff": grid.m_eff}
     return _execute(grid, records, dt, workers, scheduler, out, building, batch_size,
                     records_dir, quiet, arguments)
 

@@ -33,7 +33,7 @@ from engine.impact import LAWS, M_EFF
 from .errors import SweepError
 
 # Dimension order of the archive: record first, then the swept parameters in this order.
-PARAMS = ("gap", "thickness", "strain", "n_bumpers", "wall_k", "cor")
+PARAMS = ("gap", "thickness", "cavity", "strain", "n_bumpers", "wall_k", "cor")
 IMPACT_LAWS = ("bumper", *(law for law in LAWS if law != "bumper"))
 NO_WALL = "none"
 
@@ -101,20 +101,21 @@ def swept_parameter(law: str, name: str):
 
 def make_grid(gap, thickness=None, strain=None, n_bumpers=None, wall_k=None, cor=None,
               impact: str = "bumper", m_eff: float | None = None, baseline: bool = False,
-              unconstrained: bool = False) -> Grid:
+              unconstrained: bool = False, cavity=None) -> Grid:
     """Validate the parameters and build the member blocks (see module docstring).
 
     Each parameter is a scalar (fixed) or a 1-D sequence (swept); None takes the law's
-    declared default. SI units: gap, thickness m; strain, n_bumpers, cor dimensionless; wall_k
-    as the module docstring says per law; m_eff kg (None: the declared default). gap=None with
-    unconstrained=True builds only the no-wall block. Raises SweepError naming the parameter.
+    declared default. SI units: gap, thickness, cavity m; strain, n_bumpers, cor
+    dimensionless; wall_k as the module docstring says per law; m_eff kg (None: the declared
+    default). gap=None with unconstrained=True builds only the no-wall block. Raises
+    SweepError naming the parameter.
     """
     if impact not in IMPACT_LAWS:
         raise SweepError(f"impact: unknown impact law {impact!r}; choose one of {IMPACT_LAWS}")
     m_eff = M_EFF.default if m_eff is None else _scalar("m_eff", m_eff)
     _checked(M_EFF, np.asarray(m_eff), "m_eff")
-    given = {"gap": gap, "thickness": thickness, "strain": strain, "n_bumpers": n_bumpers,
-             "wall_k": wall_k, "cor": cor}
+    given = {"gap": gap, "thickness": thickness, "cavity": cavity, "strain": strain,
+             "n_bumpers": n_bumpers, "wall_k": wall_k, "cor": cor}
     if gap is None:
         if not unconstrained or any(given[p] is not None for p in PARAMS) or baseline:
             raise SweepError("gap is required (m); only an unconstrained-only run may omit it")

@@ -47,7 +47,7 @@ PEAKS = {
 # only contend for the same cores.
 BLAS_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1",
             "NUMBA_NUM_THREADS": "1"}
-CACHE_FORMAT = 2  # bump when the work-folder layout, the member record or the peak set change
+CACHE_FORMAT = 3  # bump when the work-folder layout, the member record or the peak set change
 
 
 @dataclass(frozen=True)

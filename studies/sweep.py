@@ -50,6 +50,11 @@ def parser() -> argparse.ArgumentParser:
                            help=declared("thickness"))
     thickness.add_argument("--thickness-cm", nargs="+", type=float, metavar="CM",
                            help="bumper thickness in cm")
+    cavity = p.add_mutually_exclusive_group()
+    cavity.add_argument("--cavity", nargs="+", type=float, metavar="M",
+                        help=declared("cavity"))
+    cavity.add_argument("--cavity-cm", nargs="+", type=float, metavar="CM",
+                        help="cavity depth in cm")
     p.add_argument("--strain", nargs="+", type=float, metavar="EPS",
                    help=declared("strain"))
     p.add_argument("--n-bumpers", nargs="+", type=int, metavar="N",
@@ -121,6 +126,8 @@ def main(argv: list[str] | None = None) -> int:
                 gap=_one_or_many(args.gap) if args.gap else _one_or_many(args.gap_cm, CM),
                 thickness=_one_or_many(args.thickness) if args.thickness
                 else _one_or_many(args.thickness_cm, CM),
+                cavity=_one_or_many(args.cavity) if args.cavity
+                else _one_or_many(args.cavity_cm, CM),
                 strain=_one_or_many(args.strain),
                 n_bumpers=_one_or_many(args.n_bumpers),
                 wall_k=_one_or_many(args.wall_k) if args.wall_k

@@ -60,7 +60,7 @@ PARAMETERS = Declaration(
               equation="Eq. 9", sweep="cor"),
     M_EFF,
     Parameter("cavity", "m", "depth c_d of the wall cavity holding each bumper", 0.0,
-              "[0, inf)", equation="section 5.3"),
+              "[0, inf)", equation="section 5.3", sweep="cavity"),
     Parameter("area", "m2", "contact area A of one bumper (150 x 150 mm)", 0.150 * 0.150,
               "(0, inf)", equation="Eq. 11"),
     Parameter("k_r", "Pa", "rubber stiffness K_r (55,835 kN/m^2, Kajita et al. static test)",
