@@ -22,7 +22,8 @@ def sweep(records, *, gap=None, thickness=None, cavity=None, strain=None, n_bump
           wall_k=None, cor=None, impact: str = "bumper", dt: float | None = None,
           workers: int = 1, scheduler=None, out=None, baseline: bool = False,
           unconstrained: bool = False, building=None, m_eff: float | None = None,
-          batch_size: int | None = None, records_dir=None, quiet: bool = False):
+          batch_size: int | None = None, records_dir=None, quiet: bool = False,
+          work_dir=None):
     """Simulate every combination of the parameters under every record; label the peaks.
 
     records: paper keys ("kobe", "sylmar_converter", "olive_view", "pacoima"), library names,
@@ -53,6 +54,10 @@ def sweep(records, *, gap=None, thickness=None, cavity=None, strain=None, n_bump
         default: the declared one, 320 t, the base slab).
     batch_size: members per engine call (default: pipeline.run.default_batch_size).
     records_dir: folder of AT2 files for the records' lookup; quiet: no progress bar.
+    work_dir: a folder that keeps finished batches (default: `<out>.work` when out is given,
+        removed once out is written; an explicit one is kept, and may be shared by several
+        sweeps). Ctrl-C raises pipeline.errors.Interrupted (a KeyboardInterrupt) saying how
+        many simulations are kept there; the same call again computes only the rest.
 
     Returns an xarray.Dataset, dims: record, the swept parameters (in the order gap,
     thickness, cavity, strain, n_bumpers, wall_k, cor), floor (0-4) or story (1-4). Variables:
@@ -75,11 +80,11 @@ def sweep(records, *, gap=None, thickness=None, cavity=None, strain=None, n_bump
                  "n_bumpers": n_bumpers, "wall_k": wall_k, "cor": cor, "impact": impact,
                  "baseline": baseline, "unconstrained": unconstrained, "m_eff": grid.m_eff}
     return _execute(grid, records, dt, workers, scheduler, out, building, batch_size,
-                    records_dir, quiet, arguments)
+                    records_dir, quiet, arguments, work_dir)
 
 
 def unconstrained_peaks(records, dt: float | None = None, building=None, workers: int = 1,
-                        scheduler=None, records_dir=None, quiet: bool = True):
+                        scheduler=None, records_dir=None, quiet: bool = True, work_dir=None):
     """Peaks of the building without moat wall: a Dataset with dims (record, floor/story).
 
     Variables as in `sweep` (peak_isolator_disp m, peak_total_accel m/s^2, ...). Recipes use
@@ -90,20 +95,20 @@ def unconstrained_peaks(records, dt: float | None = None, building=None, workers
 
     grid = make_grid(None, unconstrained=True)
     ds = _execute(grid, records, dt, workers, scheduler, None, building, None, records_dir,
-                  quiet, {"unconstrained_only": True})
+                  quiet, {"unconstrained_only": True}, work_dir)
     prefix = "unconstrained_"
     return ds.rename({name: name[len(prefix):] for name in ds.data_vars
                       if name.startswith(prefix)})
 
 
 def _execute(grid, records, dt, workers, scheduler, out, building, batch_size, records_dir,
-             quiet, arguments):
+             quiet, arguments, work_dir=None):
     """Check the rest of the input, run, label, archive."""
     import shutil
 
     import engine
 
-    from .archive import build_dataset, check_out, write_netcdf
+    from .archive import build_dataset, check_out, check_work_dir, write_netcdf
     from .errors import SweepError, check_count
     from .grid import check_dt
     from .provenance import plain
@@ -127,7 +132,10 @@ def _execute(grid, records, dt, workers, scheduler, out, building, batch_size, r
         batch_size = default_batch_size(grid.n_members, len(recs), workers)
     batch_size = check_count("batch_size", batch_size, minimum=1)
     out = check_out(out)
-    work_dir = None if out is None else out.with_name(out.name + ".work")
+    own_work_dir = work_dir is None and out is not None
+    if own_work_dir:
+        work_dir = out.with_name(out.name + ".work")
+    work_dir = check_work_dir(work_dir)
 
     results = run(grid, recs, dt, building, workers=workers, scheduler=scheduler,
                   work_dir=work_dir, batch_size=batch_size, quiet=quiet)
@@ -135,6 +143,7 @@ def _execute(grid, records, dt, workers, scheduler, out, building, batch_size, r
     ds = build_dataset(grid, recs, results, dt, building, names, arguments)
     if out is not None:
         write_netcdf(ds, out)
+    if own_work_dir:
         shutil.rmtree(work_dir, ignore_errors=True)
     return ds
 

@@ -191,6 +191,21 @@ def check_out(out) -> Path | None:
     return out
 
 
+def check_work_dir(work_dir) -> Path | None:
+    """Create the work folder, or refuse one that cannot be written, before any compute."""
+    if work_dir is None:
+        return None
+    work_dir = Path(work_dir)
+    try:
+        work_dir.mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryFile(dir=work_dir):
+            pass
+    except OSError as err:
+        raise SweepError(f"work_dir: cannot write to {work_dir} "
+                         f"({err.strerror or err})") from None
+    return work_dir
+
+
 def write_netcdf(ds: xr.Dataset, path) -> Path:
     """Write `ds` to `path` (netCDF4, zlib) atomically: the file is complete or absent.
 

@@ -37,6 +37,11 @@ PARAMS = ("gap", "thickness", "cavity", "strain", "n_bumpers", "wall_k", "cor")
 IMPACT_LAWS = ("bumper", *(law for law in LAWS if law != "bumper"))
 NO_WALL = "none"
 
+# Lengths of the sweep (m) and the largest plausible one: seismic gaps and bumpers are tens of
+# cm; a value above 2 m is almost surely centimetres given as metres.
+LENGTHS = ("gap", "thickness", "cavity")
+PLAUSIBLE_LENGTH = 2.0
+
 MEMBER_DTYPE = np.dtype([("law", "U16"), *((name, "f8") for name in (*PARAMS, "m_eff"))])
 """One member: its law's name, the sweep parameters (SI; NaN: unused by the law), m_eff kg."""
 
@@ -139,7 +144,7 @@ def make_grid(gap, thickness=None, strain=None, n_bumpers=None, wall_k=None, cor
                 raise SweepError(f"{name} is required with impact={impact!r} ({param.units})")
             value = param.default
         array, is_swept = _values(name, value)
-        values[name] = _checked(param, array, name)
+        values[name] = _plausible(name, _checked(param, array, name))
         if is_swept:
             swept.append(name)
     if baseline and impact != "bumper":
@@ -172,6 +177,16 @@ def _members_block(prefix: str, law: str, columns: dict, m_eff: float, dims=(),
     members["law"] = law
     members["m_eff"] = m_eff
     return Block(prefix, tuple(dims), tuple(shape), members)
+
+
+def _plausible(name: str, array: np.ndarray) -> np.ndarray:
+    """Refuse lengths no moat or bumper has: most likely centimetres given as metres."""
+    if name in LENGTHS and np.any(array > PLAUSIBLE_LENGTH):
+        worst = float(array.max())
+        raise SweepError(f"{name} {worst:g} m is implausible (> {PLAUSIBLE_LENGTH:g} m): give "
+                         f"metres (e.g. {worst / 100:g} for {worst:g} cm), or "
+                         f"--{name.replace('_', '-')}-cm {worst:g} on the command line")
+    return array
 
 
 def _checked(param, array: np.ndarray, name: str) -> np.ndarray:

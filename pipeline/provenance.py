@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import os
 import re
 import subprocess
 from datetime import datetime, timezone
@@ -61,6 +62,15 @@ def record_hash(accel: np.ndarray, accel_dt: float) -> str:
     return digest.hexdigest()
 
 
+def date_created() -> str:
+    """Now in UTC (ISO 8601), or SOURCE_DATE_EPOCH when set: the reproducible-builds
+    convention, so that a rerun (a resumed one included) can give a byte-identical archive."""
+    epoch = os.environ.get("SOURCE_DATE_EPOCH")
+    when = datetime.fromtimestamp(int(epoch), timezone.utc) if epoch and epoch.isdigit() \
+        else datetime.now(timezone.utc)
+    return when.isoformat(timespec="seconds")
+
+
 def git_commit() -> str:
     """HEAD of the project's checkout (+ '-dirty' with local changes), or 'unknown'."""
     root = Path(__file__).resolve().parents[1]
@@ -107,7 +117,7 @@ def attributes(grid: Grid, records, names: list[str], dt: float, building: engin
         "project_version": project_version(),
         "git_commit": git_commit(),
         "engine_fingerprint": engine_fingerprint(),
-        "date_created": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+        "date_created": date_created(),
         "dt": dt,
         "dt_units": "s",
         "integrator": "explicit central differences (engine.simulate); ground motion "

@@ -30,6 +30,7 @@ import numpy as np
 
 import engine
 
+from .errors import Interrupted
 from .grid import MEMBER_DTYPE, Grid, contact_for
 from .provenance import engine_fingerprint, record_hash
 
@@ -164,6 +165,14 @@ class Progress:
         with self.lock:
             self._draw(final=True)
 
+    def interrupted(self) -> None:
+        """End a bar left open on a terminal, so the next line starts clean."""
+        with self.lock:
+            if self.tty and self.last_line and not self.quiet:
+                self.stream.write("\n")
+                self.stream.flush()
+            self.quiet = True
+
     def _draw(self, final: bool = False) -> None:
         now = time.monotonic()
         elapsed = now - self.t0
@@ -172,8 +181,8 @@ class Progress:
         done = self.done + sum(self.partial.values())
         rate = (done - self.start_done) / elapsed
         left = (self.total - done) / rate if rate > 0 else math.nan
-        line = (f"sweep: {int(done)}/{self.total} simulations "
-                f"({100 * done / max(self.total, 1):.0f}%), {_clock(elapsed)} elapsed, "
+        line = (f"sweep: {100 * done / max(self.total, 1):3.0f}% ({int(self.done)} of "
+                f"{self.total} simulations finished), {_clock(elapsed)} elapsed, "
                 f"~{_clock(left)} left")
         if final and line == self.last_line and not self.tty:
             return  # already said
@@ -266,17 +275,24 @@ def run(grid: Grid, records, dt: float, building: engine.Building, *, workers: i
             results[batch.record][name][batch.members] = value
         progress.advance(batch.members.size, batch.key)
 
-    if batches and scheduler is None and workers <= 1:
-        for batch in batches:
-            rec = records[batch.record]
-            size = batch.members.size
-            peaks = simulate_batch(rec.accel, rec.dt, members[batch.members], building, dt,
-                                   progress=lambda step, steps, b=batch.key, s=size:
-                                   progress.running(b, s * step / steps))
-            finish(batch, peaks)
-    elif batches:
-        _run_on_dask(batches, records, members, building, dt, workers, scheduler, progress,
-                     finish)
+    try:
+        if batches and scheduler is None and workers <= 1:
+            for batch in batches:
+                rec = records[batch.record]
+                size = batch.members.size
+                # The kernel returns to Python every ~1% of the steps to report progress,
+                # which is also where Ctrl-C takes effect: always pass the callback.
+                peaks = simulate_batch(rec.accel, rec.dt, members[batch.members], building, dt,
+                                       progress=lambda step, steps, b=batch.key, s=size:
+                                       progress.running(b, s * step / steps))
+                finish(batch, peaks)
+        elif batches:
+            _run_on_dask(batches, records, members, building, dt, workers, scheduler,
+                         progress, finish)
+    except KeyboardInterrupt:
+        progress.interrupted()
+        kept = progress.done if work is not None else 0
+        raise Interrupted(int(kept), progress.total, work_dir) from None
     progress.close()
     return results
 
@@ -307,6 +323,12 @@ def _run_on_dask(batches, records, members, building, dt, workers, scheduler, pr
                 futures[future] = batch
             for future in as_completed(futures, loop=client.loop):
                 finish(futures[future], future.result())
+        except KeyboardInterrupt:
+            # Stop quietly: cancel what is queued; shutting down then makes dask log lost
+            # scattered data and closed comms, which say nothing to the user.
+            _silence_dask()
+            client.cancel(list(futures), force=True)
+            raise
         finally:
             client.unsubscribe_topic(topic)
 
@@ -322,8 +344,38 @@ def _client(workers: int, scheduler):
         with Client(scheduler, set_as_default=False) as client:
             yield client
     else:
-        with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                          dashboard_address=None, silence_logs=logging.ERROR,
-                          env=BLAS_ENV) as cluster, \
+        with _main_hidden(), \
+                LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                             dashboard_address=None, silence_logs=logging.ERROR,
+                             env=BLAS_ENV) as cluster, \
                 Client(cluster, set_as_default=False) as client:
             yield client
+
+
+def _silence_dask() -> None:
+    for name in ("distributed", "tornado", "asyncio"):
+        logging.getLogger(name).setLevel(logging.CRITICAL)
+
+
+@contextmanager
+def _main_hidden():
+    """While local worker processes may start, hide the __main__ module's file and spec.
+
+    Worker processes are spawned, and a spawned process re-runs the parent's main script
+    (multiprocessing's preparation data names it) unless that script has no file or spec. A
+    script calling sweep without the `if __name__ == "__main__":` guard would then start
+    sweeps, and clusters, inside its own workers. The workers need nothing from __main__: they
+    run pipeline.run.simulate_batch, found by import.
+    """
+    main = sys.modules.get("__main__")
+    saved = {name: main.__dict__[name] for name in ("__file__", "__spec__")
+             if main is not None and name in main.__dict__}
+    try:
+        if main is not None:
+            main.__dict__.pop("__file__", None)
+            if "__spec__" in saved:
+                main.__spec__ = None
+        yield
+    finally:
+        if main is not None:
+            main.__dict__.update(saved)

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import shutil
 import sys
 import warnings
 from collections.abc import Callable
@@ -48,9 +49,18 @@ class Recipe:
         p = argparse.ArgumentParser(
             prog=f"python -m studies.{self.name}",
             description=f"{self.summary} (paper {self.figure}). Writes {self.name}.nc, "
-                        f"{self.name}.png and {self.name}.pdf into --out.",
+                        f"{self.name}.png and {self.name}.pdf into --out. Ctrl-C keeps the "
+                        "finished simulations: the same command again resumes.",
             epilog=epilog)
-        if self.records is not None:
+        accept_negative_numbers(p)
+        if self.records is None:
+            unused = "accepted so that one set of options fits every recipe; this recipe " \
+                     "runs no records and does not use it"
+            p.add_argument("--records-dir", default=None, metavar="DIR", help=unused)
+            p.add_argument("--workers", type=int, default=1, help=unused)
+            p.add_argument("--scheduler", default=None, metavar="ADDRESS", help=unused)
+            p.add_argument("--dt", type=float, default=None, metavar="S", help=unused)
+        else:
             p.add_argument("--records", nargs="+", default=list(self.records), metavar="NAME",
                            help="paper keys (kobe, sylmar_converter, olive_view, pacoima), "
                                 "library names, RSN<n>:<component> or AT2 paths "
@@ -67,8 +77,12 @@ class Recipe:
                            help="dask.distributed scheduler address to run on instead")
             p.add_argument("--dt", type=float, default=None, metavar="S",
                            help="integration step in s (default: the engine's, 0.5 ms)")
-        p.add_argument("--out", type=Path, default=Path("results"), metavar="DIR",
-                       help="output folder (default: results/)")
+        p.add_argument("--out", type=Path, default=Path("results"), metavar="PATH",
+                       help=f"where the archive goes: a path ending in .nc is the archive "
+                            f"itself (the figures take its stem), anything else a folder "
+                            f"receiving {self.name}.nc/.png/.pdf (default: results/); "
+                            f"finished simulations wait in <archive>.work/ until it is "
+                            f"written")
         p.add_argument("--quick", action="store_true",
                        help="a coarse grid, for tests and first looks")
         p.add_argument("--replot", action="store_true",
@@ -81,7 +95,7 @@ class Recipe:
     def main(self, argv=None) -> int:
         args = self.parser().parse_args(argv)
         from engine import EngineError
-        from pipeline.errors import SweepError
+        from pipeline.errors import Interrupted, SweepError
         from pipeline.records import RecordError
 
         try:
@@ -91,6 +105,13 @@ class Recipe:
             # Bad input: one line. Anything else is a bug and keeps its traceback.
             print(f"{self.name}: error: {' '.join(str(err).split())}", file=sys.stderr)
             return 2
+        except Interrupted as stop:
+            print(f"{self.name}: {stop}; run the same command again to resume",
+                  file=sys.stderr)
+            return 130
+        except KeyboardInterrupt:
+            print(f"{self.name}: interrupted", file=sys.stderr)
+            return 130
 
     def _run(self, args) -> int:
         import xarray as xr
@@ -100,14 +121,19 @@ class Recipe:
 
         from ._plot import save_figure
 
-        archive = args.out / f"{self.name}.nc"
+        archive, stem = outputs(args.out, self.name)
+        figures = [Path(f"{stem}.png"), Path(f"{stem}.pdf")]
         if args.replot:
             if not archive.is_file():
                 raise SweepError(f"--replot needs {archive}, which does not exist")
+            for path in figures:
+                check_out(path)
             with xr.open_dataset(archive) as opened:
                 ds = opened.load()
         else:
-            check_out(archive)  # before any compute
+            for path in (archive, *figures):
+                check_out(path)  # before any compute
+            args.work_dir = archive.with_name(archive.name + ".work")
             ds = self.compute(args)
             ds.attrs.update(recipe=self.name, paper_figure=self.figure, quick=int(args.quick),
                             values_chosen=self.chosen or "none")
@@ -115,13 +141,34 @@ class Recipe:
             ds.attrs["paper_check"] = "\n".join(v.text() for v in verdicts)
             ds.attrs["paper_verdicts"] = json.dumps([v.as_dict() for v in verdicts])
             write_netcdf(ds, archive)
+            shutil.rmtree(args.work_dir, ignore_errors=True)
         if args.replot:
             for line in _substitutions(ds):
                 print(line)
         print(ds.attrs["paper_check"])
-        figures = save_figure(self.plot(ds), args.out / self.name)
-        print("wrote", archive, *figures)
+        written = save_figure(self.plot(ds), stem)
+        if args.replot:
+            print("redrew", *written, "from", archive)
+        else:
+            print("wrote", archive, *written)
         return 0
+
+
+def outputs(out: Path, name: str) -> tuple[Path, Path]:
+    """(archive, figure stem) for --out: a .nc path is the archive, anything else a folder."""
+    out = Path(out)
+    if out.suffix == ".nc":
+        return out, out.with_suffix("")
+    return out / f"{name}.nc", out / name
+
+
+def accept_negative_numbers(parser: argparse.ArgumentParser) -> None:
+    """Let option values such as `-1e9` through (argparse reads them as options otherwise),
+    so that they reach the range checks and get their messages."""
+    import re
+
+    parser._negative_number_matcher = re.compile(
+        r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
 
 
 def verdict(agrees) -> str:
@@ -166,9 +213,11 @@ def verdicts(ds) -> list[dict]:
 
 
 def sweep_options(args) -> dict:
-    """The pipeline.sweep keywords every record-based recipe passes through."""
+    """The pipeline.sweep keywords every record-based recipe passes through, its work folder
+    (set by Recipe.main: <archive>.work, shared by all the recipe's sweeps) included."""
     return dict(records=args.records, records_dir=args.records_dir, workers=args.workers,
-                scheduler=args.scheduler, dt=args.dt, quiet=args.quiet)
+                scheduler=args.scheduler, dt=args.dt, quiet=args.quiet,
+                work_dir=getattr(args, "work_dir", None))
 
 
 @contextmanager

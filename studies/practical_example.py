@@ -70,7 +70,8 @@ def compute(args):
     if args.quick:
         records = [segment(rec, QUICK_SECONDS) for rec in records]
     free = pipeline.unconstrained_peaks(records, dt=args.dt, workers=args.workers,
-                                        scheduler=args.scheduler, quiet=args.quiet)
+                                        scheduler=args.scheduler, quiet=args.quiet,
+                                        work_dir=args.work_dir)
     parts, gaps = [], []
     # Each paper record also runs at the paper's own gap, to tell the gap rule from the model.
     at_paper_gap = all(name in PAPER_GAP for name in names)

@@ -44,7 +44,8 @@ def compute(args):
     free = pipeline.unconstrained_peaks(options["records"], dt=args.dt,
                                         workers=min(args.workers, 1),
                                         scheduler=args.scheduler,
-                                        records_dir=args.records_dir)
+                                        records_dir=args.records_dir,
+                                        work_dir=args.work_dir)
     peak = float(free.peak_isolator_disp.item())
     gap = round(GAP_FRACTION * peak, 3)  # m, to the mm
     gaps = sorted({gap, PAPER_GAP})

@@ -15,6 +15,8 @@ from engine.impact import LAWS, M_EFF
 from engine.units import CM, KN_PER_MM
 from pipeline.grid import BASELINE, IMPACT_LAWS
 
+from ._recipe import accept_negative_numbers, outputs
+
 
 def declared(name: str) -> str:
     """What sweep parameter `name` is under each law that takes it: the laws' declarations."""
@@ -92,10 +94,13 @@ def parser() -> argparse.ArgumentParser:
                         "of a local cluster)")
     p.add_argument("--batch-size", type=int, metavar="N",
                    help="simulations per engine call (default: up to 512)")
-    p.add_argument("--out", required=True, metavar="FILE.nc",
-                   help="NetCDF archive to write; finished work is kept in FILE.nc.work/ until "
-                        "then, so an interrupted run resumes where it stopped")
+    p.add_argument("--out", default="results", metavar="PATH",
+                   help="where the archive goes, as for every recipe: a path ending in .nc is "
+                        "the archive itself, anything else a folder receiving sweep.nc "
+                        "(default: results/); finished simulations wait in <archive>.work/ "
+                        "until it is written, so an interrupted run resumes where it stopped")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
+    accept_negative_numbers(p)
     return p
 
 
@@ -111,7 +116,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
     import engine
     import pipeline
-    from pipeline.errors import SweepError
+    from pipeline.errors import Interrupted, SweepError
 
     from ._recipe import announce_stand_ins
 
@@ -120,6 +125,7 @@ def main(argv: list[str] | None = None) -> int:
             raise SweepError(f"wall_k: --wall-k-kn-mm is for N/m stiffnesses (bumper, linear); "
                              f"give --wall-k in N/m^1.5 for impact={args.impact!r}")
         building = engine.Building(damping=args.damping)
+        archive, _ = outputs(args.out, "sweep")
         with announce_stand_ins():
             ds = pipeline.sweep(
                 records=args.records,
@@ -133,14 +139,20 @@ def main(argv: list[str] | None = None) -> int:
                 wall_k=_one_or_many(args.wall_k) if args.wall_k
                 else _one_or_many(args.wall_k_kn_mm, KN_PER_MM),
                 cor=_one_or_many(args.cor), impact=args.impact, dt=args.dt, workers=args.workers,
-                scheduler=args.scheduler, out=args.out, baseline=args.baseline,
+                scheduler=args.scheduler, out=archive, baseline=args.baseline,
                 unconstrained=args.unconstrained, building=building, m_eff=args.m_eff,
                 batch_size=args.batch_size, records_dir=args.records_dir, quiet=args.quiet)
     except (SweepError, engine.EngineError) as err:
         print("error: " + " ".join(str(err).split()), file=sys.stderr)  # one line
         return 2
+    except Interrupted as stop:
+        print(f"sweep: {stop}; run the same command again to resume", file=sys.stderr)
+        return 130
+    except KeyboardInterrupt:
+        print("sweep: interrupted", file=sys.stderr)
+        return 130
     dims = ", ".join(f"{d} {n}" for d, n in ds.sizes.items())
-    print(f"wrote {args.out} ({dims})")
+    print(f"wrote {archive} ({dims})")
     return 0
 
 

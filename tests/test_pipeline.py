@@ -405,7 +405,13 @@ def test_progress_bar_shows_counts_and_time_left():
     progress.advance(3)
     progress.close()
     text = stream.getvalue()
-    assert "5/10 simulations" in text and "left" in text
+    assert " 50% (5 of 10 simulations finished)" in text and "left" in text
+    # a running batch's partial work moves the percentage, never the count of finished ones
+    partial = io.StringIO()
+    progress = run_module.Progress(total=10, stream=partial, delay=0.0)
+    progress.running("batch", 1.4)
+    progress.close()
+    assert " 14% (0 of 10 simulations finished)" in partial.getvalue()
     quiet = io.StringIO()
     run_module.Progress(total=10, quiet=True, stream=quiet, delay=0.0).close()
     assert quiet.getvalue() == ""

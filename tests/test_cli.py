@@ -1,0 +1,100 @@
+"""Command lines that behave: implausible inputs refused before compute, negative numbers,
+one meaning of --out, common options on every recipe, --replot's report, unguarded scripts."""
+from __future__ import annotations
+
+import importlib
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from studies import sweep as sweep_cli
+
+PROJECT = Path(__file__).resolve().parents[1]
+RECIPES = ["impact_validation", "damping_calibration", "practical_example", "gap_size",
+           "thickness", "strain", "n_bumpers", "wall_stiffness", "restitution", "suite",
+           "design"]
+
+
+@pytest.mark.parametrize("option, value, hint", [
+    ("--gap", "20", "--gap-cm 20"), ("--thickness", "5", "--thickness-cm 5"),
+    ("--cavity", "2.5", "--cavity-cm 2.5")])
+def test_lengths_in_cm_given_as_m_are_refused(option, value, hint, tmp_path, capsys):
+    argv = ["--records", "pacoima", "--out", str(tmp_path / "x.nc")]
+    if option != "--gap":
+        argv += ["--gap", "0.3"]
+    assert sweep_cli.main([*argv, option, value]) == 2
+    err = capsys.readouterr().err
+    assert "implausible (> 2 m)" in err and hint in err and len(err.splitlines()) == 1
+    assert not (tmp_path / "x.nc").exists() and not (tmp_path / "x.nc.work").exists()
+
+
+@pytest.mark.parametrize("value", ["-1e9", "-5", "-0.5", "-.5E+3"])
+def test_negative_numbers_reach_the_range_check(value, tmp_path, capsys):
+    assert sweep_cli.main(["--records", "pacoima", "--gap", "0.3", "--wall-k", value,
+                           "--out", str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert "wall_k must be in (0, inf)" in err and "expected" not in err
+
+
+def test_out_is_a_file_or_a_folder_in_every_command(tmp_path, capsys):
+    argv = ["--records", "pacoima", "--gap-cm", "25", "--dt", "1e-3", "--quiet"]
+    assert sweep_cli.main([*argv, "--out", str(tmp_path / "mine.nc")]) == 0
+    assert sweep_cli.main([*argv, "--out", str(tmp_path / "folder")]) == 0
+    with xr.open_dataset(tmp_path / "mine.nc") as a, \
+            xr.open_dataset(tmp_path / "folder" / "sweep.nc") as b:
+        np.testing.assert_array_equal(a.peak_total_accel, b.peak_total_accel)
+    strain = importlib.import_module("studies.strain")
+    assert strain.main(["--quick", "--quiet", "--records", "pacoima", "--dt", "1e-3",
+                        "--out", str(tmp_path / "fig18.nc")]) == 0
+    assert {p.name for p in tmp_path.glob("fig18*")} == {"fig18.nc", "fig18.png", "fig18.pdf"}
+    assert not list(tmp_path.glob("*.work"))  # work folders go once the archive is written
+    capsys.readouterr()
+    assert strain.main(["--replot", "--out", str(tmp_path / "fig18.nc")]) == 0
+    out = capsys.readouterr().out
+    assert f"redrew {tmp_path / 'fig18.png'} {tmp_path / 'fig18.pdf'} from " in out
+    assert "wrote" not in out
+
+
+@pytest.mark.parametrize("name", RECIPES)
+def test_every_recipe_takes_the_common_options(name, tmp_path):
+    parser = importlib.import_module(f"studies.{name}").recipe.parser()
+    args = parser.parse_args(["--records-dir", str(tmp_path), "--workers", "1", "--scheduler",
+                              "tcp://127.0.0.1:1", "--dt", "5e-4", "--out", str(tmp_path),
+                              "--quick", "--quiet"])
+    assert args.workers == 1 and args.out == tmp_path
+
+
+def test_output_folder_that_cannot_be_written_fails_before_compute(tmp_path, capsys):
+    """A folder under a plain file cannot be made (permissions would not bind for root)."""
+    blocker = tmp_path / "a_file"
+    blocker.write_text("")
+    gap_size = importlib.import_module("studies.gap_size")
+    assert gap_size.main(["--quick", "--records", "pacoima", "--out",
+                          str(blocker / "out")]) == 2
+    err = capsys.readouterr().err
+    assert "cannot write" in err and len(err.splitlines()) == 1
+
+
+def test_unguarded_script_with_worker_processes(tmp_path):
+    """A script without `if __name__ == "__main__":` that starts 2 local workers runs once,
+    and gives the numbers of an in-process run."""
+    script = tmp_path / "unguarded.py"
+    script.write_text(textwrap.dedent("""
+        import pipeline
+        ds = pipeline.sweep(["pacoima"], gap=[0.2, 0.3], workers=2, dt=1e-3, quiet=True)
+        print("peaks", repr(ds.peak_isolator_disp.values.tolist()))
+    """))
+    done = subprocess.run([sys.executable, str(script)], cwd=tmp_path, capture_output=True,
+                          text=True, timeout=300)
+    assert done.returncode == 0, done.stderr[-2000:]
+    lines = [line for line in done.stdout.splitlines() if line.startswith("peaks")]
+    assert len(lines) == 1  # the workers did not run the script again
+    import pipeline
+
+    local = pipeline.sweep(["pacoima"], gap=[0.2, 0.3], dt=1e-3, quiet=True)
+    assert lines[0] == "peaks " + repr(local.peak_isolator_disp.values.tolist())
