@@ -338,10 +338,12 @@ def _client(workers: int, scheduler):
     """A dask.distributed Client: given, at an address, or on a new local cluster."""
     from distributed import Client, LocalCluster
 
+    from .cluster import connect
+
     if scheduler is not None and not isinstance(scheduler, str):
         yield scheduler  # a Client the caller owns and closes
     elif scheduler is not None:
-        with Client(scheduler, set_as_default=False) as client:
+        with connect(scheduler) as client:
             yield client
     else:
         with _main_hidden(), \
