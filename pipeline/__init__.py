@@ -46,6 +46,10 @@ def sweep(records, *, gap=None, thickness=None, cavity=None, strain=None, n_bump
     scheduler: a dask.distributed scheduler address (or Client) to run on instead.
     out: NetCDF path, written atomically; finished batches are kept in `<out>.work/` so that a
         rerun after a crash computes only what is missing; the folder goes once out is written.
+        A path ending in `.zarr` writes a Zarr store instead, for sweeps too large for one
+        file or the client's memory: workers write their batches into it directly, it is its
+        own resume record, and the return value is the store opened lazily (see
+        pipeline.zarr_store).
     baseline: also run the bare wall without bumpers (the linear law at its defaults, k 2.5e9
         N/m, COR 0.5) once per (record, gap) at the full gap; adds baseline_* and
         amplification_* variables.
@@ -132,6 +136,15 @@ def _execute(grid, records, dt, workers, scheduler, out, building, batch_size, r
         batch_size = default_batch_size(grid.n_members, len(recs), workers)
     batch_size = check_count("batch_size", batch_size, minimum=1)
     out = check_out(out)
+    if out is not None and out.suffix == ".zarr":
+        from .run import context_key
+        from .zarr_store import run_zarr
+
+        arguments = plain({**arguments, "records": names, "dt": dt})
+        contexts = [context_key(rec, dt, building) for rec in recs]
+        return run_zarr(grid, recs, names, dt, building, arguments, out, contexts,
+                        workers=workers, scheduler=scheduler, batch_size=batch_size,
+                        quiet=quiet)
     own_work_dir = work_dir is None and out is not None
     if own_work_dir:
         work_dir = out.with_name(out.name + ".work")

@@ -180,7 +180,7 @@ def check_out(out) -> Path | None:
     if out is None:
         return None
     out = Path(out)
-    if out.is_dir():
+    if out.is_dir() and out.suffix != ".zarr":  # a Zarr store is a folder
         raise SweepError(f"out: {out} is a directory, not a file name")
     try:
         out.parent.mkdir(parents=True, exist_ok=True)

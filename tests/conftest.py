@@ -105,3 +105,12 @@ def backend(request) -> str:
     """Each engine test runs on both time loops: the compiled kernel and the NumPy reference.
     Session scope: the kernel compiles (or loads from its cache) once per test session."""
     return request.param
+
+
+def run_recipe(module, argv: list[str], out: Path):
+    """Run a recipe's main into `out` (must succeed) and return its archive, loaded."""
+    import xarray as xr
+
+    assert module.main([*argv, "--quiet", "--out", str(out)]) == 0
+    with xr.open_dataset(out / f"{module.recipe.name}.nc") as ds:
+        return ds.load()

@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-import xarray as xr
-from conftest import assert_udunits
+from conftest import assert_udunits, run_recipe
 
 import pipeline
 from studies import design
@@ -16,10 +15,8 @@ RECORDS = ["kobe", "pacoima", "sylmar_converter", "olive_view"]
 
 @pytest.fixture(scope="module")
 def archive(tmp_path_factory):
-    out = tmp_path_factory.mktemp("design")
-    assert design.main(["--quick", "--quiet", "--records", *RECORDS, "--out", str(out)]) == 0
-    with xr.open_dataset(out / "design.nc") as ds:
-        yield ds.load()
+    return run_recipe(design, ["--quick", "--records", *RECORDS],
+                      tmp_path_factory.mktemp("design"))
 
 
 def test_archive(archive):

@@ -6,8 +6,7 @@ import json
 
 import numpy as np
 import pytest
-import xarray as xr
-from conftest import assert_udunits
+from conftest import assert_udunits, run_recipe
 
 import pipeline
 from studies import suite
@@ -18,10 +17,8 @@ RECORDS = ["kobe", "pacoima", "sylmar_converter", "olive_view", "RSN1690:360"]
 
 @pytest.fixture(scope="module")
 def archive(tmp_path_factory):
-    out = tmp_path_factory.mktemp("suite")
-    assert suite.main(["--quick", "--quiet", "--records", *RECORDS, "--out", str(out)]) == 0
-    with xr.open_dataset(out / "suite.nc") as ds:
-        yield ds.load()
+    return run_recipe(suite, ["--quick", "--records", *RECORDS],
+                      tmp_path_factory.mktemp("suite"))
 
 
 def test_dims_units_and_left_out_records(archive):
