@@ -59,7 +59,8 @@ COMPRESSION = {"zlib": True, "complevel": 4}
 def variable(dims, values, units: str, long_name: str, **attrs) -> xr.Variable:
     """A labelled variable: dims (tuple or one name), values, CF units and long_name."""
     dims = (dims,) if isinstance(dims, str) else tuple(dims)
-    return xr.Variable(dims, np.asarray(values),
+    values = values if hasattr(values, "chunks") else np.asarray(values)  # dask stays lazy
+    return xr.Variable(dims, values,
                        {"units": units, "long_name": long_name, **attrs})
 
 
@@ -146,13 +147,18 @@ def parameter_coords(grid: Grid) -> dict:
     return coords
 
 
-def build_dataset(grid: Grid, records, results: list[dict[str, np.ndarray]], dt: float,
+def build_dataset(grid: Grid, records, results: list[dict[str, np.ndarray]] | None, dt: float,
                   building: engine.Building, names: list[str],
-                  arguments: dict | None = None) -> xr.Dataset:
+                  arguments: dict | None = None, chunks=None) -> xr.Dataset:
     """Label the per-record peak arrays of `run.run` (each (M, ...)) as a sweep's Dataset.
 
-    records: the Record objects run, named `names` in the record coordinate.
+    records: the Record objects run, named `names` in the record coordinate. results=None
+    builds a template instead (pipeline.zarr_store): every peak a lazy dask array of fill
+    values (NaN, -1 for counts), chunks(block) giving the chunk sizes over its swept dims,
+    and no amplification ratios.
     """
+    from .run import PEAKS
+
     data_vars = {}
     start = 0
     for block in grid.blocks:
@@ -160,6 +166,14 @@ def build_dataset(grid: Grid, records, results: list[dict[str, np.ndarray]], dt:
         start += block.size
         peaks = {}
         for name in PEAK_META:
+            if results is None:
+                import dask.array as da
+
+                tail, dtype = PEAKS[name]
+                fill = np.nan if np.dtype(dtype).kind == "f" else -1
+                peaks[name] = da.full((len(records), *block.shape, *tail), fill, dtype=dtype,
+                                      chunks=(1, *chunks(block), *tail))
+                continue
             values = np.stack([res[name][part] for res in results])
             peaks[name] = values.reshape(len(records), *block.shape, *values.shape[2:])
         data_vars.update(peak_variables(peaks, ("record", *block.dims), block.prefix,
@@ -167,7 +181,7 @@ def build_dataset(grid: Grid, records, results: list[dict[str, np.ndarray]], dt:
     coords = {**record_coords(records, names), **LEVEL_COORDS, **parameter_coords(grid)}
     ds = labelled_dataset(data_vars, coords,
                           attributes(grid, records, names, dt, building, arguments))
-    if grid.block("baseline_") is not None:
+    if grid.block("baseline_") is not None and results is not None:
         for name, (peak, long_name) in AMPLIFICATION.items():
             ratio = ds[peak] / ds["baseline_" + peak]
             ds[name] = ratio.transpose(*ds[peak].dims)

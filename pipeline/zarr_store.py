@@ -85,7 +85,7 @@ def batches_for(grid, n_records: int, target: int) -> list[ZarrBatch]:
 
 def sweep_key(grid, contexts: list[str]) -> str:
     digest = hashlib.sha256(json.dumps(contexts).encode())
-    digest.update(grid.members.tobytes())
+    digest.update(np.ascontiguousarray(grid.members).data)  # no copy of a large table
     return digest.hexdigest()
 
 
@@ -95,24 +95,15 @@ def write_template(path: Path, grid, records, names, dt, building, arguments, ke
     import dask.array as da
     import xarray as xr
 
-    from .archive import LEVEL_COORDS, PEAK_META, build_dataset
-    from .run import PEAKS
+    from .archive import build_dataset
 
-    # A tiny stand-in result gives the labels; the data become lazy arrays of the full size.
-    empty = [{name: np.zeros((grid.n_members, *shape), dtype) for name, (shape, dtype)
-              in PEAKS.items()} for _ in records]
-    ds = build_dataset(grid, records, empty, dt, building, names, arguments)
-    ds = ds.drop_vars([n for n in ds.data_vars if n.startswith("amplification_")])
-    encoding = {}
-    for block in grid.blocks:
-        chunks = (1, *block_chunks(block.shape, target))
-        for name, (_, _, tail) in PEAK_META.items():
-            var = ds[block.prefix + name]
-            full = chunks + ((LEVEL_COORDS[tail][1].size,) if tail else ())
-            fill = np.nan if var.dtype.kind == "f" else -1
-            ds[block.prefix + name] = var.copy(data=da.full(var.shape, fill, dtype=var.dtype,
-                                                            chunks=full))
-            encoding[block.prefix + name] = {"chunks": full}
+    def chunks(block):
+        return block_chunks(block.shape, target)
+
+    # The labels of the NetCDF archive, its data lazy fill values: nothing of the size of the
+    # results is ever held here.
+    ds = build_dataset(grid, records, None, dt, building, names, arguments, chunks=chunks)
+    encoding = {name: {"chunks": var.data.chunksize} for name, var in ds.data_vars.items()}
     ds["batch_done"] = xr.Variable("batch", da.zeros(n_batches, dtype=np.int8, chunks=1),
                                    {"units": "1", "long_name": "1 once the batch's chunk "
                                     "region is written (the resume record)"})
