@@ -359,14 +359,21 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
     run = _run_parallel if threads() > 1 and size > 1 else _run_serial
     args = (ag, float(dt), op, law, par, state, peaks, n_impacts, hist_row, every,
             h_u, h_acc, h_f, h_d)
-    if progress is None:
-        run(0, n_steps, *args)
-    else:
-        chunk = max(n_steps // 100, 1)
-        for start in range(0, n_steps, chunk):
-            progress(start, n_steps)
-            run(start, min(start + chunk, n_steps), *args)
-        progress(n_steps, n_steps)
+    # Members one at a time to whichever thread is free: they cost unequally (a member that
+    # pounds does more work), and even halves of the batch would leave one thread waiting
+    # (gap_size's batch: 81% -> 88% parallel efficiency on 2 threads). Bitwise the same.
+    previous = numba.set_parallel_chunksize(1)
+    try:
+        if progress is None:
+            run(0, n_steps, *args)
+        else:
+            chunk = max(n_steps // 100, 1)
+            for start in range(0, n_steps, chunk):
+                progress(start, n_steps)
+                run(start, min(start + chunk, n_steps), *args)
+            progress(n_steps, n_steps)
+    finally:
+        numba.set_parallel_chunksize(previous)
 
     result = {"peak_total_accel": peaks[:, _P_ACCEL:_P_ACCEL + N_LEVELS].copy(),
               "peak_interstory_drift": peaks[:, _P_DRIFT:_P_DRIFT + N_LEVELS - 1].copy(),

@@ -248,7 +248,11 @@ def run(grid: Grid, records, dt: float, building: engine.Building, *, workers: i
     cached = work.load() if work is not None else {}
 
     batches = []
-    record_sizes = _record_batch_sizes(records, batch_size)
+    in_process = scheduler is None and workers <= 1
+    # Splitting long records keeps worker processes equally busy; in this process the
+    # kernel's threads share each batch anyway, and bigger batches balance them better.
+    record_sizes = [batch_size] * len(records) if in_process \
+        else _record_batch_sizes(records, batch_size)
     for r, context in enumerate(contexts):
         missing = []
         for i, member in enumerate(members):
@@ -276,7 +280,7 @@ def run(grid: Grid, records, dt: float, building: engine.Building, *, workers: i
         progress.advance(batch.members.size, batch.key)
 
     try:
-        if batches and scheduler is None and workers <= 1:
+        if batches and in_process:
             for batch in batches:
                 rec = records[batch.record]
                 size = batch.members.size

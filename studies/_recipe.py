@@ -154,10 +154,11 @@ class Recipe:
         return 0
 
 
-def outputs(out: Path, name: str) -> tuple[Path, Path]:
-    """(archive, figure stem) for --out: a .nc path is the archive, anything else a folder."""
+def outputs(out: Path, name: str, archives=(".nc",)) -> tuple[Path, Path]:
+    """(archive, figure stem) for --out: a path with an archive suffix is the archive,
+    anything else a folder receiving NAME.nc."""
     out = Path(out)
-    if out.suffix == ".nc":
+    if out.suffix in archives:
         return out, out.with_suffix("")
     return out / f"{name}.nc", out / name
 

@@ -105,7 +105,7 @@ def compute(args):
             raise SweepError("no record could be scaled to D: nothing to design for")
     run = dict(records=records, records_dir=args.records_dir, dt=args.dt,
                workers=args.workers, scheduler=args.scheduler, quiet=args.quiet,
-               building=building)
+               building=building, work_dir=args.work_dir)
     grid = QUICK if args.quick else COARSE
     first = evaluate(pipeline.sweep(gap=gap, baseline=True, **grid, **run), stage=1)
     best = choose(first, args.uncrushed)

@@ -86,7 +86,7 @@ def compute(args):
     ds = pipeline.sweep(scaled.records, gap=list(ratios * D), thickness=THICKNESS,
                         n_bumpers=list(N_BUMPERS[::3] if args.quick else N_BUMPERS),
                         wall_k=list(WALL_KS), baseline=True, dt=args.dt, workers=args.workers,
-                        scheduler=args.scheduler, quiet=args.quiet)
+                        scheduler=args.scheduler, quiet=args.quiet, work_dir=args.work_dir)
     ds = ds.assign_coords(gap_ratio=("gap", ratios, {
         "units": "1", "long_name": "seismic gap / design displacement D"})) \
         .swap_dims(gap="gap_ratio")

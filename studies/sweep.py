@@ -96,7 +96,8 @@ def parser() -> argparse.ArgumentParser:
                    help="simulations per engine call (default: up to 512)")
     p.add_argument("--out", default="results", metavar="PATH",
                    help="where the archive goes, as for every recipe: a path ending in .nc is "
-                        "the archive itself, anything else a folder receiving sweep.nc "
+                        "the archive itself (.zarr: a Zarr store, for large sweeps), anything "
+                        "else a folder receiving sweep.nc "
                         "(default: results/); finished simulations wait in <archive>.work/ "
                         "until it is written, so an interrupted run resumes where it stopped")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
@@ -125,7 +126,7 @@ def main(argv: list[str] | None = None) -> int:
             raise SweepError(f"wall_k: --wall-k-kn-mm is for N/m stiffnesses (bumper, linear); "
                              f"give --wall-k in N/m^1.5 for impact={args.impact!r}")
         building = engine.Building(damping=args.damping)
-        archive, _ = outputs(args.out, "sweep")
+        archive, _ = outputs(args.out, "sweep", archives=(".nc", ".zarr"))
         with announce_stand_ins():
             ds = pipeline.sweep(
                 records=args.records,

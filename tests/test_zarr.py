@@ -101,3 +101,14 @@ def test_resume_after_the_client_is_killed(record, reference, tmp_path):
     direct = pipeline.sweep([record], dt=2e-4, **GRID)
     _assert_same(resumed, direct)
     assert resumed.attrs["complete"] == 1
+
+
+def test_command_line_writes_a_store(tmp_path):
+    from studies import sweep as sweep_cli
+
+    argv = ["--records", "pacoima", "--gap-cm", "20", "25", "--dt", "1e-3", "--quiet"]
+    assert sweep_cli.main([*argv, "--out", str(tmp_path / "cli.zarr")]) == 0
+    assert sweep_cli.main([*argv, "--out", str(tmp_path / "cli.nc")]) == 0
+    with xr.open_zarr(tmp_path / "cli.zarr") as z, xr.open_dataset(tmp_path / "cli.nc") as n:
+        np.testing.assert_array_equal(z.peak_total_accel.values, n.peak_total_accel.values)
+        assert z.attrs["complete"] == 1
