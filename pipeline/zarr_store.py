@@ -146,10 +146,9 @@ def run_zarr(grid, records, names, dt, building, arguments, out: Path, contexts,
     from .run import Progress, _client
 
     target = max(1, min(batch_size, TARGET_CHUNK))
-    batches = batches_for(grid, len(records), target)
     key = sweep_key(grid, contexts)
-    done = np.zeros(len(batches), dtype=bool)
-    if out.exists():
+    resuming = out.exists()
+    if resuming:
         try:
             group = zarr.open_group(str(out), mode="r")
             same = group.attrs.get("sweep_key") == key
@@ -158,6 +157,10 @@ def run_zarr(grid, records, names, dt, building, arguments, out: Path, contexts,
         if not same:
             raise SweepError(f"out: {out} holds another sweep (or no store): remove it or "
                              "choose another path")
+        target = int(group.attrs["members_per_chunk"])  # the store's chunks, not batch_size
+    batches = batches_for(grid, len(records), target)
+    done = np.zeros(len(batches), dtype=bool)
+    if resuming:
         done = group["batch_done"][:].astype(bool)
     else:
         write_template(out, grid, records, names, dt, building, arguments, key,
