@@ -151,7 +151,7 @@ def main(argv=None) -> int:
     os_time = median_time(lambda: opensees_time(accel, accel_dt, DT), repeats)
     _, os_steps = opensees_time(accel, accel_dt, DT)
     os_rate = os_steps / os_time
-    n_steps = engine.integrate.ground_motion_on_grid(accel, accel_dt, DT).size
+    n_steps = engine.scheme.checked_record(accel, accel_dt, DT)[1]
     sizes = [1, 16, 256, 1024, 4096] if not args.quick else [1, 1024]
     rows = []
     print(f"{args.contact} wall; Sylmar Converter, {n_steps} steps of {DT * 1e3:g} ms, one core "
@@ -164,7 +164,7 @@ def main(argv=None) -> int:
                 continue
             # NumPy's cost per step does not depend on the record: time a 5 s slice of it.
             part = accel if backend == "numba" else accel[: int(5.0 / accel_dt) + 1]
-            steps = engine.integrate.ground_motion_on_grid(part, accel_dt, DT).size
+            steps = engine.scheme.checked_record(part, accel_dt, DT)[1]
             seconds = median_time(lambda p=part, s=size, b=backend:
                                   engine_run(p, accel_dt, s, DT, b), repeats)
             rate = size * steps / seconds

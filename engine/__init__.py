@@ -1,18 +1,30 @@
 """bumpers engine: a batched simulator of isolated buildings pounding on a moat wall.
 
 Arrays in, arrays out; SI units (units.py converts the paper's cm, g, kN); a leading batch
-axis B on every state array. building.py holds the structure, isolator.py the bilinear law,
-impact/ one module per wall law, each declaring its parameters once (impact/parameters.py),
-kernel.py the compiled time loop (the default), integrate.py the vectorised NumPy one (the
-readable reference; both call the same law functions), two_body.py section 3's impacts. The
-contract is in API.md.
+axis B on every state array. Where things live:
+
+    building.py   the shear building (masses, story stiffnesses, damping, the isolator's k1/k2)
+    isolator.py   the bilinear isolator law (exact return mapping)
+    impact/       the moat-wall impact laws, one module each in impact/laws/ (each declares
+                  its parameters once), the registry that finds them, and Contact
+    scheme.py     the integration scheme: default dt, step operators, stability limit, the
+                  exact contact solve and onset weighting, shared by both loops
+    results.py    what the engine returns, declared once (every peak and history: shape, unit,
+                  long name), and the Result / History / TwoBodyResult types
+    simulate.py   the entry points simulate(), two_body(), stable_dt(); backends.py picks the loop
+    loops/        the NumPy time loop (the readable reference) and the compiled one (numba,
+                  the default): both import only the scheme, the laws and the results
+    damping_fit.py  Eq. 9 re-derived by energy equilibrium; units.py, errors.py
+
+Nothing here imports pipeline/ or studies/. The contract is in API.md.
 """
 from . import units
 from .building import Building
 from .errors import EngineError, UnstableTimeStep
 from .impact import Contact
-from .integrate import DEFAULT_DT, History, Result, simulate, stable_dt
-from .two_body import TwoBodyResult, two_body
+from .results import History, Result, TwoBodyResult
+from .scheme import DEFAULT_DT
+from .simulate import simulate, stable_dt, two_body
 
 __all__ = ["Building", "Contact", "DEFAULT_DT", "EngineError", "History", "Result",
            "TwoBodyResult", "UnstableTimeStep", "simulate", "stable_dt", "two_body", "units"]

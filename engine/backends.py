@@ -1,16 +1,19 @@
 """Which time loop runs: the compiled kernel (numba) or the vectorised NumPy reference.
 
-`resolve_backend(None)` picks "numba" when engine.kernel can be imported, else "numpy" and says
-so once per process, in one line on stderr (through `warnings`, category BackendNotice).
+`resolve_backend(None)` picks "numba" when the compiled loop can be imported, else "numpy" and
+says so once per process, in one line on stderr (through `warnings`, category BackendNotice).
+`time_loop(name)` is the module of that loop (engine/loops/).
 """
 from __future__ import annotations
 
 import importlib
 import warnings
+from types import ModuleType
 
 from .errors import EngineError
 
 BACKENDS = ("numba", "numpy")
+_LOOPS = {"numba": "numba_loop", "numpy": "numpy_loop"}
 
 
 class BackendNotice(RuntimeWarning):
@@ -20,17 +23,10 @@ class BackendNotice(RuntimeWarning):
 _notice_given = False
 
 
-def load_kernel():
-    """The engine.kernel module (compiles nothing yet); ImportError without numba."""
-    return importlib.import_module(".kernel", __package__)
-
-
-def kernel_available() -> bool:
-    try:
-        load_kernel()
-    except ImportError:
-        return False
-    return True
+def time_loop(backend: str) -> ModuleType:
+    """The loop module of a backend ("numba" or "numpy"); ImportError for numba without numba.
+    Imported on first use: the NumPy loop needs no compiler, and numba takes a second."""
+    return importlib.import_module(f"{__package__}.loops.{_LOOPS[backend]}")
 
 
 def resolve_backend(backend: str | None) -> str:
@@ -38,7 +34,7 @@ def resolve_backend(backend: str | None) -> str:
     global _notice_given
     if backend is None:
         try:
-            load_kernel()
+            time_loop("numba")
         except ImportError as err:
             if not _notice_given:
                 _notice_given = True
@@ -50,7 +46,7 @@ def resolve_backend(backend: str | None) -> str:
         raise EngineError(f"backend must be one of {BACKENDS} or None, got {backend!r}")
     if backend == "numba":
         try:
-            load_kernel()
+            time_loop("numba")
         except ImportError as err:
             raise EngineError(f"backend 'numba' needs numba: {err}") from None
     return backend

@@ -63,6 +63,16 @@ class Building:
             raise EngineError(f"damping must be 'paper' or 'modal', got {self.damping!r}")
 
     @property
+    def n_levels(self) -> int:
+        """Levels, the isolation slab (level 0) included."""
+        return len(self.masses)
+
+    @property
+    def n_stories(self) -> int:
+        """Stories above the isolation slab."""
+        return len(self.story_stiffness)
+
+    @property
     def total_mass(self) -> float:
         """kg, base slab included."""
         return float(np.sum(self.masses))

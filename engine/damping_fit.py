@@ -21,7 +21,7 @@ import numpy as np
 
 from .errors import EngineError
 from .impact import Contact
-from .two_body import two_body
+from .simulate import two_body
 
 # Bracket of the dimensionless damping number C_imp v_imp searched: 1e-3 realises COR ~ 1, 20
 # about 0.05. Far larger values make the restitution a slow creep at delta_dot ~ -1/C_imp that

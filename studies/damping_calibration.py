@@ -33,7 +33,7 @@ def grid(quick: bool) -> dict[str, np.ndarray]:
 
 def compute(args):
     from engine import damping_fit
-    from engine.impact import rubber_bumper
+    from engine.impact.laws import rubber_bumper
     from engine.units import power_law_units
     from pipeline.archive import labelled_dataset, variable
 

@@ -48,7 +48,7 @@ def contacts(velocities):
 
 def compute(args):
     import engine
-    from engine.impact import rubber_bumper
+    from engine.impact.laws import rubber_bumper
     from pipeline.archive import labelled_dataset
     from pipeline.archive import variable as var
 

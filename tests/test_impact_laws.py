@@ -5,7 +5,14 @@ from scipy.integrate import solve_ivp
 
 import engine
 from engine import Contact, units
-from engine.impact import force, linear_viscoelastic, rubber_bumper
+from engine.impact.contact import law_arguments
+from engine.impact.laws import linear_viscoelastic, rubber_bumper
+
+
+def force(module, delta, delta_dot, v_imp, p):
+    """Contact force (N, >= 0) of one law at indentation delta (m), rate delta_dot (m/s)."""
+    elastic, dashpot = module.force_terms(delta, delta_dot, v_imp, *law_arguments(p))
+    return np.where(delta > 0, np.maximum(elastic + dashpot * delta_dot, 0.0), 0.0)
 
 M_BODY = 300.0           # kg, the Kajita et al. steel rods
 M_EFF = M_BODY / 2

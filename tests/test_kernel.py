@@ -9,7 +9,8 @@ import pytest
 
 import engine
 from engine import Building, Contact, History, backends
-from engine.integrate import ground_motion_on_grid
+from engine.loops import numba_loop, numpy_loop
+from engine.scheme import checked_record
 
 RTOL = 1e-9
 
@@ -136,21 +137,24 @@ def test_two_body_backends_agree():
 
 
 def test_kernel_ground_motion_is_np_interp_bit_for_bit(short_record):
-    from engine.kernel import ground_motion
-
     accel, accel_dt = short_record
     accel = np.asarray(accel, dtype=float)
     for dt in (1e-4, 3.3e-4, 5e-4, 1e-3, accel_dt, 0.013):
-        reference = ground_motion_on_grid(accel, accel_dt, dt)
-        np.testing.assert_array_equal(ground_motion(accel, accel_dt, dt, reference.size),
+        n_steps = checked_record(accel, accel_dt, dt)[1]
+        reference = numpy_loop.ground_motion(accel, accel_dt, dt, n_steps)
+        np.testing.assert_array_equal(numba_loop.ground_motion(accel, accel_dt, dt, n_steps),
                                       reference)
 
 
 def test_without_numba_the_numpy_loop_runs_with_one_notice(monkeypatch):
-    def no_numba():
-        raise ImportError("No module named 'numba'")
+    real_time_loop = backends.time_loop
 
-    monkeypatch.setattr(backends, "load_kernel", no_numba)
+    def no_numba(backend):
+        if backend == "numba":
+            raise ImportError("No module named 'numba'")
+        return real_time_loop(backend)
+
+    monkeypatch.setattr(backends, "time_loop", no_numba)
     monkeypatch.setattr(backends, "_notice_given", False)
     contact = Contact.linear([0.01, 0.02])
     accel = np.sin(np.linspace(0, 20, 400)) * 5.0
@@ -175,10 +179,10 @@ def test_compiled_kernel_loads_from_the_cache():
     pytest.importorskip("numba")
     engine.simulate(np.zeros(10), 0.01, Contact.bumper([0.3]), backend="numba")
     code = ("import time, numpy as np, engine\n"
-            "from engine import kernel\n"
+            "from engine.loops import numba_loop\n"
             "t = time.perf_counter()\n"
             "engine.simulate(np.zeros(10), 0.01, engine.Contact.bumper([0.3]), backend='numba')\n"
-            "stats = kernel._run_serial.stats\n"
+            "stats = numba_loop._run_serial.stats\n"
             "print(time.perf_counter() - t, sum(stats.cache_hits.values()),\n"
             "      sum(stats.cache_misses.values()))\n")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,

@@ -10,7 +10,8 @@ import pytest
 import engine
 import pipeline
 from engine import Contact, units
-from engine.impact import LAWS, parameters, rubber_bumper
+from engine.impact import LAWS, parameters
+from engine.impact.laws import rubber_bumper
 from pipeline.errors import SweepError
 from pipeline.grid import make_grid
 from pipeline.histories import segment

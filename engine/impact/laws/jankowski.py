@@ -7,10 +7,15 @@ xi = 9 sqrt(5) (1 - COR^2) / (2 COR (COR (9 pi - 16) + 16))  (Jankowski 2006).
 """
 import numpy as np
 
-from ..units import power_law_units
-from .parameters import GAP, M_EFF, REQUIRED, Declaration, Parameter
+from ...units import power_law_units
+from ..parameters import GAP, M_EFF, REQUIRED, Declaration, Parameter
 
 EXPONENT = 1.5
+
+NAME = "jankowski"
+"""The law's name in Contact.of, sweeps and archives."""
+ORDER = 2
+"""Its place among the laws of the paper's section 2 (listings follow it)."""
 
 PARAMETERS = Declaration(
     GAP,
@@ -38,7 +43,7 @@ def force_terms(delta, delta_dot, v_imp, k, n, m_eff, delta_u, k_w, dashpot, dam
     """(elastic force N, dashpot N*s/m); the dashpot acts on approach only.
 
     k = beta (N/m^1.5), damping_ratio = xi, m_eff (kg); scalars or (B,) arrays alike (the
-    laws' uniform signature, impact.LAW_ARGUMENTS), compiled as is by the kernel.
+    laws' uniform signature, contact.LAW_ARGUMENTS), compiled as is by the kernel.
     """
     d = np.maximum(delta, 0.0)
     dashpot = 2 * damping_ratio * np.sqrt(k * np.sqrt(d) * m_eff)

@@ -15,9 +15,14 @@ defaults: k = 2500 kN/mm, COR 0.5 (SPEC decision).
 """
 import numpy as np
 
-from .parameters import GAP, M_EFF, Declaration, Option, Parameter
+from ..parameters import GAP, M_EFF, Declaration, Option, Parameter
 
 XI_RULES = ("no_tension", "eq3")
+
+NAME = "linear"
+"""The law's name in Contact.of, sweeps and archives."""
+ORDER = 1
+"""Its place among the laws of the paper's section 2 (listings follow it)."""
 
 PARAMETERS = Declaration(
     GAP,
@@ -71,7 +76,7 @@ def force_terms(delta, delta_dot, v_imp, k, n, m_eff, delta_u, k_w, dashpot, dam
                 c_imp_coef, c_imp_exponent):
     """(elastic force N, dashpot N*s/m): F = k delta + c delta_dot; k N/m, dashpot c N*s/m.
 
-    The laws' uniform signature (impact.LAW_ARGUMENTS); scalars or (B,) arrays alike, compiled
+    The laws' uniform signature (contact.LAW_ARGUMENTS); scalars or (B,) arrays alike, compiled
     as is by the kernel. The other arguments are unused.
     """
     return k * delta, dashpot

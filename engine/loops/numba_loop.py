@@ -1,10 +1,10 @@
 """The compiled time loop (numba): the default backend of engine.simulate and engine.two_body.
 
-The scheme is integrate.py's, member by member: members outer, steps inner, every piece of a
-member's state in local scalars. The physics is not written here: the impact laws'
+The scheme is engine/scheme.py's, member by member: members outer, steps inner, every piece of
+a member's state in local scalars. The physics is not written here: the impact laws'
 `force_terms`, the isolator's return mapping, `implicit_force` and `onset_weight` are the very
-functions the NumPy loop calls on arrays, compiled here for scalars. The per-member building
-operators are computed in NumPy beforehand (integrate.step_operators).
+functions the NumPy loop calls on arrays, compiled here for scalars; the laws come from the
+registry, chained into one dispatch on the member's law code (`_law_dispatch`).
 
 No fastmath: the kernel agrees with the NumPy loop to round-off. Members never interact, so
 the result of a member does not depend on its batch, its position in it, or on threads.
@@ -21,26 +21,16 @@ import numba
 import numpy as np
 from numba import njit, prange
 
-from . import isolator
-from .building import N_LEVELS
-from .impact import (
-    BUMPER,
-    HERTZDAMP,
-    JANKOWSKI,
-    LAW_ARGUMENTS,
-    LINEAR,
-    hertzdamp,
-    implicit_force,
-    jankowski,
-    linear_viscoelastic,
-    onset_weight,
-    rubber_bumper,
-)
+from .. import isolator, scheme
+from ..building import N_LEVELS
+from ..impact import registry
+from ..impact.contact import LAW_ARGUMENTS
+from ..results import PEAKS
+from ..scheme import step_operators
 
 _HERE = Path(__file__).resolve()
 _PHYSICS_SOURCES = [_HERE, *(Path(m.__file__).resolve() for m in (
-    isolator, hertzdamp, jankowski, linear_viscoelastic, rubber_bumper)),
-    _HERE.parent / "impact" / "__init__.py"]
+    isolator, scheme, registry, *registry.LAWS.values()))]
 
 
 def _install_cache_locator() -> None:
@@ -71,17 +61,43 @@ def _install_cache_locator() -> None:
 
 _install_cache_locator()
 
+_JIT = {"cache": True, "nogil": True, "error_model": "numpy"}
+_LINK = {"nogil": True, "error_model": "numpy"}  # compiled into the cached kernels that call it
+
 # The physics, written once in its own modules, compiled for scalars.
-_linear = njit(linear_viscoelastic.force_terms)
-_jankowski = njit(jankowski.force_terms)
-_hertzdamp = njit(hertzdamp.force_terms)
-_bumper = njit(rubber_bumper.force_terms)
 _isolator_force = njit(isolator.isolator_force)
 _plastic_spring = njit(isolator.plastic_spring_force)
-_implicit_force = njit(implicit_force)
-_onset_weight = njit(onset_weight)
+_implicit_force = njit(scheme.implicit_force)
+_onset_weight = njit(scheme.onset_weight)
 
-_JIT = {"cache": True, "nogil": True, "error_model": "numpy"}
+
+def _no_wall(code, delta, rate, v_imp, k, n, m_eff, delta_u, k_w, dashpot, damping_ratio, chi,
+             c_imp_coef, c_imp_exponent):
+    return 0.0, 0.0
+
+
+def _link(code, force_terms, otherwise):
+    """A dispatch that runs force_terms for members of law `code`, else `otherwise`."""
+    def dispatch(law, delta, rate, v_imp, k, n, m_eff, delta_u, k_w, dashpot, damping_ratio,
+                 chi, c_imp_coef, c_imp_exponent):
+        if law == code:
+            return force_terms(delta, rate, v_imp, k, n, m_eff, delta_u, k_w, dashpot,
+                               damping_ratio, chi, c_imp_coef, c_imp_exponent)
+        return otherwise(law, delta, rate, v_imp, k, n, m_eff, delta_u, k_w, dashpot,
+                         damping_ratio, chi, c_imp_coef, c_imp_exponent)
+    return njit(**_LINK)(dispatch)
+
+
+def _law_dispatch():
+    """(elastic, dashpot) of the member's law, dispatched on its code: every law of the
+    registry, chained; (0, 0) for a member without wall."""
+    dispatch = njit(**_LINK)(_no_wall)
+    for code, module in registry.LAW_MODULES.items():
+        dispatch = _link(code, njit(**_LINK)(module.force_terms), dispatch)
+    return dispatch
+
+
+_law_terms = _law_dispatch()
 
 # Columns of the per-member parameter matrix.
 _WALL, _COMPLIANCE, _MASS, _STORY_K = 0, 5, 6, 11
@@ -90,28 +106,29 @@ _N_PAR = _LAW_ARGS + len(LAW_ARGUMENTS)
 # Columns of the per-member state carried between chunks of steps.
 _U, _V, _FP, _V_IMP, _DELTA_PREV, _IN_CONTACT = 0, 5, 10, 11, 12, 13
 _N_STATE = 14
-# Columns of the peaks: total accel 5, drift 4, isolator, indentation, force, energy.
-_P_ACCEL, _P_DRIFT, _P_ISO, _P_INDENT, _P_FORCE, _P_ENERGY = 0, 5, 9, 10, 11, 12
-_N_PEAKS = 13
 
 
-@njit(**_JIT)
-def _law_terms(law, delta, rate, v_imp, k, n, m_eff, delta_u, k_w, dashpot, damping_ratio, chi,
-               c_imp_coef, c_imp_exponent):
-    """(elastic, dashpot) of the member's law, dispatched on its code."""
-    if law == BUMPER:
-        return _bumper(delta, rate, v_imp, k, n, m_eff, delta_u, k_w, dashpot, damping_ratio,
-                       chi, c_imp_coef, c_imp_exponent)
-    if law == LINEAR:
-        return _linear(delta, rate, v_imp, k, n, m_eff, delta_u, k_w, dashpot, damping_ratio,
-                       chi, c_imp_coef, c_imp_exponent)
-    if law == JANKOWSKI:
-        return _jankowski(delta, rate, v_imp, k, n, m_eff, delta_u, k_w, dashpot,
-                          damping_ratio, chi, c_imp_coef, c_imp_exponent)
-    if law == HERTZDAMP:
-        return _hertzdamp(delta, rate, v_imp, k, n, m_eff, delta_u, k_w, dashpot,
-                          damping_ratio, chi, c_imp_coef, c_imp_exponent)
-    return 0.0, 0.0
+def _peak_columns(n_levels: int) -> dict[str, slice]:
+    """Columns of the float peaks in the kernel's (B, columns) matrix, in PEAKS order; the
+    integer counts (n_impacts) are kept in their own (B,) array."""
+    columns, start = {}, 0
+    for q in PEAKS:
+        if q.dtype is np.int64:
+            continue
+        width = int(np.prod(q.trailing_shape(n_levels), dtype=int))
+        columns[q.name] = slice(start, start + width)
+        start += width
+    return columns
+
+
+_PEAK_COLUMNS = _peak_columns(N_LEVELS)
+_P_ACCEL = _PEAK_COLUMNS["peak_total_accel"].start
+_P_DRIFT = _PEAK_COLUMNS["peak_interstory_drift"].start
+_P_ISO = _PEAK_COLUMNS["peak_isolator_disp"].start
+_P_INDENT = _PEAK_COLUMNS["max_indentation"].start
+_P_FORCE = _PEAK_COLUMNS["max_impact_force"].start
+_P_ENERGY = _PEAK_COLUMNS["impact_energy"].start
+_N_PEAKS = max(c.stop for c in _PEAK_COLUMNS.values())
 
 
 @njit(**_JIT)
@@ -150,7 +167,8 @@ def _member(b, s0, s1, ag, dt, op, law, par, state, peaks, n_impacts, hist_row, 
     in_contact = st[_IN_CONTACT] != 0.0
 
     pk = peaks[b]
-    pa0, pa1, pa2, pa3, pa4 = pk[0], pk[1], pk[2], pk[3], pk[4]
+    pa0, pa1, pa2 = pk[_P_ACCEL], pk[_P_ACCEL + 1], pk[_P_ACCEL + 2]
+    pa3, pa4 = pk[_P_ACCEL + 3], pk[_P_ACCEL + 4]
     pd1, pd2, pd3, pd4 = pk[_P_DRIFT], pk[_P_DRIFT + 1], pk[_P_DRIFT + 2], pk[_P_DRIFT + 3]
     p_iso, p_indent, p_force, energy = pk[_P_ISO], pk[_P_INDENT], pk[_P_FORCE], pk[_P_ENERGY]
     n_imp = n_impacts[b]
@@ -252,7 +270,8 @@ def _member(b, s0, s1, ag, dt, op, law, par, state, peaks, n_impacts, hist_row, 
     st[_V], st[_V + 1], st[_V + 2], st[_V + 3], st[_V + 4] = v0, v1, v2, v3, v4
     st[_FP], st[_V_IMP], st[_DELTA_PREV] = fp, v_imp, delta_prev
     st[_IN_CONTACT] = 1.0 if in_contact else 0.0
-    pk[0], pk[1], pk[2], pk[3], pk[4] = pa0, pa1, pa2, pa3, pa4
+    pk[_P_ACCEL], pk[_P_ACCEL + 1], pk[_P_ACCEL + 2] = pa0, pa1, pa2
+    pk[_P_ACCEL + 3], pk[_P_ACCEL + 4] = pa3, pa4
     pk[_P_DRIFT], pk[_P_DRIFT + 1], pk[_P_DRIFT + 2], pk[_P_DRIFT + 3] = pd1, pd2, pd3, pd4
     pk[_P_ISO], pk[_P_INDENT], pk[_P_FORCE], pk[_P_ENERGY] = p_iso, p_indent, p_force, energy
     n_impacts[b] = n_imp
@@ -331,8 +350,6 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
     With progress the run goes in chunks of about 1% of the steps, the state kept in arrays
     between chunks (the same arithmetic, so the same bits); without, in one call.
     """
-    from .integrate import step_operators
-
     size = len(contact)
     n_steps = ag.size
     op, wall_response, compliance = step_operators(arrays, dt)
@@ -375,13 +392,13 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
     finally:
         numba.set_parallel_chunksize(previous)
 
-    result = {"peak_total_accel": peaks[:, _P_ACCEL:_P_ACCEL + N_LEVELS].copy(),
-              "peak_interstory_drift": peaks[:, _P_DRIFT:_P_DRIFT + N_LEVELS - 1].copy(),
-              "peak_isolator_disp": peaks[:, _P_ISO].copy(),
-              "max_indentation": peaks[:, _P_INDENT].copy(),
-              "max_impact_force": peaks[:, _P_FORCE].copy(),
-              "n_impacts": n_impacts,
-              "impact_energy": peaks[:, _P_ENERGY].copy()}
+    result = {}
+    for q in PEAKS:
+        if q.name in _PEAK_COLUMNS:
+            values = peaks[:, _PEAK_COLUMNS[q.name]]
+            result[q.name] = (values if q.along else values[:, 0]).copy()
+        else:
+            result[q.name] = n_impacts
     hist = None
     if history is not None:
         hist = {"time": np.arange(n_out) * every * dt, "isolator_disp": h_u[inverse],
@@ -391,7 +408,7 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
     return result, hist
 
 
-# --- two free bodies (two_body.py) -------------------------------------------------------------
+# --- two free bodies (engine.two_body) ---------------------------------------------------
 
 @njit(**_JIT)
 def _two_body(law, par, v, dt, m_eff, n_iter, deltas, forces, out, stops):

@@ -16,11 +16,16 @@ dashpot of k delta^n chi / v_imp.
 """
 import numpy as np
 
-from ..units import power_law_units
-from .calibration import hunt_crossley_chi
-from .parameters import GAP, M_EFF, REQUIRED, Declaration, Option, Parameter
+from ...units import power_law_units
+from ..calibration import hunt_crossley_chi
+from ..parameters import GAP, M_EFF, REQUIRED, Declaration, Option, Parameter
 
 CHI_RULES = ("lankarani", "calibrated")
+
+NAME = "hertzdamp"
+"""The law's name in Contact.of, sweeps and archives."""
+ORDER = 3
+"""Its place among the laws of the paper's section 2 (listings follow it)."""
 
 PARAMETERS = Declaration(
     GAP,
@@ -56,7 +61,7 @@ def force_terms(delta, delta_dot, v_imp, k, n, m_eff, delta_u, k_w, dashpot, dam
     """(elastic force N, dashpot N*s/m): F = k delta^n + (k delta^n chi / v_imp) delta_dot.
 
     k (N/m^n), n, chi; v_imp (m/s) > 0; scalars or (B,) arrays alike (the laws' uniform
-    signature, impact.LAW_ARGUMENTS), compiled as is by the kernel.
+    signature, contact.LAW_ARGUMENTS), compiled as is by the kernel.
     """
     elastic = k * np.maximum(delta, 0.0) ** n
     return elastic, elastic * chi / v_imp

@@ -35,9 +35,9 @@ tests/test_model_edges.py):
 """
 import numpy as np
 
-from ..errors import EngineError
-from .calibration import hunt_crossley_chi
-from .parameters import GAP, M_EFF, Declaration, Option, Parameter
+from ...errors import EngineError
+from ..calibration import hunt_crossley_chi
+from ..parameters import GAP, M_EFF, Declaration, Option, Parameter
 
 C_IMP_RULES = ("eq9", "calibrated")
 EQ9_COEFFICIENT = 1.55
@@ -45,10 +45,17 @@ EQ9_COR_EXPONENT = 0.7076
 EQ9_MASS_EXPONENT = 0.0025
 EQ9_VELOCITY_EXPONENT = 0.9755
 
+NAME = "bumper"
+"""The law's name in Contact.of, sweeps and archives."""
+ORDER = 4
+"""Its place among the laws of the paper's section 2 (listings follow it)."""
+
 PARAMETERS = Declaration(
     GAP,
     Parameter("thickness", "m", "bumper thickness t", 0.05, "(0, inf)", equation="Eq. 11",
               sweep="thickness"),
+    Parameter("cavity", "m", "depth c_d of the wall cavity holding each bumper", 0.0,
+              "[0, inf)", equation="section 5.3", sweep="cavity"),
     Parameter("strain", "1", "ultimate compressive strain of the bumper rubber", 0.8,
               "(0, 1]", equation="Eq. 14", sweep="strain"),
     Parameter("n_bumpers", "1", "number of bumpers on each side, acting in parallel", 4,
@@ -59,8 +66,6 @@ PARAMETERS = Declaration(
     Parameter("cor", "1", "coefficient of restitution of the bumper impacts", 0.45, "(0, 1]",
               equation="Eq. 9", sweep="cor"),
     M_EFF,
-    Parameter("cavity", "m", "depth c_d of the wall cavity holding each bumper", 0.0,
-              "[0, inf)", equation="section 5.3", sweep="cavity"),
     Parameter("area", "m2", "contact area A of one bumper (150 x 150 mm)", 0.150 * 0.150,
               "(0, inf)", equation="Eq. 11"),
     Parameter("k_r", "Pa", "rubber stiffness K_r (55,835 kN/m^2, Kajita et al. static test)",
@@ -133,7 +138,7 @@ def force_terms(delta, delta_dot, v_imp, k, n, m_eff, delta_u, k_w, dashpot, dam
 
     F_A of Eq. 4 and 14: k_imp min(delta, delta_u)^n + k_w max(delta - delta_u, 0), with
     k = k_imp (N/m^n), delta_u (m), k_w (N/m); C_imp = c_imp_coef / v_imp^c_imp_exponent (s/m).
-    Scalars or (B,) arrays alike (the laws' uniform signature, impact.LAW_ARGUMENTS),
+    Scalars or (B,) arrays alike (the laws' uniform signature, contact.LAW_ARGUMENTS),
     compiled as is by the kernel.
     """
     d = np.maximum(delta, 0.0)

@@ -1,0 +1,182 @@
+"""`Contact`: the moat wall of a batch of members, as (B,) arrays the time loops read.
+
+Built from a law's declared parameters (`Contact.of(law, ...)` or the constructor named after
+the law, e.g. `Contact.bumper(gap, ...)`: one per law of the registry, its signature and
+docstring generated from the law's declaration). The time loops read the fields named in
+LAW_ARGUMENTS, the same for every law, so that one call signature serves every law's
+`force_terms`.
+"""
+from __future__ import annotations
+
+import inspect
+from dataclasses import dataclass, fields
+
+import numpy as np
+
+from ..errors import EngineError
+from .parameters import REQUIRED, Declaration, Parameter
+from .registry import LAW_CODES, LAW_MODULES, LAW_NAMES, LAWS, NONE
+
+LAW_ARGUMENTS = ("k", "n", "m_eff", "delta_u", "k_w", "dashpot", "damping_ratio", "chi",
+                 "c_imp_coef", "c_imp_exponent")
+"""The Contact fields every law's force_terms takes after (delta, delta_dot, v_imp), in order."""
+
+# Contact fields a law leaves unset, and their neutral values.
+_UNSET = {"delta_u": np.inf, "k_w": 0.0, "dashpot": 0.0, "damping_ratio": 0.0, "chi": 0.0,
+          "c_imp_coef": 0.0, "c_imp_exponent": 0.0}
+
+
+def _law_constructor(law: str):
+    """Contact.<law>(gap, ...): a classmethod whose signature and docstring are the law's
+    declaration, so that the declaration is the only place defaults and ranges are written."""
+    declaration = LAWS[law].PARAMETERS
+    signature = inspect.Signature(
+        [inspect.Parameter("gap", inspect.Parameter.POSITIONAL_OR_KEYWORD)]
+        + [inspect.Parameter(name, inspect.Parameter.POSITIONAL_OR_KEYWORD,
+                             default=inspect.Parameter.empty if entry.default is REQUIRED
+                             else entry.default)
+           for name, entry in declaration.items() if name != "gap"])
+
+    def constructor(cls, *args, **kwargs) -> Contact:
+        try:
+            bound = signature.bind(*args, **kwargs)
+        except TypeError as err:
+            raise EngineError(f"Contact.{law}: {err}") from None
+        return cls.of(law, **bound.arguments)
+
+    constructor.__name__ = constructor.__qualname__ = law
+    constructor.__signature__ = signature.replace(
+        parameters=[inspect.Parameter("cls", inspect.Parameter.POSITIONAL_ONLY),
+                    *signature.parameters.values()])
+    constructor.__doc__ = (f"A {law} moat wall ({LAWS[law].__name__}); every parameter is a "
+                           "scalar or a (B,) array, broadcast together:\n"
+                           + declaration.describe())
+    return classmethod(constructor)
+
+
+@dataclass(frozen=True)
+class Contact:
+    """Moat-wall contact for a batch of B members; every field is a (B,) array.
+
+    law: int code (registry.LAW_CODES); clear_gap: clearance from the slab to the contact
+    surface on either side, m (gap - (thickness - cavity) with bumpers; inf without a wall);
+    k: the law's stiffness (N/m^n: the linear k, Jankowski's beta, Hertzdamp's k, the
+    bumpers' k_imp); n: its exponent; cor: coefficient of restitution; m_eff: kg; delta_u:
+    indentation at which the bumpers are crushed, m (inf otherwise); k_w: wall stiffness past
+    delta_u, N/m. The damping constants,
+    each used by one law (0 for the others): dashpot (linear, N*s/m), damping_ratio
+    (Jankowski's xi), chi (Hertzdamp), c_imp_coef and c_imp_exponent (bumper: C_imp =
+    c_imp_coef / v_imp^c_imp_exponent, s/m).
+
+    Build one with a law's constructor, one per registered law and named after it
+    (`Contact.bumper(gap, ...)`, `linear`, `jankowski`, `hertzdamp`; their parameters are
+    declared in each law's module), `Contact.of(law, ...)` or `Contact.none(size)`.
+    """
+
+    law: np.ndarray
+    clear_gap: np.ndarray
+    k: np.ndarray
+    n: np.ndarray
+    cor: np.ndarray
+    m_eff: np.ndarray
+    delta_u: np.ndarray
+    k_w: np.ndarray
+    dashpot: np.ndarray
+    damping_ratio: np.ndarray
+    chi: np.ndarray
+    c_imp_coef: np.ndarray
+    c_imp_exponent: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.law)
+
+    def __getitem__(self, index) -> Contact:
+        if isinstance(index, (int, np.integer)):
+            index = [index]
+        return Contact(*(getattr(self, f.name)[index] for f in fields(self)))
+
+    @property
+    def law_names(self) -> list[str]:
+        return [LAW_NAMES[int(c)] for c in self.law]
+
+    @classmethod
+    def concat(cls, parts) -> Contact:
+        parts = list(parts)
+        if not parts:
+            raise EngineError("Contact.concat needs at least one Contact")
+        return cls(*(np.concatenate([getattr(p, f.name) for p in parts]) for f in fields(cls)))
+
+    @classmethod
+    def none(cls, size: int = 1) -> Contact:
+        """No moat wall: the unconstrained building."""
+        inf, zero, one = np.full(size, np.inf), np.zeros(size), np.ones(size)
+        return cls(law=np.full(size, NONE, dtype=np.int8), clear_gap=inf, k=zero, n=one,
+                   cor=one, m_eff=one, delta_u=inf, k_w=zero, dashpot=zero.copy(),
+                   damping_ratio=zero.copy(), chi=zero.copy(), c_imp_coef=zero.copy(),
+                   c_imp_exponent=zero.copy())
+
+    @classmethod
+    def of(cls, law: str, **params) -> Contact:
+        """A wall of the named law ("linear", "jankowski", "hertzdamp", "bumper") from its
+        declared parameters (`LAWS[law].PARAMETERS`); omitted ones take their defaults.
+        Numeric parameters are scalars or (B,) arrays, broadcast together."""
+        if law not in LAWS:
+            raise EngineError(f"unknown impact law {law!r}; choose one of {tuple(LAWS)}")
+        declaration: Declaration = LAWS[law].PARAMETERS
+        values = declaration.resolve(params)
+        numeric = [n for n, e in declaration.items()
+                   if isinstance(e, Parameter) and values[n] is not None]
+        arrays = np.broadcast_arrays(*(values[n] for n in numeric))
+        if arrays[0].ndim > 1:
+            raise EngineError(
+                f"contact parameters must be scalars or 1-D arrays, got shape {arrays[0].shape}")
+        values.update(zip(numeric, (np.atleast_1d(a).copy() for a in arrays), strict=True))
+        size = values["gap"].size
+        physics = LAWS[law].contact_fields(**values)
+        columns = {**_UNSET, "cor": values["cor"], "m_eff": values["m_eff"], **physics}
+        return cls(law=np.full(size, LAW_CODES[law], dtype=np.int8),
+                   **{name: np.broadcast_to(np.asarray(value, dtype=float), (size,)).copy()
+                      for name, value in columns.items()})
+
+    def max_tangent_stiffness(self, indentation_bound: float) -> np.ndarray:
+        """(B,) stiffest contact tangent (N/m) each member can reach; 0 without a wall."""
+        out = np.zeros(len(self))
+        for code, module in LAW_MODULES.items():
+            sel = self.law == code
+            if np.any(sel):
+                out[sel] = module.max_tangent_stiffness(self[np.flatnonzero(sel)],
+                                                        indentation_bound)
+        return out
+
+
+for _name in LAWS:
+    setattr(Contact, _name, _law_constructor(_name))
+
+
+def law_blocks(contact: Contact):
+    """Order members by law so that each law runs on a contiguous view.
+
+    Returns (order, blocks): `contact[order]` is the sorted batch and `blocks` lists
+    (slice into the sorted batch, law module, that block's Contact).
+    """
+    order = np.argsort(contact.law, kind="stable")
+    law = contact.law[order]
+    blocks = []
+    for code, module in LAW_MODULES.items():
+        idx = np.flatnonzero(law == code)
+        if idx.size:
+            block = slice(idx[0], idx[-1] + 1)
+            blocks.append((block, module, contact[order[block]]))
+    return order, blocks
+
+
+def law_arguments(p: Contact) -> tuple:
+    """The (B,) Contact fields a law's force_terms takes after (delta, delta_dot, v_imp)."""
+    return tuple(getattr(p, name) for name in LAW_ARGUMENTS)
+
+
+def fill_force_terms(blocks, delta, delta_dot, v_imp, elastic, dashpot):
+    """Evaluate every law on its block of the sorted batch into elastic and dashpot, (B,)."""
+    for block, module, params in blocks:
+        elastic[block], dashpot[block] = module.force_terms(
+            delta[block], delta_dot[block], v_imp[block], *law_arguments(params))

@@ -1,0 +1,11 @@
+"""The two time loops of the scheme (engine/scheme.py), with one interface:
+
+    ground_motion(accel, accel_dt, dt, n_steps) -> (n_steps,) m/s^2 on the step grid
+    run_simulation(ag, dt, arrays, contact, history, progress, scale) -> (peaks, history)
+    run_two_body(contact, v, dt, m_eff, max_steps) -> (steps or None, out (B, 4), delta, force)
+
+numpy_loop.py is the readable reference (vectorised over the batch, no compiler);
+numba_loop.py the compiled default (members outer, steps inner). Both import only the scheme,
+the laws and the result schema, and call the same physics functions; engine.simulate picks one
+(engine/backends.py).
+"""

@@ -1,0 +1,145 @@
+"""What the engine returns, declared once: every peak and every time history, with its shape,
+unit and meaning (in the manner of xclim's indicators, which declare `units` and `long_name`
+once and generate the metadata from them).
+
+Both time loops fill their outputs by these names, the pipeline's executor sizes its arrays
+from them, the archives take `units` and `long_name` from them, and figures label axes with
+them: a new result, or a changed unit, is one line here.
+
+Shapes are given per member: `along` None is one value, "floor" one per level (level 0 is the
+isolation slab), "story" one per story (story i joins level i-1 to level i).
+"""
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """One output of the engine.
+
+    name: its name in Result, in the archives and in code; units: UDUNITS string of its SI
+    unit; long_name: one line (the archives' long_name); along: None, "floor" or "story" (see
+    the module docstring); dtype: float64, or int64 for counts; wall: True for a quantity of
+    the moat-wall contact (zero where there is no wall).
+    """
+
+    name: str
+    units: str
+    long_name: str
+    along: str | None = None
+    dtype: type = np.float64
+    wall: bool = False
+
+    def trailing_shape(self, n_levels: int) -> tuple[int, ...]:
+        """The member's shape of this quantity for a building of n_levels levels."""
+        if self.along is None:
+            return ()
+        return (n_levels,) if self.along == "floor" else (n_levels - 1,)
+
+
+PEAKS: tuple[Quantity, ...] = (
+    Quantity("peak_total_accel", "m s-2", "peak total (absolute) floor acceleration",
+             "floor"),
+    Quantity("peak_interstory_drift", "m", "peak interstory deflection", "story"),
+    Quantity("peak_isolator_disp", "m", "peak isolator displacement"),
+    Quantity("max_indentation", "m", "maximum indentation at the moat wall", wall=True),
+    Quantity("max_impact_force", "N", "maximum impact force on the moat wall", wall=True),
+    Quantity("n_impacts", "1", "number of impacts on the moat wall", dtype=np.int64,
+             wall=True),
+    Quantity("impact_energy", "J", "energy dissipated by the moat-wall contacts", wall=True),
+)
+"""The peaks of every member, over every step of the run, in Result's order."""
+
+HISTORIES: tuple[Quantity, ...] = (
+    Quantity("isolator_disp", "m",
+             "isolator displacement (isolation level relative to the ground)"),
+    Quantity("total_accel", "m s-2", "total (absolute) floor acceleration", "floor"),
+    Quantity("impact_force", "N", "impact force on the moat wall (0 out of contact)",
+             wall=True),
+    Quantity("indentation", "m", "indentation at the moat wall (0 out of contact)",
+             wall=True),
+)
+"""The time histories kept for the members an engine.History asks for, against time."""
+
+PEAK_NAMES = tuple(q.name for q in PEAKS)
+HISTORY_NAMES = tuple(q.name for q in HISTORIES)
+
+
+def quantity(name: str) -> Quantity:
+    """The declaration of a peak or history by name."""
+    for q in (*PEAKS, *HISTORIES):
+        if q.name == name:
+            return q
+    raise KeyError(name)
+
+
+def level_axes(n_levels: int) -> dict[str, tuple[np.ndarray, str, str]]:
+    """The trailing axes of the results, for labelling: "floor" and "story" -> (values,
+    units, long_name), for a building of n_levels levels."""
+    top = n_levels - 1
+    return {"floor": (np.arange(n_levels), "1",
+                      f"level (0 = isolation level, {top} = roof)"),
+            "story": (np.arange(1, n_levels), "1",
+                      "story (story i joins level i-1 to level i)")}
+
+
+def empty_peaks(size: int, n_levels: int) -> dict[str, np.ndarray]:
+    """Zeroed (size, ...) arrays of every peak, for a building of n_levels levels."""
+    return {q.name: np.zeros((size, *q.trailing_shape(n_levels)), dtype=q.dtype)
+            for q in PEAKS}
+
+
+@dataclass(frozen=True)
+class History:
+    """Ask for time histories of some members: batch indices and every how many steps."""
+
+    members: Sequence[int]
+    every: int = 1
+
+
+@dataclass
+class Result:
+    """Peaks per member, in batch order (SI units, declared in PEAKS), and optional histories.
+
+    peak_total_accel (B, levels) m/s^2, peak_interstory_drift (B, stories) m,
+    peak_isolator_disp (B,) m, max_indentation (B,) m, max_impact_force (B,) N, n_impacts (B,),
+    impact_energy (B,) J: work done on the wall contacts, i.e. energy dissipated by impacts
+    once contacts close; dt: the integration step (s); history: None or a dict of time (T,) s,
+    members (M,) and every HISTORIES quantity, (M, T) or (M, T, levels).
+    """
+
+    peak_total_accel: np.ndarray
+    peak_interstory_drift: np.ndarray
+    peak_isolator_disp: np.ndarray
+    max_indentation: np.ndarray
+    max_impact_force: np.ndarray
+    n_impacts: np.ndarray
+    impact_energy: np.ndarray
+    dt: float
+    history: dict | None = None
+
+    def peaks(self) -> dict[str, np.ndarray]:
+        """Peak name -> array, in PEAKS order."""
+        return {name: getattr(self, name) for name in PEAK_NAMES}
+
+
+@dataclass
+class TwoBodyResult:
+    """Per member (B,): peak_force N, peak_indentation m, cor (measured, -v_out / v),
+    dissipated_energy J (kinetic energy lost, 1/2 m_eff (v^2 - v_out^2)), hysteresis_area J
+    (closed integral of F d(delta)), expected_energy_loss J (Eq. 5 with the target COR),
+    dt s; histories (B, T): indentation m, force N (zero after separation)."""
+
+    peak_force: np.ndarray
+    peak_indentation: np.ndarray
+    cor: np.ndarray
+    dissipated_energy: np.ndarray
+    hysteresis_area: np.ndarray
+    expected_energy_loss: np.ndarray
+    dt: np.ndarray
+    indentation: np.ndarray
+    force: np.ndarray

@@ -1,0 +1,134 @@
+"""The engine's entry points: `simulate` (B isolated buildings under one record, pounding on
+their moat walls) and `two_body` (B two-body impacts, paper sections 3.2 and 3.4), and the
+public stability limit `stable_dt`.
+
+They check the input, pick the time loop (engine/backends.py: the compiled kernel by default,
+the NumPy reference on request) and hand it arrays; the scheme itself is in scheme.py, the
+loops in loops/, what they return is declared in results.py.
+"""
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+
+import numpy as np
+
+from .backends import resolve_backend, time_loop
+from .building import Building, building_arrays
+from .errors import EngineError, UnstableTimeStep
+from .impact import NONE, Contact
+from .results import History, Result, TwoBodyResult
+from .scheme import (
+    DEFAULT_DT,
+    INDENTATION_BOUND,
+    checked_record,
+    checked_scale,
+    stability_limit,
+)
+
+DEFAULT_STEPS_PER_CONTACT = 4000
+
+
+def stable_dt(contact: Contact, building: Building | Sequence[Building] = Building(),
+              indentation_bound: float = INDENTATION_BOUND) -> np.ndarray:
+    """(B,) central-difference stability limit (s) at the stiffest state each member can reach
+    (scheme.stability_limit): isolator at k1, the contact's largest tangent stiffness."""
+    return stability_limit(building_arrays(building, len(contact)), contact, indentation_bound)
+
+
+def simulate(accel, accel_dt: float, contact: Contact,
+             building: Building | Sequence[Building] = Building(), dt: float = DEFAULT_DT,
+             history: History | None = None,
+             progress: Callable[[int, int], None] | None = None,
+             backend: str | None = None, scale=None) -> Result:
+    """Integrate B isolated buildings under one ground motion, pounding on their moat walls.
+
+    accel: (N,) ground acceleration in m/s^2 every accel_dt s, linearly interpolated onto dt;
+    contact: a Contact of B members; building: one Building or a sequence of B of them;
+    dt: integration step (s), refused above the stability limit;
+    history: record time histories for some members every `every` steps: the result's history
+    dict holds time (T,) s, members (M,), isolator_disp (M, T) m, total_accel (M, T, levels)
+    m/s^2, impact_force (M, T) N, indentation (M, T) m (results.HISTORIES);
+    progress: called as progress(step, n_steps) about every 1% of the run;
+    backend: "numba" (the compiled kernel), "numpy" (the vectorised reference loop) or None:
+    numba when it can be imported, else numpy with a one-line notice;
+    scale: None or (B,) positive factors (-) multiplying the ground acceleration member by
+    member, so that one call runs one record at several intensities (e.g. the search for the
+    factor that brings a record to a design displacement). None is 1 for every member, and a
+    factor of 1 leaves a member's result bit for bit unchanged.
+    Returns a Result: the peaks of results.PEAKS, (B, ...) in batch order.
+    """
+    if not isinstance(contact, Contact):
+        raise EngineError("contact must be an engine.Contact")
+    size = len(contact)
+    if size == 0:
+        raise EngineError("contact: empty batch")
+    if not dt > 0:
+        raise EngineError(f"dt must be positive, got {dt}")
+    arrays = building_arrays(building, size)
+    limit = stability_limit(arrays, contact)
+    worst = int(np.argmin(limit))
+    if dt >= limit[worst]:
+        raise UnstableTimeStep(
+            f"dt = {dt:g} s is unstable: the central-difference limit is {limit[worst]:.4g} s "
+            f"(member {worst}, {contact.law_names[worst]} contact); use dt < {limit[worst]:.4g} s")
+    accel, n_steps = checked_record(accel, accel_dt, dt)
+    scale = checked_scale(scale, size)
+    if history is not None:
+        members = np.asarray(history.members, dtype=int)
+        if members.ndim != 1 or np.any((members < -size) | (members >= size)):
+            raise EngineError(f"history.members must index the batch of {size}, got "
+                              f"{history.members!r}")
+        if not (isinstance(history.every, (int, np.integer)) and history.every >= 1):
+            raise EngineError(f"history.every must be a positive integer, got {history.every!r}")
+
+    loop = time_loop(resolve_backend(backend))
+    ag = loop.ground_motion(accel, float(accel_dt), float(dt), n_steps)
+    peaks, hist = loop.run_simulation(ag, dt, arrays, contact, history, progress, scale)
+    return Result(**peaks, dt=dt, history=hist)
+
+
+def contact_time_scale(m_eff, v, k, n):
+    """Peak indentation (m) of an undamped power-law contact, times 3 / v: > the contact time."""
+    delta_max = ((n + 1) * m_eff * v**2 / (2 * k)) ** (1 / (n + 1))
+    return 3 * delta_max / v
+
+
+def two_body(m1, m2, v, contact: Contact, steps_per_contact: int = DEFAULT_STEPS_PER_CONTACT,
+             max_contacts: float = 20.0, backend: str | None = None) -> TwoBodyResult:
+    """Collide B pairs of free rigid bodies through their impact laws (paper 3.2, 3.4).
+
+    Body 1 (m1) approaches body 2 (m2) at relative velocity v. Only the relative coordinate
+    matters: m_eff delta'' = -F(delta, delta'), m_eff = m1 m2 / (m1 + m2), delta(0) = 0,
+    delta'(0) = v. It is integrated with the same central differences as the building (the
+    dashpot on the central rate, solved exactly), with a step per member sized to its own
+    contact duration, so members of very different stiffness finish in about the same number
+    of steps.
+
+    m1, m2 kg and v m/s broadcast to (B,); contact: B members whose gap is ignored (the bodies
+    touch at t = 0) and whose m_eff must equal m1 m2 / (m1 + m2), since the laws' damping
+    constants were built with it. backend: as in `simulate`.
+    """
+    m1, m2, v = (np.asarray(x, dtype=float) for x in (m1, m2, v))
+    m1, m2, v = (np.broadcast_to(x, (len(contact),)) for x in (m1, m2, v))
+    for name, x in (("m1", m1), ("m2", m2), ("v", v)):
+        if np.any(~(x > 0)):
+            raise EngineError(f"{name} must be positive, got {x}")
+    if np.any(contact.law == NONE):
+        raise EngineError("two_body needs an impact law for every member, got 'none'")
+    m_eff = m1 * m2 / (m1 + m2)
+    if not np.allclose(contact.m_eff, m_eff, rtol=1e-12):
+        raise EngineError("contact.m_eff must equal m1 m2 / (m1 + m2) for each member")
+
+    # The crush limit of a bumper only shortens the contact; the power law bounds its time.
+    dt = contact_time_scale(m_eff, v, contact.k, contact.n) / steps_per_contact
+    max_steps = int(max_contacts * steps_per_contact)
+    expected_loss = 0.5 * m_eff * (1 - contact.cor**2) * v**2
+    loop = time_loop(resolve_backend(backend))
+    steps, out, deltas, forces = loop.run_two_body(contact, v, dt, m_eff, max_steps)
+    if steps is None:
+        raise EngineError(f"two_body: contact did not end within {max_steps} steps")
+    v_out = -out[:, 1]
+    return TwoBodyResult(
+        peak_force=out[:, 2], peak_indentation=out[:, 3], cor=v_out / v,
+        dissipated_energy=0.5 * m_eff * (v**2 - v_out**2), hysteresis_area=out[:, 0],
+        expected_energy_loss=expected_loss, dt=dt, indentation=deltas, force=forces)
