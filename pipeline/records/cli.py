@@ -1,0 +1,52 @@
+"""The command line, ``python -m pipeline.records``: where the paper's records are found, then
+the embedded library (:func:`main`)."""
+
+from __future__ import annotations
+
+import argparse
+
+from .library import SETS, library_index, list_records
+from .paper import PAPER_RECORDS, paper_records
+from .record import RECORDS_DIR_ENV, RecordError
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``python -m pipeline.records``: the paper's records first, then the library listing."""
+    parser = argparse.ArgumentParser(
+        prog="python -m pipeline.records",
+        description="Where the paper's records are found (records directory, built-in data, "
+                    "library or stand-in), then the embedded ground-motion library.")
+    parser.add_argument("--records-dir", help=f"folder of AT2 files (default: ${RECORDS_DIR_ENV})")
+    parser.add_argument("--paper-only", action="store_true",
+                        help="list the paper's records only, not the library")
+    parser.add_argument("--set", choices=SETS, dest="record_set", help="library set to list")
+    parser.add_argument("--event", help="event name substring (case-insensitive)")
+    parser.add_argument("--pga-min", type=float, help="lowest PGA to list, g")
+    parser.add_argument("--pga-max", type=float, help="highest PGA to list, g")
+    args = parser.parse_args(argv)
+    filters = (args.record_set, args.event, args.pga_min, args.pga_max)
+    if args.paper_only and any(f is not None for f in filters):
+        parser.error("--set, --event, --pga-min and --pga-max filter the library listing, "
+                     "which --paper-only leaves out")
+    try:
+        papers = paper_records(args.records_dir)
+        entries = [] if args.paper_only else list_records(*filters)
+    except RecordError as exc:
+        parser.error(str(exc))
+    print("The paper's records (Table 1):")
+    print(f"{'paper key':17} {'found in':12} {'record':40} {'PGA g':>6} {'paper':>6} "
+          f"{'dt s':>7} {'dur s':>7}")
+    for key, rec in zip(PAPER_RECORDS, papers, strict=True):
+        print(f"{key:17} {rec.found_in:12} {rec.name:40} {rec.pga_g:6.3f} "
+              f"{PAPER_RECORDS[key].pga_g:6.3f} {rec.dt:7.4f} {rec.duration:7.2f}")
+    for key, rec in zip(PAPER_RECORDS, papers, strict=True):
+        print(f"  {key}: {rec.note}")
+    if args.paper_only:
+        return 0
+    print("\nThe embedded library:")
+    print(f"{'name':46} {'selector':13} {'set':19} {'PGA g':>6} {'dt s':>7} {'dur s':>7}")
+    for e in entries:
+        print(f"{e.name:46} {e.selector:13} {e.set:19} {e.pga_g:6.3f} {e.dt:7.4f} "
+              f"{e.duration:7.2f}")
+    print(f"({len(entries)} of {len(library_index())} library records)")
+    return 0

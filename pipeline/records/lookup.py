@@ -1,0 +1,122 @@
+"""One entry point for records given by name, selector, paper key or path: :func:`load_record`
+(with the ``name*factor`` scaling syntax) and :func:`resolve_records` for lists of them."""
+
+from __future__ import annotations
+
+import difflib
+import os
+import re
+from pathlib import Path
+
+from .at2 import read_at2
+from .library import library_by_name, library_by_rsn, library_index, load_library
+from .paper import PAPER_RECORDS, builtin_by_name, paper_record
+from .record import UNITS_HELP, Record, RecordError, norm_component, records_directory, scale_factor
+from .text import read_text
+
+TEXT_SUFFIXES = (".txt", ".csv", ".dat", ".tsv", ".acc")
+"""File-name endings that make :func:`load_record` take a string for a path, like ``.AT2``.
+Any path that does not end in ``.AT2`` is read as a text record, which needs units."""
+
+# "<record>*<factor>": a record scaled by a factor, wherever records are given by name.
+_SCALED_RE = re.compile(r"^(?P<record>.+?)\s*\*\s*(?P<factor>[^*]+?)\s*$")
+_SELECTOR_RE = re.compile(r"^\s*RSN\s*(\d+)\s*:\s*(\S+)\s*$", re.IGNORECASE)
+
+
+def load_record(name_or_path: str | os.PathLike,
+                records_dir: str | os.PathLike | None = None, units: str | None = None,
+                dt: float | None = None) -> Record:
+    """A record by library name, ``RSN<n>:<component>`` selector, paper key, AT2 or text path;
+    any of them followed by ``*<factor>`` (e.g. ``kobe*1.5``) is that record scaled
+    (:meth:`Record.scaled`).
+
+    A bare file name that is not found as given is looked up in ``records_dir``. Selectors of
+    the paper's records (e.g. ``RSN1086:090``) resolve like :func:`paper_record`; the built-in
+    records' names (``Kobe-KJMA-000``) give the built-in data. A path not ending in ``.AT2``
+    (``.txt``, ``.csv``, ``.dat``, ...) is a text record, read by :func:`read_text` with
+    ``units`` (required) and ``dt`` in s (required for one column). An AT2 file states its
+    own units and DT, so ``units``/``dt`` are refused for it, as they are for names.
+    """
+    text = os.fspath(name_or_path)
+    scaled = None if isinstance(name_or_path, os.PathLike) else _SCALED_RE.match(text)
+    if scaled and not Path(text).exists():
+        record = load_record(scaled["record"], records_dir, units, dt)
+        return record.scaled(scale_factor(scaled["factor"], scaled["record"]))
+    is_path = isinstance(name_or_path, os.PathLike) or os.sep in text \
+        or Path(text).suffix.lower() in (".at2", *TEXT_SUFFIXES) or Path(text).is_file()
+    if is_path:
+        path = Path(text)
+        directory = records_directory(records_dir)
+        if not path.exists() and directory is not None and (directory / path).exists():
+            path = directory / path
+        if path.suffix.lower() == ".at2":
+            if units is not None or dt is not None:
+                raise RecordError(f"{path}: an AT2 file states its own units and DT; "
+                                  "units/dt are for text files only")
+            return read_at2(path)
+        if units is None:
+            raise RecordError(f"{path}: a text record needs its acceleration units "
+                              f"({UNITS_HELP}): pass units (and dt in s for one column)")
+        return read_text(path, units, dt)
+    if units is not None or dt is not None:
+        raise RecordError(f"{text!r}: units/dt apply to text files only, not to record names")
+    if text.lower() in PAPER_RECORDS:
+        return paper_record(text.lower(), records_dir)
+    m = _SELECTOR_RE.match(text)
+    if m:
+        rsn, component = int(m.group(1)), norm_component(m.group(2))
+        for spec in PAPER_RECORDS.values():
+            if (spec.rsn, spec.component) == (rsn, component):
+                return paper_record(spec.key, records_dir)
+        info = library_by_rsn(rsn, component)
+        if info is None:
+            have = [e.selector for e in library_index() if e.rsn == rsn]
+            raise RecordError(f"{text}: no such record in the library"
+                              + (f"; RSN {rsn} has {', '.join(have)}" if have else ""))
+        return load_library(info)
+    by_name = library_by_name()
+    if text.lower() in by_name:
+        return load_library(by_name[text.lower()])
+    builtin = builtin_by_name()
+    if text.lower() in builtin:
+        return builtin[text.lower()]
+    names = {k: e.name for k, e in by_name.items()} | {k: r.name for k, r in builtin.items()}
+    close = difflib.get_close_matches(text.lower(), [*names, *PAPER_RECORDS], n=4, cutoff=0.5)
+    hint = f"; did you mean {', '.join(names.get(c, c) for c in close)}?" \
+        if close else "; run `python -m pipeline.records` for the list"
+    raise RecordError(f"{text!r}: unknown record name{hint}")
+
+
+def resolve_records(records, records_dir=None) -> tuple[list[Record], list[str]]:
+    """Records given by name, path or object, and the names they take in an archive's record
+    coordinate (a paper record is named by its key, others by their name).
+
+    records: one or a list of paper keys, library names, ``RSN<n>:<component>`` selectors,
+    AT2 paths, each optionally scaled as ``name*factor`` (see :func:`load_record`), or
+    :class:`Record` objects. Raises
+    :class:`RecordError` (message starting "records:") for an empty list, a record that
+    cannot be found or read, or one given twice.
+    """
+    if isinstance(records, (str, os.PathLike)) or hasattr(records, "accel"):
+        records = [records]
+    try:
+        records = list(records)
+    except TypeError:
+        raise RecordError(f"records must be a name, path, Record or a list of them, "
+                          f"got {records!r}") from None
+    if not records:
+        raise RecordError("records is empty")
+    loaded = []
+    for item in records:
+        if hasattr(item, "accel") and hasattr(item, "dt"):
+            loaded.append(item)
+            continue
+        try:
+            loaded.append(load_record(item, records_dir))
+        except RecordError as err:
+            raise RecordError(f"records: {err}") from err
+    names = [getattr(rec, "paper_key", None) or str(rec.name) for rec in loaded]
+    repeated = sorted({n for n in names if names.count(n) > 1})
+    if repeated:
+        raise RecordError(f"records: each record must appear once, repeated {repeated}")
+    return loaded, names

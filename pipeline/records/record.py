@@ -1,0 +1,204 @@
+"""The :class:`Record` type and what every reader of records shares.
+
+Units (``ACCEL_UNITS``, :func:`canonical_units`, :func:`to_si`), the errors and warnings of the
+record layer, the spelling of component labels, the low-level reading of a record file (lines,
+numbers, the RSN in a file name) and the user's records directory (``$BUMPERS_RECORDS_DIR``).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import os
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from engine.units import G  # m/s^2 in 1 g (SPEC: 9.81), the project's one value
+
+RECORDS_DIR_ENV = "BUMPERS_RECORDS_DIR"
+FOUND_IN = ("records_dir", "built-in", "library", "stand-in")
+
+ACCEL_UNITS = {"g": (G, 1.0), "m/s^2": (1.0, 1.0), "cm/s^2": (1.0, 100.0),
+               "mm/s^2": (1.0, 1000.0)}
+"""Acceleration units understood, each as (multiplier, divisor) to m/s^2: a value x in these
+units is ``x * multiplier / divisor`` m/s^2 (a division by 100 rounds better than * 0.01).
+Spellings such as ``CM/S/S``, ``CM/SEC/SEC``, ``cm/s2``, ``gal`` and ``M/S**2`` are accepted."""
+
+UNITS_HELP = "g, cm/s^2 (gal, CM/S/S), m/s^2 or mm/s^2"
+"""The accepted acceleration units, as error messages list them."""
+
+NUMBER_RE = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[Ee][+-]?\d+)?", re.ASCII)
+"""One number as record files write it (``-.1416764E-03``, ``12``, ``0.005``)."""
+
+
+class StandInWarning(UserWarning):
+    """A paper record was not found and a stand-in is used: said when the record is resolved,
+    before any simulation; silence it with ``warnings.simplefilter("ignore", StandInWarning)``."""
+
+
+class RecordError(ValueError):
+    """A record cannot be read, found or trusted. The message names the file (and line)."""
+
+
+def norm_component(comp: str) -> str:
+    """'0' -> '000', '90' -> '090', 'e' -> 'E': one spelling per component label."""
+    comp = comp.strip().upper()
+    return comp.zfill(3) if comp.isdigit() else comp
+
+
+def normalize(text: str) -> str:
+    """Lower-case letters and digits only: 'Sylmar - Converter Sta' -> 'sylmarconvertersta'."""
+    return re.sub(r"[^a-z0-9]", "", text.lower())
+
+
+def spells_non_finite(token: str) -> bool:
+    """Whether a token that is not a number spells NaN or infinity ('nan', '-Inf', 'INFINITY')."""
+    return normalize(token) in {"nan", "inf", "infinity"}
+
+
+def canonical_units(text: str) -> str | None:
+    """A key of :data:`ACCEL_UNITS` for an acceleration units spelling, else None.
+
+    'G' -> 'g'; 'GAL', 'CM/S/S', 'CM/SEC/SEC', 'cm/s^2', 'CM/S2', 'cm s-2' -> 'cm/s^2'; likewise
+    for m and mm. Velocities ('CM/S'), lengths and anything else give None.
+    """
+    t = re.sub(r"\s+", "", text.lower()).replace("**", "^").replace("sec", "s").replace("^", "")
+    if t == "g":
+        return "g"
+    if t in ("gal", "gals"):
+        return "cm/s^2"
+    m = re.fullmatch(r"(mm|cm|m)(?:/s2|/s/s|s-2|[.*]s-2|/\(s\*?s\))", t)
+    return f"{m.group(1)}/s^2" if m else None
+
+
+def to_si(values: np.ndarray, units: str) -> np.ndarray:
+    """Accelerations in ``units`` (a key of :data:`ACCEL_UNITS`) to m/s^2."""
+    multiplier, divisor = ACCEL_UNITS[units]
+    accel = values * multiplier
+    return accel / divisor if divisor != 1.0 else accel
+
+
+def read_lines(path: Path) -> list[str]:
+    """A record file's lines (UTF-8, else Latin-1); RecordError if it cannot be read."""
+    try:
+        raw = path.read_bytes()
+    except FileNotFoundError:
+        raise RecordError(f"{path}: no such file") from None
+    except OSError as exc:
+        raise RecordError(f"{path}: cannot read ({exc.strerror})") from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError:
+        text = raw.decode("latin-1")
+    # Only CR/LF count as line ends, so reported line numbers match what editors show.
+    return text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
+
+
+def rsn_from_name(path: Path) -> int | None:
+    """The record sequence number of an ``RSN<n>`` file name, else None."""
+    m = re.search(r"RSN(\d+)", path.name, re.IGNORECASE)
+    return int(m.group(1)) if m else None
+
+
+def records_directory(records_dir: str | os.PathLike | None) -> Path | None:
+    """The user's records directory: the argument, else $BUMPERS_RECORDS_DIR, else None."""
+    if records_dir is None:
+        records_dir = os.environ.get(RECORDS_DIR_ENV) or None
+        origin = f"${RECORDS_DIR_ENV}"
+    else:
+        origin = "records_dir"
+    if records_dir is None:
+        return None
+    path = Path(records_dir)
+    if not path.is_dir():
+        raise RecordError(f"{path}: records directory ({origin}) does not exist")
+    return path
+
+
+def scale_factor(factor, what: str) -> float:
+    """A record's scale factor as a float, or RecordError."""
+    try:
+        value = float(factor)
+    except (TypeError, ValueError):
+        raise RecordError(f"{what}: scale factor must be a number, got {factor!r}") from None
+    if not (math.isfinite(value) and value > 0):
+        raise RecordError(f"{what}: scale factor must be positive and finite, got {factor!r}")
+    return value
+
+
+@dataclass(frozen=True, eq=False)
+class Record:
+    """One horizontal ground-acceleration component, sampled at a constant step.
+
+    ``accel`` is in m/s^2 (read-only float64 array, sample i at t = i*dt), ``dt`` in s,
+    ``pga`` in m/s^2. ``found_in``/``note``/``paper_key`` are set only for the paper's
+    records (see :func:`paper_record`). ``scale`` (-) is the factor the original record was
+    multiplied by (1 unscaled; see :meth:`scaled`), ``unscaled_pga`` its PGA before (m/s^2).
+    """
+
+    name: str
+    rsn: int | None
+    event: str
+    station: str
+    component: str
+    dt: float
+    accel: np.ndarray = field(repr=False)
+    source: str
+    found_in: str | None = None
+    note: str = ""
+    paper_key: str | None = None
+    scale: float = 1.0
+    unscaled_pga: float | None = None
+    pga: float = field(init=False)
+
+    def __post_init__(self):
+        accel = np.array(self.accel, dtype=np.float64)
+        if accel.ndim != 1 or accel.size == 0:
+            raise RecordError(f"{self.source}: acceleration must be a non-empty 1-D array")
+        if not np.all(np.isfinite(accel)):
+            raise RecordError(f"{self.source}: acceleration has NaN or infinite values")
+        if not (math.isfinite(self.dt) and self.dt > 0):
+            raise RecordError(f"{self.source}: DT must be a positive number, got {self.dt!r}")
+        # A frozen record must not change behind a simulation's back, nor can a cached one.
+        accel.flags.writeable = False
+        object.__setattr__(self, "accel", accel)
+        object.__setattr__(self, "dt", float(self.dt))
+        object.__setattr__(self, "pga", float(np.max(np.abs(accel))))
+        if not (math.isfinite(self.scale) and self.scale > 0):
+            raise RecordError(f"{self.source}: scale must be positive, got {self.scale!r}")
+        if self.unscaled_pga is None:
+            object.__setattr__(self, "unscaled_pga", self.pga / self.scale)
+
+    def scaled(self, factor: float) -> Record:
+        """This record times `factor` (-): accel * factor, named ``<name>*<factor>`` (the
+        factor as given, shortest form), with ``scale`` and ``unscaled_pga`` kept, so that
+        two scales of one record are two archive coordinates. Raises RecordError for a
+        factor that is not a positive finite number."""
+        factor = scale_factor(factor, self.name)
+        suffix = f"*{factor!r}"
+        return dataclasses.replace(
+            self, accel=self.accel * factor, name=self.name + suffix,
+            paper_key=None if self.paper_key is None else self.paper_key + suffix,
+            scale=self.scale * factor, unscaled_pga=self.unscaled_pga)
+
+    @property
+    def pga_g(self) -> float:
+        """Peak ground acceleration in g."""
+        return self.pga / G
+
+    @property
+    def npts(self) -> int:
+        return int(self.accel.size)
+
+    @property
+    def duration(self) -> float:
+        """Record length npts*dt in s (the PEER convention, e.g. 7500 x 0.02 s = 150 s)."""
+        return self.npts * self.dt
+
+    @property
+    def time(self) -> np.ndarray:
+        """Sample times in s, starting at 0."""
+        return np.arange(self.npts) * self.dt
