@@ -2,10 +2,11 @@
 
 A suite of records is comparable record by record only at a common intensity. Here the
 intensity is the response the moat wall cares about: each record is scaled so that the
-building without wall reaches a chosen peak isolator displacement D (default 0.30 m; the
-paper's gaps of 15-45 cm are then 0.5-1.5 D). The bilinear isolator makes the peak a nonlinear
-function of the factor, so the factor is found by search, batched in the engine: every pass is
-one `engine.simulate` call per record whose members are the trial factors (`scale=`), first a
+building without wall reaches a chosen peak isolator displacement D (default
+DEFAULT_DISPLACEMENT, 0.30 m: the paper's gaps of 15-45 cm are then 0.5-1.5 D; factors within
+DEFAULT_LIMITS, 0.2-5). The bilinear isolator makes the peak a nonlinear function of the
+factor, so the factor is found by search, batched in the engine: every pass is one
+`engine.simulate` call per record whose members are the trial factors (`scale=`), first a
 geometric grid over the allowed range, then finer grids inside the bracket of the first
 crossing. The smallest factor that reaches D is chosen: the peak need not grow monotonically
 with the factor (yielding can shift the response), and the smallest is the intensity at which
@@ -26,6 +27,9 @@ FIRST_PASS = 33  # geometric grid over the limits: neighbours ~10% apart for lim
 REFINE = 17  # trial factors per refining pass, inside the current bracket
 BRACKET = 1e-5  # stop refining when the bracket is this narrow (relative)
 MAX_PASSES = 12
+# The defaults, declared once (pipeline.scale_to_displacement and the studies read them here).
+DEFAULT_DISPLACEMENT = 0.30  # m: design displacement D (the paper's gaps 15-45 cm = 0.5-1.5 D)
+DEFAULT_LIMITS = (0.2, 5.0)  # allowed scale factors (lowest, highest)
 
 
 @dataclass(frozen=True)
@@ -47,8 +51,9 @@ class ScaledSuite:
     limits: tuple[float, float]
 
 
-def scale_to_displacement(records, displacement: float = 0.30,
-                          limits: tuple[float, float] = (0.2, 5.0), *, dt: float | None = None,
+def scale_to_displacement(records, displacement: float = DEFAULT_DISPLACEMENT,
+                          limits: tuple[float, float] = DEFAULT_LIMITS, *,
+                          dt: float | None = None,
                           building=None, records_dir=None, tolerance: float = 1e-3,
                           quiet: bool = True) -> ScaledSuite:
     """Scale every record so that the building without wall reaches `displacement` (m).

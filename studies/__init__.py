@@ -1,7 +1,23 @@
-"""One recipe per figure of the paper, each `python -m studies.NAME [--quick] [--replot]`,
-and `studies.sweep`, the general command line of pipeline.sweep.
+"""Every command a user runs: one recipe per figure of the paper, `python -m studies.NAME
+[--quick] [--replot]`, two studies beyond the paper (suite, design) and `studies.sweep`, the
+general command line of pipeline.sweep. They share one set of command-line conventions
+(_recipe.py), which is why the general sweep lives here beside the recipes.
 
-_recipe.py holds what every recipe shares (command line, archive, figure, paper check),
-_plot.py the figure style, _peaks_vs_gap.py the figure and checks of Figs. 16-21. Recipes
-compute no physics: they choose grids, call the pipeline or the engine, and draw.
+Recipes, one module each, none importing another:
+    impact_validation (Fig. 6), damping_calibration (Eq. 9), practical_example (Figs. 9-13),
+    gap_size (Figs. 14-15), thickness (Fig. 16), strain (Fig. 18), n_bumpers (Figs. 19-20),
+    wall_stiffness (Fig. 21), restitution (Fig. 22); suite and design (beyond the paper).
+Shared modules (underscored, imported by the recipes, never run):
+    _paper.py          the paper's fixed choices, each with where the paper states it: the
+                       practical bumper (thickness, count, strain, wall k_w), the 0.9 gap rule,
+                       the paper's gaps, the gap range of Figs. 14-21, Fig. 19's counts,
+                       Fig. 21's walls, Fig. 6's test. Values the paper leaves open stay in the
+                       recipe that chooses them (its `chosen` text); the model's constants stay
+                       in engine.impact (e.g. laws.rubber_bumper.EQ9_*, the laws' PARAMETERS).
+    _recipe.py         what every recipe shares: command line, archive, figure, paper check.
+    _plot.py           the figure style and record labels.
+    _peaks_vs_gap.py   the gap grid, figure and check helpers of Figs. 16-21.
+    _suite_records.py  the scaled record suite of suite and design (`--records all`).
+Recipes compute no physics: they choose grids, call the pipeline (pipeline.sweep,
+pipeline.histories, pipeline.scaling, pipeline.intensity) or the engine, label and draw.
 """

@@ -1,8 +1,9 @@
 """Figs. 16, 18, 19, 21: peak responses against the seismic gap width, one line per value of
 the varied bumper parameter, the building without bumpers (bare wall) dashed.
 
-Shared by the thickness, strain, n_bumpers and wall_stiffness recipes: their gap grid, their
-figure (rows: peak floor acceleration in g, the largest over the floors, and peak interstory
+Shared by the thickness, strain, n_bumpers and wall_stiffness recipes (and gap_size, Figs.
+14-15, for the gap grid): their gap grid over the paper's range (studies._paper), their figure
+(rows: peak floor acceleration in g, the largest over the floors, and peak interstory
 deflection in cm, the largest over the stories; columns: records) and the envelopes their
 checks compare.
 """
@@ -13,16 +14,19 @@ from collections.abc import Callable
 
 import numpy as np
 
-from engine.units import CM, G
+from engine.units import CM, KN_PER_MM, G
 
+from ._paper import GAP_RANGE_CM
 from ._plot import plt, record_label
 
 MARKERS = ("o", "s", "^", "D", "v", "P")
 
 
 def gaps(quick: bool) -> np.ndarray:
-    """m: 15 to 45 cm every cm (every 10 cm with --quick), as in Figs. 14-15."""
-    return np.round(np.arange(15, 46, 10 if quick else 1) * CM, 4)
+    """m: the paper's 15 to 45 cm (GAP_RANGE_CM) every cm (every 10 cm with --quick), as in
+    Figs. 14-21."""
+    low, high = GAP_RANGE_CM
+    return np.round(np.arange(low, high + 1, 10 if quick else 1) * CM, 4)
 
 
 def accel_g(ds, prefix: str = ""):
@@ -40,11 +44,13 @@ def spread(da, dim: str):
     return (da.max(dim) - da.min(dim)) / da.mean(dim)
 
 
-def plot(ds, dim: str, label: Callable[[float], str], title: str,
+def plot_vs_gap(ds, dim: str, label: Callable[[float], str], title: str,
          indentation_limit: float | None = None):
     """Rows: peak floor acceleration (g), peak interstory deflection (cm) and, when
     indentation_limit (m) is given, maximum indentation (cm) with that limit drawn; columns:
     records; one line per value of `dim`, the no-bumper baseline dashed."""
+    from pipeline.grid import BASELINE
+
     rows = [("Peak floor\nacceleration (g)", accel_g, True),
             ("Peak interstory\ndeflection (cm)", drift_cm, True)]
     if indentation_limit is not None:
@@ -77,7 +83,8 @@ def plot(ds, dim: str, label: Callable[[float], str], title: str,
         for handle, text in zip(*ax.get_legend_handles_labels(), strict=True):
             legend.setdefault(text, handle)
     note = ("Acceleration: largest over the floors; deflection: largest over the stories; "
-            "dashed: no bumpers (bare wall, 2500 kN/mm, at the full gap)")
+            f"dashed: no bumpers (bare wall, {BASELINE['wall_k'] / KN_PER_MM:g} kN/mm, at the "
+            "full gap)")
     width = int(15 * fig.get_figwidth())  # characters per line at this font size
     fig.suptitle(textwrap.fill(title, width) + "\n" + textwrap.fill(note, width), fontsize=9)
     fig.tight_layout(rect=(0, 0.3 / height, 1, 1))

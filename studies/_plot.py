@@ -10,12 +10,8 @@ import matplotlib
 matplotlib.use("Agg")  # recipes draw files, never windows
 import matplotlib.pyplot as plt  # noqa: E402
 
-RECORD_LABELS = {
-    "kobe": "Kobe 1995 (KJMA 000)",
-    "sylmar_converter": "Northridge 1994 (Sylmar Converter 142)",
-    "olive_view": "Northridge 1994 (Olive View 090)",
-    "pacoima": "San Fernando 1971 (Pacoima Dam 164)",
-}
+from pipeline.records import paper_label  # noqa: E402
+
 FLOOR_LABELS = ["Base (isolation level)", "1st floor", "2nd floor", "3rd floor", "Roof"]
 STORY_LABELS = ["1st story", "2nd story", "3rd story", "4th story"]
 
@@ -29,7 +25,7 @@ plt.rcParams.update({
 
 def record_label(ds, record: str) -> str:
     """Readable name of a record coordinate value; a stand-in names the record used."""
-    label = RECORD_LABELS.get(record, record)
+    label = paper_label(record)
     if ds.attrs.get(f"record_{record}_found_in") == "stand-in":
         used = {r["name"]: r.get("record_name", "?") for r in json.loads(ds.attrs["records"])}
         label += f"\n[stand-in: {used.get(record, '?')}]"

@@ -22,7 +22,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
-PAPER_RECORDS = ("kobe", "sylmar_converter", "olive_view", "pacoima")
+from pipeline.records import PAPER_KEYS
 
 
 @dataclass(frozen=True)
@@ -41,7 +41,7 @@ class Recipe:
     plot: Callable
     check: Callable
     chosen: str = ""
-    records: tuple[str, ...] | None = PAPER_RECORDS
+    records: tuple[str, ...] | None = PAPER_KEYS
     options: Callable | None = None
 
     def parser(self) -> argparse.ArgumentParser:

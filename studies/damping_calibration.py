@@ -3,13 +3,21 @@
 For every (COR, m_eff, v_imp) of a grid, a1 in C_imp = a1 (1 - COR^2) (Eq. 8) is found such
 that the hysteresis area of a two-body impact through a rubber bumper equals the kinetic energy
 loss of Eq. 5; then C_imp = c0 (1 - COR^2) / (COR^p1 m_eff^p2 v_imp^p3) is fitted in log space
-and set beside the paper's c0 = 1.55, p1 = 0.7076, p2 = 0.0025, p3 = 0.9755. The numerics
-(batched bisection, least squares) live in engine.damping_fit; this recipe only chooses the
-grid and the bumper, labels the results and draws them.
+and set beside the paper's c0 = 1.55, p1 = 0.7076, p2 = 0.0025, p3 = 0.9755 (read from the
+bumper law, engine.impact.laws.rubber_bumper.EQ9_*). The numerics (batched bisection, least
+squares) live in engine.damping_fit; this recipe only chooses the grid and the bumper, labels
+the results and draws them.
 """
 from __future__ import annotations
 
 import numpy as np
+
+from engine.impact.laws.rubber_bumper import (
+    EQ9_COEFFICIENT,
+    EQ9_COR_EXPONENT,
+    EQ9_MASS_EXPONENT,
+    EQ9_VELOCITY_EXPONENT,
+)
 
 from ._plot import plt
 from ._recipe import Recipe, Verdict
@@ -17,7 +25,9 @@ from ._recipe import Recipe, Verdict
 # One large pad of the paper's rubber (K_r 55,835 kN/m^2, n 2.65, alpha 2.25), thick enough
 # that the heaviest, fastest impact of the grid (320 t at 4 m/s) stays below delta_u.
 BUMPER = dict(thickness=0.20, area=1.0, strain=1.0, n_bumpers=1)
-PAPER = {"c0": 1.55, "p1": 0.7076, "p2": 0.0025, "p3": 0.9755}
+# Eq. 9's constants, as the bumper law declares them.
+PAPER = {"c0": EQ9_COEFFICIENT, "p1": EQ9_COR_EXPONENT, "p2": EQ9_MASS_EXPONENT,
+         "p3": EQ9_VELOCITY_EXPONENT}
 # Agreement bands for the paper check.
 TOLERANCE = {"c0": 0.10, "p1": 0.10, "p2": 0.01, "p3": 0.05}
 
@@ -177,8 +187,10 @@ def _mass(kg: float) -> str:
 
 
 def _law(cor, m_eff, v, p):
-    """C_imp / (1 - COR^2) of a power law with constants p (s/m)."""
-    return p["c0"] / (cor ** p["p1"] * m_eff ** p["p2"] * v ** p["p3"])
+    """C_imp / (1 - COR^2) of the power law with constants p (s/m): engine.damping_fit's."""
+    from engine.damping_fit import power_law_c_imp
+
+    return power_law_c_imp(cor, m_eff, v, **p) / (1 - cor**2)
 
 
 def _law_text(name, p) -> str:

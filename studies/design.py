@@ -1,11 +1,11 @@
 """Beyond the paper: what bumpers to install for a given building and gap.
 
-For a building (the paper's by default; any engine.Building field can be set with
---building NAME=VALUE), a record set (default: the suite of studies.suite, every record scaled
-so that the building without wall reaches D) and a gap, search the bumper thickness, count,
-cavity depth (paper 5.3) and moat-wall stiffness for the configuration that minimises the
-median over the records of the largest peak floor acceleration, while the bumpers stay
-uncrushed (max indentation <= delta_u) under at least a chosen fraction of the records
+For a building (the paper's by default; any engine.Building field can be set with --building
+NAME=VALUE), a record set (default: the suite studies.suite runs, studies._suite_records, every
+record scaled so that the building without wall reaches D) and a gap, search the bumper
+thickness, count, cavity depth (paper 5.3) and moat-wall stiffness for the configuration that
+minimises the median over the records of the largest peak floor acceleration, while the bumpers
+stay uncrushed (max indentation <= delta_u) under at least a chosen fraction of the records
 (default 84%). The search evaluates a coarse grid in one batched sweep, then a finer grid
 around the best feasible configuration; every evaluated configuration is kept in the archive
 (dimension `candidate`) with its statistics and the per-record peaks, next to the reference
@@ -17,10 +17,13 @@ import json
 
 import numpy as np
 
+from engine.impact import LAWS
 from engine.units import CM, KN_PER_MM, G
+from pipeline.scaling import DEFAULT_DISPLACEMENT
 
 from ._plot import plt
 from ._recipe import Recipe, Verdict
+from ._suite_records import ALL, chosen_records, scaled
 
 GAP_RATIO = 0.8  # default gap / D: narrow enough that the bare wall is hit by most records
 COARSE = {  # the first grid: m, m, -, N/m
@@ -34,11 +37,13 @@ QUICK = {"thickness": (0.05, 0.08), "cavity": (0.0, 0.01), "n_bumpers": (4, 16),
 STEP = {"thickness": 1.25, "cavity": 0.005, "n_bumpers": 2 ** 0.5, "wall_k": 1.5}
 SEARCHED = tuple(COARSE)
 BEST_FEW = 5
+_LAW = LAWS["bumper"].PARAMETERS  # strain and COR are not searched: the law's defaults
 
 
 def options(p) -> None:
-    p.add_argument("--displacement-cm", type=float, default=30.0, metavar="CM",
-                   help="design displacement D the records are scaled to (default 30 cm)")
+    p.add_argument("--displacement-cm", type=float, default=DEFAULT_DISPLACEMENT / CM,
+                   metavar="CM", help="design displacement D the records are scaled to "
+                                      f"(default {DEFAULT_DISPLACEMENT / CM:g} cm)")
     p.add_argument("--gap-cm", type=float, default=None, metavar="CM",
                    help=f"the seismic gap to design for (default {GAP_RATIO:g} D)")
     p.add_argument("--uncrushed", type=float, default=0.84, metavar="FRACTION",
@@ -85,22 +90,17 @@ def compute(args):
     import pipeline
     from pipeline.errors import SweepError
 
-    from .suite import ALL, suite_records
-
     if not 0 < args.uncrushed <= 1:
         raise SweepError(f"--uncrushed must be a fraction in (0, 1], got {args.uncrushed}")
     building = building_from(args.building)
     D = args.displacement_cm * CM
     gap = GAP_RATIO * D if args.gap_cm is None else args.gap_cm * CM
-    records = suite_records() if args.records == [ALL] else args.records
+    records = chosen_records(args.records)
     left_out = []
     if not args.no_scale:
-        scaled = pipeline.scale_to_displacement(records, D, dt=args.dt, building=building,
-                                                records_dir=args.records_dir,
-                                                quiet=args.quiet)
-        records, left_out = scaled.records, scaled.excluded
-        for name, _, reason in left_out:
-            print(f"left out: {name}: {reason}")
+        at_d = scaled(records, D, dt=args.dt, building=building, records_dir=args.records_dir,
+                      quiet=args.quiet)
+        records, left_out = at_d.records, at_d.excluded
         if not records:
             raise SweepError("no record could be scaled to D: nothing to design for")
     run = dict(records=records, records_dir=args.records_dir, dt=args.dt,
@@ -335,10 +335,11 @@ recipe = Recipe(
     summary="Bumper design search: thickness, count, cavity depth and wall stiffness that "
             "minimise the median peak floor acceleration over a record suite scaled to D, "
             "with the bumpers uncrushed under a chosen fraction of the records",
-    compute=compute, plot=plot, check=check, records=("all",), options=options,
-    chosen=f"gap {GAP_RATIO:g} D, D = 30 cm; coarse grid thickness 3-12 cm, cavity 0-2 cm, "
-           "4-64 bumpers, k_w 500-2500 kN/mm, then a 3-point refinement of each around the "
-           "best; strain 0.8 and COR 0.45 (the law's defaults)")
+    compute=compute, plot=plot, check=check, records=(ALL,), options=options,
+    chosen=f"gap {GAP_RATIO:g} D, D = {DEFAULT_DISPLACEMENT / CM:g} cm; coarse grid thickness "
+           "3-12 cm, cavity 0-2 cm, 4-64 bumpers, k_w 500-2500 kN/mm, then a 3-point "
+           f"refinement of each around the best; strain {_LAW['strain'].default:g} and COR "
+           f"{_LAW['cor'].default:g} (the law's defaults)")
 main = recipe.main
 
 if __name__ == "__main__":

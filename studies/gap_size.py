@@ -1,8 +1,9 @@
 """Figs. 14-15: amplification of the peak responses by rubber bumpers, against the gap width.
 
 Gap 15-45 cm, the four paper records. With bumpers: four 5 cm bumpers on each side (the
-practical example's), so the clear gap is 5 cm smaller; without: the bare linear viscoelastic
-wall at the full gap. Amplification = peak with bumpers / peak without (> 1: bumpers hurt).
+practical example's, studies._paper), so the clear gap is 5 cm smaller; without: the bare
+linear viscoelastic wall at the full gap. Amplification = peak with bumpers / peak without (>
+1: bumpers hurt).
 """
 from __future__ import annotations
 
@@ -10,12 +11,10 @@ import numpy as np
 
 from engine.units import CM
 
+from ._paper import N_BUMPERS, THICKNESS
 from ._peaks_vs_gap import gaps, ranges
 from ._plot import FLOOR_LABELS, STORY_LABELS, plt, record_label
 from ._recipe import Recipe, Verdict, sweep_options
-
-THICKNESS = 0.05  # m
-N_BUMPERS = 4
 
 
 def compute(args):

@@ -12,18 +12,23 @@ from __future__ import annotations
 
 import numpy as np
 
+from engine.impact import LAWS
 from engine.units import KN, MM, kn_per_mm_n, power_law_units
 
+from ._paper import (
+    STRAIN,
+    TEST_COR,
+    TEST_K_ST_KN_MM,
+    TEST_PAD_AREA,
+    TEST_PAD_THICKNESS,
+    TEST_ROD_MASS,
+)
 from ._plot import plt
 from ._recipe import Recipe, Verdict
 
-M_ROD = 300.0  # kg, each steel rod
-THICKNESS = 0.010  # m
-AREA = 0.040**2  # m^2
-STRAIN = 0.8  # ultimate compressive strain: delta_u = 8 mm
-EXPONENT = 2.65
-K_ST_KN_MM = 0.2  # kN/mm^2.65, the static test fit (Fig. 6a)
-COR = 0.45
+# The test (rod mass, pad, static fit, COR) and the rubber's ultimate strain (0.8: delta_u =
+# 8 mm) are the paper's, studies._paper; the rubber's exponent n is the bumper law's.
+EXPONENT = LAWS["bumper"].PARAMETERS.n.default  # 2.65
 # Past delta_u the rods would bear steel on steel: the axial stiffness E A / L of one
 # 1000 x 200 x 200 mm steel bar of the test (E = 205 GPa). The impacts below do not reach it.
 K_W = 205e9 * 0.2 * 0.2 / 1.0  # N/m (8200 kN/mm)
@@ -38,10 +43,11 @@ def contacts(velocities):
     from engine import Contact
 
     v = np.asarray(velocities, dtype=float)
-    m_eff = M_ROD / 2
-    proposed = Contact.bumper(1.0, thickness=THICKNESS, strain=STRAIN, n_bumpers=1, k_w=K_W,
-                              cor=np.full(v.shape, COR), m_eff=m_eff, area=AREA, n=EXPONENT)
-    hertzdamp = Contact.hertzdamp(1.0, k=proposed.k, n=EXPONENT, cor=COR, m_eff=m_eff,
+    m_eff = TEST_ROD_MASS / 2
+    proposed = Contact.bumper(1.0, thickness=TEST_PAD_THICKNESS, strain=STRAIN, n_bumpers=1,
+                              k_w=K_W, cor=np.full(v.shape, TEST_COR), m_eff=m_eff,
+                              area=TEST_PAD_AREA, n=EXPONENT)
+    hertzdamp = Contact.hertzdamp(1.0, k=proposed.k, n=EXPONENT, cor=TEST_COR, m_eff=m_eff,
                                   chi_rule="lankarani")
     return Contact.concat([proposed, hertzdamp])
 
@@ -54,7 +60,7 @@ def compute(args):
 
     v = np.asarray(VELOCITIES)
     contact = contacts(v)
-    res = engine.two_body(M_ROD, M_ROD, np.tile(v, len(MODELS)), contact)
+    res = engine.two_body(TEST_ROD_MASS, TEST_ROD_MASS, np.tile(v, len(MODELS)), contact)
     shape = (len(MODELS), len(v))
     force = res.force.reshape(*shape, -1)
     # Indentation after the contact has ended is the bodies flying apart: stored as zero.
@@ -76,8 +82,9 @@ def compute(args):
     per_case = {name: getattr(res, name).reshape(shape) for name in
                 ("peak_force", "peak_indentation", "cor", "hysteresis_area",
                  "dissipated_energy", "dt")}
-    energy_loss = 0.5 * (M_ROD / 2) * (1 - COR**2) * v**2
-    c_imp = rubber_bumper.damping_prefactor(COR, M_ROD / 2) / v**rubber_bumper.EQ9_VELOCITY_EXPONENT
+    energy_loss = 0.5 * (TEST_ROD_MASS / 2) * (1 - TEST_COR**2) * v**2
+    c_imp = (rubber_bumper.damping_prefactor(TEST_COR, TEST_ROD_MASS / 2)
+             / v**rubber_bumper.EQ9_VELOCITY_EXPONENT)
     data = {
         "indentation": var((*mv, "step"), indentation, "m",
                            "indentation (relative approach of the rods), zero after separation"),
@@ -94,7 +101,7 @@ def compute(args):
         "dissipated_energy": var(mv, per_case["dissipated_energy"], "J",
                                  "kinetic energy lost, 1/2 m_eff (v_imp^2 - v_out^2)"),
         "energy_loss_eq5": var("velocity", energy_loss, "J",
-                               f"kinetic energy loss of Eq. 5 with COR {COR}"),
+                               f"kinetic energy loss of Eq. 5 with COR {TEST_COR}"),
         "area_ratio": var(mv, per_case["hysteresis_area"] / energy_loss, "1",
                           "hysteresis area / Eq. 5 energy loss"),
         "approach_deviation": var(mv, deviation.max(axis=-1), "1",
@@ -107,15 +114,15 @@ def compute(args):
         "k_imp": var((), k, power_law_units(EXPONENT),
                      f"impact stiffness k_imp (Eq. 12), also Hertzdamp's k, "
                      f"{power_law_units(EXPONENT)}"),
-        "k_st": var((), K_ST_KN_MM * kn_per_mm_n(EXPONENT), power_law_units(EXPONENT),
+        "k_st": var((), TEST_K_ST_KN_MM * kn_per_mm_n(EXPONENT), power_law_units(EXPONENT),
                     "static stiffness k_st of the static test fit (Fig. 6a), "
                     f"{power_law_units(EXPONENT)}"),
         "exponent": var((), EXPONENT, "1", "exponent n of both laws"),
-        "cor": var((), COR, "1", "target coefficient of restitution"),
-        "rod_mass": var((), M_ROD, "kg", "mass of each steel rod (m1 = m2)"),
-        "m_eff": var((), M_ROD / 2, "kg", "effective mass m1 m2 / (m1 + m2)"),
-        "thickness": var((), THICKNESS, "m", "bumper thickness"),
-        "bumper_area": var((), AREA, "m2", "bumper contact area (40 x 40 mm)"),
+        "cor": var((), TEST_COR, "1", "target coefficient of restitution"),
+        "rod_mass": var((), TEST_ROD_MASS, "kg", "mass of each steel rod (m1 = m2)"),
+        "m_eff": var((), TEST_ROD_MASS / 2, "kg", "effective mass m1 m2 / (m1 + m2)"),
+        "thickness": var((), TEST_PAD_THICKNESS, "m", "bumper thickness"),
+        "bumper_area": var((), TEST_PAD_AREA, "m2", "bumper contact area (40 x 40 mm)"),
         "strain": var((), STRAIN, "1", "ultimate compressive strain of the rubber"),
         "delta_u": var((), contact.delta_u[0], "m", "indentation at which the rubber is "
                        "crushed, strain x thickness"),

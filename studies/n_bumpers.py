@@ -10,15 +10,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from engine.units import CM, MM
+from engine.units import CM, KN_PER_MM, MM
 
-from . import _peaks_vs_gap as pvg
+from ._paper import FIG19_COUNTS, STRAIN, THICKNESS, WALL_K
+from ._peaks_vs_gap import accel_g, drift_cm, gaps, plot_vs_gap, ranges
 from ._recipe import Recipe, Verdict, sweep_options
 
-COUNTS = (4, 8, 16, 32)
-THICKNESS = 0.05  # m
-STRAIN = 0.8
-WALL_K = 1.5e9  # N/m (1500 kN/mm)
 LIMIT = STRAIN * THICKNESS  # m: delta_u, 4 cm
 ALMOST_ALL = 0.75  # share of the points for 'almost all cases'
 READING = 0.01  # 'stays below delta_u' to within 1% of it (0.4 mm): how far Fig. 20 reads
@@ -27,23 +24,23 @@ READING = 0.01  # 'stays below delta_u' to within 1% of it (0.4 mm): how far Fig
 def compute(args):
     import pipeline
 
-    return pipeline.sweep(gap=pvg.gaps(args.quick), thickness=THICKNESS, strain=STRAIN,
-                          n_bumpers=list(COUNTS), wall_k=WALL_K, baseline=True,
+    return pipeline.sweep(gap=gaps(args.quick), thickness=THICKNESS, strain=STRAIN,
+                          n_bumpers=list(FIG19_COUNTS), wall_k=WALL_K, baseline=True,
                           unconstrained=True, **sweep_options(args))
 
 
 def plot(ds):
-    return pvg.plot(ds, "n_bumpers", lambda n: f"{n:g} bumpers",
-                    "Figs. 19-20: peak responses and maximum indentation vs seismic gap, "
-                    "number of 5 cm bumpers per side ($k_w$ = 1500 kN/mm)",
-                    indentation_limit=LIMIT)
+    return plot_vs_gap(ds, "n_bumpers", lambda n: f"{n:g} bumpers",
+                       "Figs. 19-20: peak responses and maximum indentation vs seismic gap, "
+                       f"number of {THICKNESS / CM:g} cm bumpers per side ($k_w$ = "
+                       f"{WALL_K / KN_PER_MM:g} kN/mm)", indentation_limit=LIMIT)
 
 
 def check(ds) -> list[Verdict]:
     """Paper 5.4: more bumpers raise the peak responses in almost all cases, except at some
     very narrow gaps where few bumpers are crushed past delta_u; more bumpers, smaller maximum
     indentation; with 32 bumpers it stays below 4 cm under every record."""
-    accel, drift, dent = pvg.accel_g(ds), pvg.drift_cm(ds), ds.max_indentation
+    accel, drift, dent = accel_g(ds), drift_cm(ds), ds.max_indentation
     few, many = ds.n_bumpers.values.min(), ds.n_bumpers.values.max()
     hit = (ds.n_impacts > 0).any("n_bumpers")
     n = int(hit.sum())
@@ -55,7 +52,7 @@ def check(ds) -> list[Verdict]:
     gap_cm = ds.gap.values / CM
     where = {str(r): gap_cm[exception.sel(record=r).values].tolist() for r in ds.record.values
              if exception.sel(record=r).any()}
-    where_text = "; ".join(f"{r} {pvg.ranges(gap_cm, np.isin(gap_cm, g))}"
+    where_text = "; ".join(f"{r} {ranges(gap_cm, np.isin(gap_cm, g))}"
                            for r, g in where.items())
     shrinking = int(((dent.diff("n_bumpers") < 0).all("n_bumpers") & hit).sum())
     worst = dent.sel(n_bumpers=many).max("gap")

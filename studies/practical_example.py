@@ -5,7 +5,8 @@ is 90% of the engine's own unconstrained peak isolator displacement, to the mm (
 rule; it gives 15 and 24 cm from 16.7 and 26.8 cm). Three configurations per record: no
 poundings (no wall), no bumpers (the bare linear viscoelastic wall at the gap, k 2500 kN/mm,
 COR 0.5, the sweeps' baseline) and four 5 cm bumpers of 150 x 150 mm on each side
-(0.36 kN/mm^2.65, k_w 1500 kN/mm, ultimate strain 0.8, clear gap = gap - 5 cm).
+(0.36 kN/mm^2.65, k_w 1500 kN/mm, ultimate strain 0.8, clear gap = gap - 5 cm). The paper's
+bumper, gap rule and gaps are read from studies._paper.
 
 Archive: the peaks of the three configurations and, on a common time axis (histories every
 2 ms), the base total acceleration (Figs. 9-10), the impact force and indentation (Fig. 11)
@@ -23,20 +24,21 @@ import numpy as np
 
 from engine.units import CM, KN, G
 
+from ._paper import (
+    GAP_FRACTION,
+    N_BUMPERS,
+    PRACTICAL_GAPS,
+    PRACTICAL_UNCONSTRAINED,
+    STRAIN,
+    THICKNESS,
+    WALL_K,
+)
 from ._plot import plt, record_label
 from ._recipe import Recipe, Verdict
 
-GAP_FRACTION = 0.9  # of the unconstrained peak isolator displacement
-THICKNESS = 0.05  # m
-N_BUMPERS = 4
-WALL_K = 1.5e9  # N/m (1500 kN/mm), behind the crushed bumpers
-STRAIN = 0.8
 EVERY = 4  # integration steps per history sample: 2 ms at the default 0.5 ms step
 HISTORY_SECONDS = 40.0  # s of history kept (longer if an impact happens later)
 QUICK_SECONDS = 20.0  # --quick: only the first 20 s of each record (its strong motion)
-# The paper's numbers (section 4), m.
-PAPER_GAP = {"kobe": 0.15, "pacoima": 0.24}
-PAPER_UNCONSTRAINED = {"kobe": 0.167, "pacoima": 0.268}
 AT_PAPER_GAP = "_at_paper_gap"  # suffix of the configurations run at the paper's gap
 CONFIG_LABELS = {"no_pounding": "No poundings", "no_bumpers": "Without bumpers",
                  "bumpers": "With bumpers"}
@@ -74,7 +76,7 @@ def compute(args):
                                         work_dir=args.work_dir)
     parts, gaps = [], []
     # Each paper record also runs at the paper's own gap, to tell the gap rule from the model.
-    at_paper_gap = all(name in PAPER_GAP for name in names)
+    at_paper_gap = all(name in PRACTICAL_GAPS for name in names)
     for rec, name in zip(records, names, strict=True):
         peak = float(free.peak_isolator_disp.sel(record=name))
         gap = round(GAP_FRACTION * peak, 3)  # m, to the mm
@@ -82,7 +84,8 @@ def compute(args):
         configs = configurations(gap)
         if at_paper_gap:
             configs.update({f"{key}{AT_PAPER_GAP}": config for key, config in
-                            configurations(PAPER_GAP[name]).items() if key != "no_pounding"})
+                            configurations(PRACTICAL_GAPS[name]).items()
+                            if key != "no_pounding"})
         parts.append(histories(rec, configs, dt=args.dt, every=EVERY, quiet=args.quiet))
     ds = concat_records(parts, t_end=history_end(parts))
     # Only the base level of the acceleration histories is kept (Figs. 9-10): 5x smaller.
@@ -91,8 +94,8 @@ def compute(args):
                       long_name="total (absolute) acceleration at the isolation level (base)")
     ds = ds.drop_vars("total_accel").assign(base_total_accel=base)
     unconstrained = free.peak_isolator_disp.sel(record=names)
-    paper_gap = [PAPER_GAP.get(n, np.nan) for n in names]
-    paper_free = [PAPER_UNCONSTRAINED.get(n, np.nan) for n in names]
+    paper_gap = [PRACTICAL_GAPS.get(n, np.nan) for n in names]
+    paper_free = [PRACTICAL_UNCONSTRAINED.get(n, np.nan) for n in names]
     ds["unconstrained_peak_isolator_disp"] = xr.Variable(
         "record", unconstrained.values,
         {"units": "m", "long_name": "peak isolator displacement without moat wall (engine)"})
@@ -110,9 +113,10 @@ def compute(args):
     ds.attrs["gap_rule"] = "; ".join(
         f"{name}: gap = {GAP_FRACTION} x {peak / CM:.2f} cm = {gap / CM:.1f} cm, clear gap with "
         f"bumpers {(gap - THICKNESS) / CM:.1f} cm"
-        + (f" (paper: {PAPER_GAP[name] / CM:.0f} cm from {PAPER_UNCONSTRAINED[name] / CM:.1f} "
-           f"cm, clear gap {(PAPER_GAP[name] - THICKNESS) / CM:.0f} cm)"
-           if name in PAPER_GAP else "")
+        + (f" (paper: {PRACTICAL_GAPS[name] / CM:.0f} cm from "
+           f"{PRACTICAL_UNCONSTRAINED[name] / CM:.1f} cm, clear gap "
+           f"{(PRACTICAL_GAPS[name] - THICKNESS) / CM:.0f} cm)"
+           if name in PRACTICAL_GAPS else "")
         for name, peak, gap in zip(names, unconstrained.values, gaps, strict=True))
     if args.quick:
         ds.attrs["quick_segment"] = f"first {QUICK_SECONDS:g} s of each record only"
@@ -347,7 +351,7 @@ recipe = Recipe(
            f"each record; check: 'not much' = with / without bumpers > {LITTLE}, "
            f"'considerably' < {CONSIDERABLE}, 'substantially' / 'very slightly' crushed: "
            f"more / less than {SLIGHT_CRUSH} x delta_u; both records also run at the paper's "
-           "gaps (15 and 24 cm)")
+           f"gaps ({' and '.join(f'{gap / CM:g}' for gap in PRACTICAL_GAPS.values())} cm)")
 main = recipe.main
 
 if __name__ == "__main__":

@@ -2,8 +2,9 @@
 
 Sylmar Converter, 5 cm bumpers, four of them, k_w = 1500 kN/mm; COR 0.3 to 1.0; two seismic
 gaps: 10% under the engine's own unconstrained peak isolator displacement for the record (the
-paper's rule), and the paper's stated 28.5 cm (clear gaps 5 cm smaller). Peak floor
-accelerations (g) per floor and interstory deflections (cm) per story, against the COR.
+paper's rule), and the paper's stated 28.5 cm (clear gaps 5 cm smaller; the paper's values:
+studies._paper). Peak floor accelerations (g) per floor and interstory deflections (cm) per
+story, against the COR.
 
 The paper finds no effect of the COR; here the responses rise with it. To see why, the
 recipe also follows each run's impacts in time (pipeline.histories): which impact produces
@@ -18,12 +19,10 @@ import numpy as np
 
 from engine.units import CM, G
 
+from ._paper import GAP_FRACTION, RESTITUTION_GAP, THICKNESS
 from ._plot import FLOOR_LABELS, STORY_LABELS, plt, record_label
 from ._recipe import Recipe, Verdict, sweep_options
 
-THICKNESS = 0.05  # m
-GAP_FRACTION = 0.9  # of the unconstrained peak isolator displacement
-PAPER_GAP = 0.285  # m, section 5.6
 NO_EFFECT = 0.05  # largest spread over the CORs, relative to the mean, read as 'no effect'
 IMPACTS_KEPT = 2  # approach speeds stored for the first two impacts
 
@@ -48,12 +47,13 @@ def compute(args):
                                         work_dir=args.work_dir)
     peak = float(free.peak_isolator_disp.item())
     gap = round(GAP_FRACTION * peak, 3)  # m, to the mm
-    gaps = sorted({gap, PAPER_GAP})
+    gaps = sorted({gap, RESTITUTION_GAP})
     ds = pipeline.sweep(gap=gaps, thickness=THICKNESS, cor=cors(args.quick),
                         unconstrained=True, **options)
     ds = ds.assign(impact_sequence(ds, options["records"][0], args))
     sources = {gap: f"{GAP_FRACTION} x unconstrained peak"}
-    sources[PAPER_GAP] = " and ".join(filter(None, [sources.get(PAPER_GAP), "the paper's"]))
+    sources[RESTITUTION_GAP] = " and ".join(filter(None, [sources.get(RESTITUTION_GAP),
+                                                          "the paper's"]))
     ds.coords["gap_source"] = ("gap", np.array([sources[g] for g in ds.gap.values], dtype=str),
                                {"units": "1", "long_name": "where the gap comes from: the "
                                 "paper's rule applied to this engine, or the paper's gap"})
@@ -61,7 +61,8 @@ def compute(args):
         gap_rule=f"gap = {GAP_FRACTION} x unconstrained peak isolator displacement "
                  f"({peak / CM:.2f} cm) = {gap / CM:.1f} cm, to the mm; clear gap with "
                  f"{THICKNESS / CM:g} cm bumpers {(gap - THICKNESS) / CM:.1f} cm "
-                 f"(paper: 28.5 and 23.5 cm, also run)",
+                 f"(paper: {RESTITUTION_GAP / CM:g} and {(RESTITUTION_GAP - THICKNESS) / CM:g} "
+                 "cm, also run)",
         chosen_gap=gap, chosen_gap_units="m", clear_gap=round(gap - THICKNESS, 4),
         clear_gap_units="m")
     return ds

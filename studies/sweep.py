@@ -5,6 +5,12 @@
 
 A parameter given one value is held fixed (a scalar coordinate); several values are swept
 (a dimension). Errors in the input print one line and exit with status 2.
+
+Not a figure's recipe: the pipeline's general command line, for grids no figure fixes. It lives
+in studies/ because studies/ holds every command a user runs, the figures' recipes and this
+sweep alike, and they share one set of command-line conventions (_recipe.py: --out as an
+archive path or a folder, --records, --records-dir, --workers, --scheduler, --dt, --quiet,
+negative numbers as values, the one-line error and the resumable work folder).
 """
 from __future__ import annotations
 

@@ -7,36 +7,35 @@ without bumpers at the full gap is dashed.
 """
 from __future__ import annotations
 
-from engine.units import CM
+from engine.units import CM, KN_PER_MM
 
-from . import _peaks_vs_gap as pvg
+from ._paper import N_BUMPERS, WALL_K
+from ._peaks_vs_gap import accel_g, drift_cm, gaps, plot_vs_gap, spread
 from ._recipe import Recipe, Verdict, sweep_options
 
-THICKNESSES = (0.03, 0.05, 0.08)  # m
-N_BUMPERS = 4
-WALL_K = 1.5e9  # N/m (1500 kN/mm)
+THICKNESSES = (0.03, 0.05, 0.08)  # m: chosen, the paper does not state them
 NARROW = 0.6  # "very narrow" gap: below this fraction of the unconstrained peak
 
 
 def compute(args):
     import pipeline
 
-    return pipeline.sweep(gap=pvg.gaps(args.quick), thickness=list(THICKNESSES),
+    return pipeline.sweep(gap=gaps(args.quick), thickness=list(THICKNESSES),
                           n_bumpers=N_BUMPERS, wall_k=WALL_K, baseline=True,
                           unconstrained=True, **sweep_options(args))
 
 
 def plot(ds):
-    return pvg.plot(ds, "thickness", lambda t: f"t = {t / CM:g} cm",
-                    "Fig. 16: peak responses vs seismic gap, bumper thickness t "
-                    "(4 bumpers, $k_w$ = 1500 kN/mm)")
+    return plot_vs_gap(ds, "thickness", lambda t: f"t = {t / CM:g} cm",
+                       "Fig. 16: peak responses vs seismic gap, bumper thickness t "
+                       f"({N_BUMPERS} bumpers, $k_w$ = {WALL_K / KN_PER_MM:g} kN/mm)")
 
 
 def check(ds) -> list[Verdict]:
     """Paper 5.2: thicker bumpers lower the floor accelerations at very narrow gaps, hardly
     change them at medium and wide gaps, raise the interstory deflections; overall the
     thickness does not significantly affect the response."""
-    accel, drift = pvg.accel_g(ds), pvg.drift_cm(ds)
+    accel, drift = accel_g(ds), drift_cm(ds)
     thin, thick = ds.thickness.values.min(), ds.thickness.values.max()
     names = f"t = {thick / CM:g} cm", f"t = {thin / CM:g} cm"
     narrow = ds.gap < NARROW * ds.unconstrained_peak_isolator_disp
@@ -45,9 +44,9 @@ def check(ds) -> list[Verdict]:
     higher = drift.sel(thickness=thick) > drift.sel(thickness=thin)
     n_narrow, n_lower = int(narrow.sum()), int((lower & narrow).sum())
     wide = hit & ~narrow
-    wide_spread = float(pvg.spread(accel, "thickness").where(wide).median())
-    spread_a = float(pvg.spread(accel, "thickness").where(hit).median())
-    spread_d = float(pvg.spread(drift, "thickness").where(hit).median())
+    wide_spread = float(spread(accel, "thickness").where(wide).median())
+    spread_a = float(spread(accel, "thickness").where(hit).median())
+    spread_d = float(spread(drift, "thickness").where(hit).median())
     n_hit, n_higher = int(hit.sum()), int((higher & hit).sum())
     return [
         Verdict("5.2", f"Very narrow gaps (< {NARROW} x the unconstrained peak isolator "

@@ -8,24 +8,24 @@ from __future__ import annotations
 
 from engine.units import CM, KN_PER_MM
 
-from . import _peaks_vs_gap as pvg
+from ._paper import FIG21_WALL_KS
+from ._peaks_vs_gap import gaps, lowered, plot_vs_gap
 from ._recipe import Recipe, Verdict, sweep_options
 
-WALL_KS = (2.5e9, 1.5e9, 5e8)  # N/m: 2500, 1500, 500 kN/mm
 SIGNIFICANT = 0.1  # mean relative reduction of the peak acceleration
 
 
 def compute(args):
     import pipeline
 
-    return pipeline.sweep(gap=pvg.gaps(args.quick), wall_k=list(WALL_KS), baseline=True,
+    return pipeline.sweep(gap=gaps(args.quick), wall_k=list(FIG21_WALL_KS), baseline=True,
                           unconstrained=True, **sweep_options(args))
 
 
 def plot(ds):
-    return pvg.plot(ds, "wall_k", lambda k: f"$k_w$ = {k / KN_PER_MM:g} kN/mm",
-                    "Fig. 21: peak responses vs seismic gap, moat-wall stiffness $k_w$ "
-                    "(4 x 5 cm bumpers)")
+    return plot_vs_gap(ds, "wall_k", lambda k: f"$k_w$ = {k / KN_PER_MM:g} kN/mm",
+                       "Fig. 21: peak responses vs seismic gap, moat-wall stiffness $k_w$ "
+                       "(4 x 5 cm bumpers)")
 
 
 def check(ds) -> list[Verdict]:
@@ -35,7 +35,7 @@ def check(ds) -> list[Verdict]:
     # k_w only acts where the bumpers are crushed past delta_u
     crushed = ds.max_indentation.max("wall_k") > float(ds.strain * ds.thickness)
     n = int(crushed.sum())
-    counts, changes = pvg.lowered(ds, "wall_k", soft, stiff, crushed)
+    counts, changes = lowered(ds, "wall_k", soft, stiff, crushed)
     untouched = [str(r) for r in ds.record.values if not crushed.sel(record=r).any()]
     return [Verdict(
         "5.5", "Lower k_w: significantly lower peak responses, especially floor accelerations",

@@ -10,6 +10,7 @@ from conftest import assert_udunits, run_recipe
 
 import pipeline
 from studies import suite
+from studies._paper import FIG21_WALL_KS, THICKNESS
 from studies._recipe import verdicts
 
 RECORDS = ["kobe", "pacoima", "sylmar_converter", "olive_view", "RSN1690:360"]
@@ -87,8 +88,8 @@ def test_member_equals_a_direct_sweep(archive):
     name = str(ds.record.values[1])  # e.g. "pacoima*1.06547"
     assert name.startswith("pacoima*")
     gap = float(ds.gap.values[0])
-    direct = pipeline.sweep([name], gap=gap, thickness=suite.THICKNESS, n_bumpers=[4, 32],
-                            wall_k=list(suite.WALL_KS), baseline=True, quiet=True)
+    direct = pipeline.sweep([name], gap=gap, thickness=THICKNESS, n_bumpers=[4, 32],
+                            wall_k=list(FIG21_WALL_KS), baseline=True, quiet=True)
     member = ds.sel(record=name).isel(gap_ratio=0)
     for var in ("peak_total_accel", "peak_interstory_drift", "max_indentation",
                 "baseline_peak_total_accel"):
