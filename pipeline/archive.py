@@ -4,7 +4,9 @@ The physics never writes files: the engine returns arrays, this module names the
 Dataset the project writes (sweeps, histories, the two-body recipes) is built by
 `labelled_dataset`, which refuses a variable or coordinate without `units` and `long_name`.
 Dimensions stay orthogonal (no stacked MultiIndex): record, the swept parameters, then floor
-or story. Global attributes (provenance) come from provenance.py.
+or story, sized by the building that ran. The engine's results are labelled with their
+declarations (engine.results: units, long names, trailing axis); global attributes
+(provenance) come from provenance.py.
 """
 from __future__ import annotations
 
@@ -18,40 +20,18 @@ import xarray as xr
 
 import engine
 from engine.impact import LAWS
+from engine.results import PEAKS, Quantity, level_axes
 
 from .errors import SweepError
-from .grid import BASELINE, BASELINE_LAW, Grid, swept_parameter
+from .grid import Grid, baseline_text, swept_parameter
 from .provenance import attributes
 
-# name -> (units, long_name, trailing dimension or None)
-PEAK_META = {
-    "peak_total_accel": ("m s-2", "peak total (absolute) floor acceleration", "floor"),
-    "peak_interstory_drift": ("m", "peak interstory deflection", "story"),
-    "peak_isolator_disp": ("m", "peak isolator displacement", None),
-    "max_indentation": ("m", "maximum indentation at the moat wall", None),
-    "max_impact_force": ("N", "maximum impact force on the moat wall", None),
-    "n_impacts": ("1", "number of impacts on the moat wall", None),
-    "impact_energy": ("J", "energy dissipated by the moat-wall contacts", None),
-}
-BLOCK_LABEL = {
-    "": "",
-    "baseline_": " without bumpers (bare wall at the full gap: linear viscoelastic, "
-                 + ", ".join(swept_parameter(BASELINE_LAW, k).value_text(v)
-                             for k, v in BASELINE.items()) + ")",
-    "unconstrained_": " without moat wall (unconstrained)",
-}
 AMPLIFICATION = {
     "amplification_total_accel": ("peak_total_accel",
                                   "peak floor acceleration, bumpers / no bumpers (Fig. 14)"),
     "amplification_interstory_drift": ("peak_interstory_drift",
                                        "peak interstory deflection, bumpers / no bumpers "
                                        "(Fig. 15)"),
-}
-LEVEL_COORDS = {
-    "floor": ("floor", np.arange(5),
-              {"units": "1", "long_name": "level (0 = isolation level, 4 = roof)"}),
-    "story": ("story", np.arange(1, 5),
-              {"units": "1", "long_name": "story (story i joins level i-1 to level i)"}),
 }
 COMPRESSION = {"zlib": True, "complevel": 4}
 
@@ -75,15 +55,49 @@ def labelled_dataset(data_vars: dict, coords: dict, attrs: dict | None = None) -
     return ds
 
 
-def peak_variables(peaks: dict, lead_dims: tuple[str, ...], prefix: str = "",
-                   label: str = "") -> dict[str, xr.Variable]:
+def quantity_variable(q: Quantity, lead_dims: tuple[str, ...], values,
+                      long_name: str | None = None) -> xr.Variable:
+    """One of the engine's results (engine.results), its values shaped lead_dims + the
+    quantity's own trailing axis (floor or story), labelled with its declaration."""
+    dims = tuple(lead_dims) + ((q.along,) if q.along else ())
+    return variable(dims, values, q.units, q.long_name if long_name is None else long_name)
+
+
+def block_long_name(q: Quantity, prefix: str) -> str:
+    """The long name of peak `q` in the block of members `prefix` (pipeline.grid)."""
+    if prefix == "baseline_":
+        return (f"{q.long_name} without bumpers (bare wall at the full gap: linear "
+                f"viscoelastic, {baseline_text()})")
+    if prefix == "unconstrained_":
+        return (f"{q.long_name} (zero: the unconstrained run has no moat wall)" if q.wall
+                else f"{q.long_name} without moat wall (unconstrained)")
+    return q.long_name
+
+
+def peak_variables(peaks: dict, lead_dims: tuple[str, ...],
+                   prefix: str = "") -> dict[str, xr.Variable]:
     """The engine's peaks (name -> array shaped lead_dims + the peak's own trailing axis),
-    labelled with PEAK_META; names get `prefix`, long names `label`."""
-    out = {}
-    for name, (units, long_name, tail) in PEAK_META.items():
-        dims = tuple(lead_dims) + ((tail,) if tail else ())
-        out[prefix + name] = variable(dims, peaks[name], units, long_name + label)
-    return out
+    labelled with their declarations (engine.results.PEAKS) as the block `prefix`'s."""
+    return {prefix + q.name: quantity_variable(q, lead_dims, peaks[q.name],
+                                               block_long_name(q, prefix))
+            for q in PEAKS}
+
+
+def level_coords(n_levels: int) -> dict:
+    """The floor and story coordinates of a building of n_levels levels."""
+    return {axis: variable(axis, values, units, long_name)
+            for axis, (values, units, long_name) in level_axes(n_levels).items()}
+
+
+def amplification_ratios(ds: xr.Dataset) -> dict[str, xr.DataArray]:
+    """The amplification ratios bumpers / no bumpers of a Dataset with a baseline block, each
+    over the dims of its peak (lazy when ds is)."""
+    ratios = {}
+    for name, (peak, long_name) in AMPLIFICATION.items():
+        ratio = (ds[peak] / ds["baseline_" + peak]).transpose(*ds[peak].dims)
+        ratio.attrs = {"units": "1", "long_name": long_name}
+        ratios[name] = ratio
+    return ratios
 
 
 def record_coords(records, names: list[str]) -> dict:
@@ -150,42 +164,38 @@ def parameter_coords(grid: Grid) -> dict:
 def build_dataset(grid: Grid, records, results: list[dict[str, np.ndarray]] | None, dt: float,
                   building: engine.Building, names: list[str],
                   arguments: dict | None = None, chunks=None) -> xr.Dataset:
-    """Label the per-record peak arrays of `run.run` (each (M, ...)) as a sweep's Dataset.
+    """Label the per-record peak arrays of a sweep (each (M, ...), the grid's member order)
+    as its Dataset.
 
     records: the Record objects run, named `names` in the record coordinate. results=None
-    builds a template instead (pipeline.zarr_store): every peak a lazy dask array of fill
-    values (NaN, -1 for counts), chunks(block) giving the chunk sizes over its swept dims,
-    and no amplification ratios.
+    builds a template instead (pipeline.execute.zarr_store): every peak a lazy dask array of
+    fill values (NaN, -1 for counts), chunks(block) giving the chunk sizes over its swept
+    dims, and no amplification ratios.
     """
-    from .run import PEAKS
-
     data_vars = {}
     start = 0
     for block in grid.blocks:
         part = slice(start, start + block.size)
         start += block.size
         peaks = {}
-        for name in PEAK_META:
+        for q in PEAKS:
             if results is None:
                 import dask.array as da
 
-                tail, dtype = PEAKS[name]
-                fill = np.nan if np.dtype(dtype).kind == "f" else -1
-                peaks[name] = da.full((len(records), *block.shape, *tail), fill, dtype=dtype,
-                                      chunks=(1, *chunks(block), *tail))
+                tail = q.trailing_shape(building.n_levels)
+                fill = np.nan if np.dtype(q.dtype).kind == "f" else -1
+                peaks[q.name] = da.full((len(records), *block.shape, *tail), fill,
+                                        dtype=q.dtype, chunks=(1, *chunks(block), *tail))
                 continue
-            values = np.stack([res[name][part] for res in results])
-            peaks[name] = values.reshape(len(records), *block.shape, *values.shape[2:])
-        data_vars.update(peak_variables(peaks, ("record", *block.dims), block.prefix,
-                                        BLOCK_LABEL[block.prefix]))
-    coords = {**record_coords(records, names), **LEVEL_COORDS, **parameter_coords(grid)}
+            values = np.stack([res[q.name][part] for res in results])
+            peaks[q.name] = values.reshape(len(records), *block.shape, *values.shape[2:])
+        data_vars.update(peak_variables(peaks, ("record", *block.dims), block.prefix))
+    coords = {**record_coords(records, names), **level_coords(building.n_levels),
+              **parameter_coords(grid)}
     ds = labelled_dataset(data_vars, coords,
                           attributes(grid, records, names, dt, building, arguments))
     if grid.block("baseline_") is not None and results is not None:
-        for name, (peak, long_name) in AMPLIFICATION.items():
-            ratio = ds[peak] / ds["baseline_" + peak]
-            ds[name] = ratio.transpose(*ds[peak].dims)
-            ds[name].attrs = {"units": "1", "long_name": long_name}
+        ds = ds.assign(amplification_ratios(ds))
     return ds
 
 
@@ -203,21 +213,6 @@ def check_out(out) -> Path | None:
     except OSError as err:
         raise SweepError(f"out: cannot write to {out.parent} ({err.strerror or err})") from None
     return out
-
-
-def check_work_dir(work_dir) -> Path | None:
-    """Create the work folder, or refuse one that cannot be written, before any compute."""
-    if work_dir is None:
-        return None
-    work_dir = Path(work_dir)
-    try:
-        work_dir.mkdir(parents=True, exist_ok=True)
-        with tempfile.TemporaryFile(dir=work_dir):
-            pass
-    except OSError as err:
-        raise SweepError(f"work_dir: cannot write to {work_dir} "
-                         f"({err.strerror or err})") from None
-    return work_dir
 
 
 def write_netcdf(ds: xr.Dataset, path) -> Path:

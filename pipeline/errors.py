@@ -1,4 +1,5 @@
-"""The pipeline's error for bad sweep input, and the small input checks that raise it."""
+"""The pipeline's errors (bad input, an unfit cluster, a run interrupted), and the small input
+checks that raise SweepError."""
 from __future__ import annotations
 
 import operator
@@ -19,6 +20,27 @@ def check_count(name: str, value, minimum: int) -> int:
     return count
 
 
+def check_building(building):
+    """The paper's engine.Building for None, `building` if it is one, else SweepError."""
+    import engine
+
+    building = engine.Building() if building is None else building
+    if not isinstance(building, engine.Building):
+        raise SweepError(f"building must be an engine.Building, got {type(building).__name__}")
+    return building
+
+
+def resolve_records(records, records_dir=None) -> tuple[list, list[str]]:
+    """pipeline.records.resolve_records, its RecordError raised as SweepError."""
+    from .records import RecordError
+    from .records import resolve_records as resolve
+
+    try:
+        return resolve(records, records_dir)
+    except RecordError as err:
+        raise SweepError(str(err)) from err
+
+
 class ClusterError(SweepError):
     """A dask cluster that cannot run the sweep; the message names the cause and the fix."""
 
@@ -26,8 +48,9 @@ class ClusterError(SweepError):
 class Interrupted(KeyboardInterrupt):
     """A run stopped by the user (Ctrl-C, SIGINT) after saving what was finished.
 
-    kept: simulations stored in the work folder (those found from earlier runs included);
-    total: simulations of the run; work_dir: the folder (None: nothing is kept).
+    kept: simulations stored (those found from earlier runs included); total: simulations of
+    the run; work_dir: where they are kept, the work folder of a NetCDF run or the Zarr store
+    (None: nothing is kept).
     """
 
     def __init__(self, kept: int, total: int, work_dir=None):

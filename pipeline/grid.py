@@ -29,18 +29,30 @@ from dataclasses import dataclass
 import numpy as np
 
 import engine
-from engine.impact import LAWS, M_EFF
+from engine.impact import LAWS, M_EFF, NO_WALL
 
 from .errors import SweepError
 
-# Dimension order of the archive: record first, then the swept parameters in this order.
-PARAMS = ("gap", "thickness", "cavity", "strain", "n_bumpers", "wall_k", "cor")
 IMPACT_LAWS = ("bumper", *(law for law in LAWS if law != "bumper"))
-NO_WALL = "none"
+"""The wall laws a sweep can run, the default (the paper's bumpers) first."""
+PARAMS = tuple(dict.fromkeys(name for law in IMPACT_LAWS
+                             for name in LAWS[law].PARAMETERS.swept()))
+"""The sweep's parameters: every law's declared `sweep` names, in declaration order, the
+default law's first (gap, thickness, cavity, strain, n_bumpers, wall_k, cor). Also the
+archive's dimension order: record first, then the swept parameters in this order."""
+
+
+def declarations(name: str) -> dict:
+    """Law -> its declaration (engine.impact.parameters.Parameter) of sweep parameter `name`,
+    for every law that takes it, IMPACT_LAWS order."""
+    return {law: LAWS[law].PARAMETERS.swept()[name] for law in IMPACT_LAWS
+            if name in LAWS[law].PARAMETERS.swept()}
+
 
 # Lengths of the sweep (m) and the largest plausible one: seismic gaps and bumpers are tens of
 # cm; a value above 2 m is almost surely centimetres given as metres.
-LENGTHS = ("gap", "thickness", "cavity")
+LENGTHS = tuple(name for name in PARAMS
+                if all(p.units == "m" for p in declarations(name).values()))
 CHECK_SLICE = 65_536  # members checked at once by check_dt
 PLAUSIBLE_LENGTH = 2.0
 
@@ -106,23 +118,22 @@ def swept_parameter(law: str, name: str):
     return LAWS[law].PARAMETERS.swept()[name]
 
 
-def make_grid(gap, thickness=None, strain=None, n_bumpers=None, wall_k=None, cor=None,
-              impact: str = "bumper", m_eff: float | None = None, baseline: bool = False,
-              unconstrained: bool = False, cavity=None) -> Grid:
+def make_grid(gap=None, *, impact: str = "bumper", m_eff: float | None = None,
+              baseline: bool = False, unconstrained: bool = False, **parameters) -> Grid:
     """Validate the parameters and build the member blocks (see module docstring).
 
-    Each parameter is a scalar (fixed) or a 1-D sequence (swept); None takes the law's
+    gap and the other sweep parameters (PARAMS: thickness, cavity, strain, n_bumpers, wall_k,
+    cor), by name: each a scalar (fixed) or a 1-D sequence (swept); None takes the law's
     declared default. SI units: gap, thickness, cavity m; strain, n_bumpers, cor
     dimensionless; wall_k as the module docstring says per law; m_eff kg (None: the declared
     default). gap=None with unconstrained=True builds only the no-wall block. Raises
-    SweepError naming the parameter.
+    SweepError naming the parameter (an unknown name too).
     """
+    given = sweep_parameters({"gap": gap, **parameters})
     if impact not in IMPACT_LAWS:
         raise SweepError(f"impact: unknown impact law {impact!r}; choose one of {IMPACT_LAWS}")
     m_eff = M_EFF.default if m_eff is None else _scalar("m_eff", m_eff)
     _checked(M_EFF, np.asarray(m_eff), "m_eff")
-    given = {"gap": gap, "thickness": thickness, "cavity": cavity, "strain": strain,
-             "n_bumpers": n_bumpers, "wall_k": wall_k, "cor": cor}
     if gap is None:
         if not unconstrained or any(given[p] is not None for p in PARAMS) or baseline:
             raise SweepError("gap is required (m); only an unconstrained-only run may omit it")
@@ -168,6 +179,22 @@ def make_grid(gap, thickness=None, strain=None, n_bumpers=None, wall_k=None, cor
     coords = {d: values[d] for d in dims}
     fixed = {p: values[p].item() for p in values if p not in dims}
     return Grid(impact=impact, coords=coords, fixed=fixed, blocks=tuple(blocks), m_eff=m_eff)
+
+
+def sweep_parameters(given: dict) -> dict:
+    """Every sweep parameter (PARAMS order) -> its given value or None; SweepError for a name
+    that is none of them."""
+    unknown = [name for name in given if name not in PARAMS]
+    if unknown:
+        raise SweepError(f"{unknown[0]}: no such sweep parameter; the parameters are "
+                         f"{', '.join(PARAMS)}")
+    return {name: given.get(name) for name in PARAMS}
+
+
+def baseline_text() -> str:
+    """The bare wall's parameters as text: 'k = 2.5e+09 N m-1, cor = 0.5'."""
+    return ", ".join(swept_parameter(BASELINE_LAW, name).value_text(value)
+                     for name, value in BASELINE.items())
 
 
 def _members_block(prefix: str, law: str, columns: dict, m_eff: float, dims=(),

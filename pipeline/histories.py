@@ -16,7 +16,7 @@ engine Contact; all configurations of the record run in one engine batch, in thi
 
 The Dataset has dims configuration, time (and floor, story): the histories sampled every
 `every` integration steps, and the peaks of every configuration under the same names and units
-as a sweep's archive (pipeline.archive.PEAK_META). Peaks are taken over every step, so with
+as a sweep's archive (engine.results). Peaks are taken over every step, so with
 every > 1 a history's maximum may fall slightly under its peak; with every = 1 they are equal.
 """
 from __future__ import annotations
@@ -31,16 +31,19 @@ import xarray as xr
 
 import engine
 from engine.impact import M_EFF
+from engine.results import HISTORIES, HISTORY_NAMES
 
 from .archive import (
-    LEVEL_COORDS,
     labelled_dataset,
+    level_coords,
     parameter_meta,
     peak_variables,
+    quantity_variable,
     record_coords,
     variable,
 )
-from .errors import SweepError, check_count
+from .errors import SweepError, check_building, check_count, resolve_records
+from .execute.progress import Progress
 from .grid import (
     IMPACT_LAWS,
     NO_WALL,
@@ -51,18 +54,19 @@ from .grid import (
     describe_member,
     make_grid,
 )
-from .provenance import attributes, law_defaults, plain
-from .records import RecordError, resolve_records
+from .provenance import (
+    arguments_attribute,
+    common_attributes,
+    decision_attributes,
+    law_defaults,
+    plain,
+    record_attributes,
+    run_attributes,
+)
 
-# name -> (units, long_name, trailing dimension or None), as archive.PEAK_META
-HISTORY_META = {
-    "isolator_disp": ("m", "isolator displacement (isolation level relative to the ground)",
-                      None),
-    "total_accel": ("m s-2", "total (absolute) floor acceleration", "floor"),
-    "impact_force": ("N", "impact force on the moat wall (0 out of contact)", None),
-    "indentation": ("m", "indentation at the moat wall (0 out of contact)", None),
-}
 CONFIG_KEYS = ("impact", *PARAMS, "m_eff")
+TITLE = ("bumpers: time histories and peak responses of a seismically isolated building "
+         "pounding on its moat wall, per wall configuration")
 
 
 def histories(record, configurations: Mapping[str, Mapping], dt: float | None = None,
@@ -80,30 +84,25 @@ def histories(record, configurations: Mapping[str, Mapping], dt: float | None = 
     duration: simulate only the first `duration` s of the record (a quick look: peaks are then
         those of the segment, and the archive says so); quiet: no progress bar.
 
-    Returns an xarray.Dataset, dims configuration, time, floor (0-4), story (1-4):
+    Returns an xarray.Dataset, dims configuration, time, floor (0-4), story (1-4) for the
+    paper's building:
     isolator_disp (m), total_accel (m/s^2; floor), impact_force (N), indentation (m) against
     time, and the peaks peak_total_accel (m/s^2; floor), peak_interstory_drift (m; story),
     peak_isolator_disp (m), max_indentation (m), max_impact_force (N), n_impacts,
     impact_energy (J); per-configuration coordinates impact, the parameters (NaN where a law
-    does not use one), clear_gap and crush_indentation (the engine's gap_eff and delta_u, m);
-    scalar coordinates of the record; provenance attributes as a sweep's archive. Raises
+    does not use one), clear_gap and crush_indentation (the engine's clear_gap and delta_u,
+    m); scalar coordinates of the record; provenance attributes (pipeline.provenance: common,
+    the run, the decisions, the record, and the histories' own). Raises
     SweepError, naming the parameter, before any simulation runs.
     """
-    from .run import Progress
-
     m_eff = M_EFF.default if m_eff is None else m_eff
     names, grids = _configurations(configurations, m_eff)
-    building = engine.Building() if building is None else building
-    if not isinstance(building, engine.Building):
-        raise SweepError(f"building must be an engine.Building, got {type(building).__name__}")
+    building = check_building(building)
     dt = engine.DEFAULT_DT if dt is None else dt
     for grid in grids:
         dt = check_dt(grid, dt, building)
     every = check_count("every", every, minimum=1)
-    try:
-        recs, rec_names = resolve_records(record, records_dir)
-    except RecordError as err:
-        raise SweepError(str(err)) from err
+    recs, rec_names = resolve_records(record, records_dir)
     if len(recs) != 1:
         raise SweepError(f"records: histories runs one record at a time, got {len(recs)}")
     rec, rec_name = recs[0], rec_names[0]
@@ -165,7 +164,7 @@ def concat_records(parts, t_end: float | None = None) -> xr.Dataset:
     axis_end = float(combined.time.values[-1])
     short = [f"{name} ends at {end:g} s" for name, end in zip(names, ends, strict=True)
              if end < axis_end]
-    for name in HISTORY_META:
+    for name in HISTORY_NAMES:
         if short:
             combined[name].attrs["fill"] = ("NaN after the end of a record shorter than the "
                                             f"common time axis ({'; '.join(short)})")
@@ -269,15 +268,14 @@ def _dataset(names, grids, members, contact, rec, rec_name, result, dt, every, b
              m_eff, duration, arguments) -> xr.Dataset:
     hist = result.history
     config = "configuration"
-    data_vars = {name: variable((config, "time") + ((tail,) if tail else ()), hist[name],
-                                units, long_name)
-                 for name, (units, long_name, tail) in HISTORY_META.items()}
+    data_vars = {q.name: quantity_variable(q, (config, "time"), hist[q.name])
+                 for q in HISTORIES}
     data_vars.update(peak_variables(result.peaks(), (config,)))
 
     laws = [grid.impact for grid in grids]
     # One record: its coordinates are scalars (xr.concat over records stacks them).
     coords = {key: var[0] for key, var in record_coords([rec], [rec_name]).items()}
-    coords.update(LEVEL_COORDS)
+    coords.update(level_coords(building.n_levels))
     coords["configuration"] = variable(config, np.array(names, dtype=str), "1",
                                        "moat-wall configuration")
     coords["time"] = variable("time", hist["time"], "s", "time from the start of the record",
@@ -290,36 +288,35 @@ def _dataset(names, grids, members, contact, rec, rec_name, result, dt, every, b
                              long_name + " (NaN: not used by the configuration's law)")
     coords["m_eff"] = variable(config, members["m_eff"], "kg", "effective impact mass")
     coords["clear_gap"] = variable(config, _finite(contact.clear_gap), "m",
-                                   "clear gap to the contact surface (gap - bumper thickness "
-                                   "with bumpers; NaN: no wall)")
+                                   "clear gap to the contact surface (gap - (thickness - "
+                                   "cavity) with bumpers; NaN: no wall)")
     coords["crush_indentation"] = variable(config, _finite(contact.delta_u), "m",
                                            "indentation at which the bumpers are crushed, "
-                                           "strain x thickness (NaN: no crush limit)")
+                                           "min(strain x thickness, thickness - cavity) (NaN: "
+                                           "no crush limit)")
 
-    one = Grid(impact=NO_WALL, coords={}, fixed={}, blocks=(), m_eff=m_eff)
-    attrs = attributes(one, [rec], [rec_name], dt, building)
-    attrs.update(
-        title="bumpers: time histories and peak responses of a seismically isolated building "
-              "pounding on its moat wall, per wall configuration",
-        impact_law="per configuration (see the impact coordinate and `configurations`)",
-        swept_parameters="configuration",
-        fixed_parameters="none",
-        baseline="none (a bare wall is a configuration with impact='linear')",
-        unconstrained="none (no wall is a configuration with impact='none')",
-        impact_law_defaults=json.dumps({law: law_defaults(law) for law in dict.fromkeys(laws)
-                                        if law != NO_WALL}),
-        configurations=json.dumps({name: describe_member(member)
-                                   for name, member in zip(names, members, strict=True)}),
-        history_every=every,
-        history_interval=every * dt,
-        history_interval_units="s",
-        history_note=(f"histories keep one integration step in {every} ({every * dt:g} s "
-                      "apart); peaks are taken over every step, so a history's maximum can "
-                      "fall slightly under its peak"),
-        record_segment=("whole record" if duration is None
-                        else f"first {float(duration):g} s only (peaks of the segment)"),
-        histories_arguments=json.dumps(arguments, sort_keys=True),
-    )
+    attrs = {
+        **common_attributes(TITLE), **run_attributes(dt, building),
+        **decision_attributes(m_eff), **record_attributes([rec], [rec_name]),
+        "impact_law": "per configuration (see the impact coordinate and `configurations`)",
+        "swept_parameters": "configuration",
+        "fixed_parameters": "none",
+        "baseline": "none (a bare wall is a configuration with impact='linear')",
+        "unconstrained": "none (no wall is a configuration with impact='none')",
+        "impact_law_defaults": json.dumps({law: law_defaults(law)
+                                           for law in dict.fromkeys(laws) if law != NO_WALL}),
+        "configurations": json.dumps({name: describe_member(member)
+                                      for name, member in zip(names, members, strict=True)}),
+        "history_every": every,
+        "history_interval": every * dt,
+        "history_interval_units": "s",
+        "history_note": (f"histories keep one integration step in {every} ({every * dt:g} s "
+                         "apart); peaks are taken over every step, so a history's maximum can "
+                         "fall slightly under its peak"),
+        "record_segment": ("whole record" if duration is None
+                           else f"first {float(duration):g} s only (peaks of the segment)"),
+        **arguments_attribute("histories", arguments),
+    }
     return labelled_dataset(data_vars, coords, attrs)
 
 

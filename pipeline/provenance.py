@@ -1,8 +1,16 @@
 """Provenance of every archive: versions, the engine's fingerprint, record hashes, the model
 settings and decisions, and the arguments of the run, as NetCDF global attributes.
 
-The engine fingerprint and the record hashes are also the keys of resumable runs (run.py):
-a changed engine or record is a new key.
+The attributes come in pieces that compose, each archive taking those that fit it:
+common_attributes (title, conventions, versions, engine fingerprint, commit, date: every
+archive), run_attributes (dt, time loop, building: runs of the building), decision_attributes
+(m_eff and the modelling decisions), sweep_attributes (impact law, swept and fixed parameters,
+baseline, unconstrained), record_attributes (the records), arguments_attribute (the call).
+`attributes` is a sweep's whole set, `two_body_attributes` that of a two-body run
+(engine.two_body); pipeline.histories composes its own.
+
+The engine fingerprint and the record hashes are also ingredients of the keys of resumable
+runs (pipeline.execute.keys): a changed engine or record is a new key.
 """
 from __future__ import annotations
 
@@ -20,7 +28,14 @@ import numpy as np
 import engine
 from engine.impact import LAWS
 
-from .grid import BASELINE, BASELINE_LAW, Grid
+from .grid import BASELINE, BASELINE_LAW, Grid, baseline_text
+
+TITLE = "bumpers: peak responses of a seismically isolated building pounding on its moat wall"
+INTEGRATOR = ("explicit central differences (engine.simulate); ground motion linearly "
+              "interpolated onto dt")
+TWO_BODY_INTEGRATOR = ("explicit central differences of the relative coordinate "
+                       "(engine.two_body), the dashpot on the central rate solved exactly; a "
+                       "step per member sized to its own contact duration")
 
 
 def project_version() -> str:
@@ -103,45 +118,63 @@ def law_defaults(law: str) -> dict:
     return plain(LAWS[law].PARAMETERS.defaults())
 
 
-def attributes(grid: Grid, records, names: list[str], dt: float, building: engine.Building,
-               arguments: dict | None = None) -> dict:
-    """Global attributes: versions, every model setting and decision, records, arguments."""
-    law = grid.impact
-    bare = LAWS[BASELINE_LAW].PARAMETERS.swept()
-    baseline = ", ".join(bare[k].value_text(v) for k, v in BASELINE.items())
-    attrs = {
-        "title": "bumpers: peak responses of a seismically isolated building pounding on its "
-                 "moat wall",
+def common_attributes(title: str) -> dict:
+    """What every archive says: title, conventions, versions, the engine's fingerprint, the
+    commit and the date."""
+    return {
+        "title": title,
         "Conventions": "CF-1.8",
         "project": "bumpers",
         "project_version": project_version(),
         "git_commit": git_commit(),
         "engine_fingerprint": engine_fingerprint(),
         "date_created": date_created(),
-        "dt": dt,
-        "dt_units": "s",
-        "integrator": "explicit central differences (engine.simulate); ground motion "
-                      "linearly interpolated onto dt",
-        "impact_law": law,
-        "swept_parameters": " ".join(grid.coords) or "none",
-        "fixed_parameters": " ".join(grid.fixed) or "none",
-        "m_eff": grid.m_eff,
+    }
+
+
+def run_attributes(dt: float, building: engine.Building) -> dict:
+    """A building run: the integration step, the time loop and the building."""
+    return {"dt": dt, "dt_units": "s", "integrator": INTEGRATOR,
+            **building_attributes(building)}
+
+
+def decision_attributes(m_eff: float) -> dict:
+    """The effective impact mass, and the decisions on m_eff, the COR and the gap."""
+    return {
+        "m_eff": m_eff,
         "m_eff_units": "kg",
         "m_eff_decision": "wall mass infinite, so m_eff = m1 m2 / (m1 + m2) -> base-slab mass",
         "cor_decision": f"COR {LAWS['bumper'].PARAMETERS.cor.default:g} for bumper impacts "
                         "(the paper's rubber, section 3.4) unless swept; COR "
                         f"{BASELINE['cor']:g} for bare-wall (no-bumper) impacts",
         "gap_decision": "gap is the seismic gap before bumpers; bumper runs use the clear gap "
-                        "gap - thickness (Fig. 14), the no-bumper baseline the full gap",
-        "baseline": (f"{BASELINE_LAW} viscoelastic wall (Eq. 1-3), {baseline}, at the full "
-                     "gap" if grid.block("baseline_") is not None else "none"),
+                        "gap - (thickness - cavity) (Fig. 14; bumpers set into a wall cavity "
+                        "of depth cavity, section 5.3), the no-bumper baseline the full gap",
+    }
+
+
+def sweep_attributes(grid: Grid) -> dict:
+    """A sweep's wall: its law and defaults, what is swept and fixed, baseline and
+    unconstrained runs."""
+    law = grid.impact
+    attrs = {
+        "impact_law": law,
+        "swept_parameters": " ".join(grid.coords) or "none",
+        "fixed_parameters": " ".join(grid.fixed) or "none",
+        "baseline": (f"{BASELINE_LAW} viscoelastic wall (Eq. 1-3), {baseline_text()}, at the "
+                     "full gap" if grid.block("baseline_") is not None else "none"),
         "unconstrained": ("no moat wall (engine.Contact.none)"
                           if grid.block("unconstrained_") is not None else "none"),
         "impact_law_defaults": json.dumps(law_defaults(law)),
     }
     if law == "hertzdamp":  # its exponent is not a sweep parameter: sweeps use the default
         attrs["hertzdamp_exponent"] = LAWS[law].PARAMETERS.n.default
-    attrs.update(building_attributes(building))
+    return attrs
+
+
+def record_attributes(records, names: list[str]) -> dict:
+    """Each record's source, note and origin, and `records`: every record's identity."""
+    attrs = {}
     for name, rec in zip(names, records, strict=True):
         name = re.sub(r"[^A-Za-z0-9_]", "_", name)  # a valid attribute name
         attrs[f"record_{name}_source"] = str(rec.source)
@@ -155,9 +188,30 @@ def attributes(grid: Grid, records, names: list[str], dt: float, building: engin
                 attrs[f"record_{name}_substitution"] = note
     attrs["records"] = json.dumps([record_meta(name, rec)
                                    for name, rec in zip(names, records, strict=True)])
-    if arguments is not None:
-        attrs["sweep_arguments"] = json.dumps(arguments, sort_keys=True)
     return attrs
+
+
+def arguments_attribute(kind: str, arguments: dict | None) -> dict:
+    """`<kind>_arguments`: the call's arguments as JSON ({} when there are none)."""
+    if arguments is None:
+        return {}
+    return {f"{kind}_arguments": json.dumps(plain(arguments), sort_keys=True)}
+
+
+def attributes(grid: Grid, records, names: list[str], dt: float, building: engine.Building,
+               arguments: dict | None = None) -> dict:
+    """A sweep's global attributes: common, the run, the decisions, the sweep, the records
+    and the arguments."""
+    return {**common_attributes(TITLE), **run_attributes(dt, building),
+            **decision_attributes(grid.m_eff), **sweep_attributes(grid),
+            **record_attributes(records, names), **arguments_attribute("sweep", arguments)}
+
+
+def two_body_attributes(title: str, arguments: dict | None = None) -> dict:
+    """A two-body run's global attributes (engine.two_body: no building, no record): common
+    and the time loop, and `two_body_arguments` when arguments are given."""
+    return {**common_attributes(title), "integrator": TWO_BODY_INTEGRATOR,
+            **arguments_attribute("two_body", arguments)}
 
 
 def building_attributes(building: engine.Building) -> dict:

@@ -46,6 +46,7 @@ def compute(args):
     from engine.impact.laws import rubber_bumper
     from engine.units import power_law_units
     from pipeline.archive import labelled_dataset, variable
+    from pipeline.provenance import two_body_attributes
 
     axes = grid(args.quick)
     shape = tuple(len(a) for a in axes.values())
@@ -103,7 +104,11 @@ def compute(args):
                                            "m1 m2 / (m1 + m2) (two equal bodies of 2 m_eff)"}),
         "v_imp": ("v_imp", axes["v_imp"], {"units": "m s-1", "long_name": "impact velocity"}),
     }
-    ds = labelled_dataset(data, coords)
+    title = ("bumpers: the impact damping coefficient C_imp of the rubber-bumper law re-derived "
+             "by energy equilibrium (paper section 3.2, Eq. 9)")
+    arguments = {"bumper": BUMPER, **{name: list(map(float, values))
+                                      for name, values in axes.items()}}
+    ds = labelled_dataset(data, coords, two_body_attributes(title, arguments))
     ds.attrs["rubber_k_r_pa"] = rubber_bumper.PARAMETERS.k_r.default
     ds.attrs["rubber_alpha"] = rubber_bumper.PARAMETERS.alpha.default
     return ds

@@ -57,6 +57,7 @@ def compute(args):
     from engine.impact.laws import rubber_bumper
     from pipeline.archive import labelled_dataset
     from pipeline.archive import variable as var
+    from pipeline.provenance import two_body_attributes
 
     v = np.asarray(VELOCITIES)
     contact = contacts(v)
@@ -133,7 +134,13 @@ def compute(args):
         "velocity": ("velocity", v, {"units": "m s-1", "long_name": "impact velocity v_imp"}),
         "step": ("step", step, {"units": "1", "long_name": "integration step (time / dt)"}),
     }
-    return labelled_dataset(data, coords)
+    title = ("bumpers: two steel rods colliding through a rubber pad (the impact test of "
+             "Kajita et al. 2006, paper Fig. 6), two impact laws")
+    arguments = {"velocities": list(VELOCITIES), "rod_mass": TEST_ROD_MASS,
+                 "pad_thickness": TEST_PAD_THICKNESS, "pad_area": TEST_PAD_AREA,
+                 "strain": STRAIN, "k_w": K_W, "cor": TEST_COR, "n": EXPONENT,
+                 "models": list(MODELS)}
+    return labelled_dataset(data, coords, two_body_attributes(title, arguments))
 
 
 def plot(ds):

@@ -17,22 +17,62 @@ from __future__ import annotations
 import argparse
 import sys
 
-from engine.impact import LAWS, M_EFF
+from engine.impact import M_EFF
 from engine.units import CM, KN_PER_MM
-from pipeline.grid import BASELINE, IMPACT_LAWS
+from pipeline.grid import BASELINE, IMPACT_LAWS, PARAMS, declarations
 
 from ._recipe import accept_negative_numbers, outputs
 
+# Units the command line also takes in the paper's units, by the SI unit declared: the option
+# --NAME-<suffix> takes values in that unit.
+PAPER_UNITS = {"m": ("cm", "CM", CM, "cm"), "N m-1": ("kn-mm", "K", KN_PER_MM, "kN/mm")}
+METAVARS = {"m": "M", "1": "X"}
+
 
 def declared(name: str) -> str:
-    """What sweep parameter `name` is under each law that takes it: the laws' declarations."""
-    parts = []
-    for law in IMPACT_LAWS:
-        p = LAWS[law].PARAMETERS.swept().get(name)
-        if p is not None:
-            default = "required" if p.required else f"default {p.default:g}"
-            parts.append(f"{law}: {p.meaning}, {p.units}, in {p.valid}, {default}")
-    return "; ".join(parts)
+    """What sweep parameter `name` is under each law that takes it: the laws' declarations
+    (once when every law declares it alike, as the gap)."""
+    texts = {}
+    for law, p in declarations(name).items():
+        default = "required" if p.required else f"default {p.default:g}"
+        units = "" if p.units == "1" else f", {p.units}"
+        texts[law] = f"{p.meaning}{units}, in {p.valid}, {default}"
+    if len(set(texts.values())) == 1:
+        return next(iter(texts.values()))
+    return "per law: " + "; ".join(f"{law}: {text}" for law, text in texts.items())
+
+
+def paper_unit(name: str):
+    """(option suffix, metavar, SI value of one unit, unit text, laws) of the paper-unit
+    variant of sweep parameter `name`, or None: the laws are those declaring it in the matching
+    SI unit."""
+    params = declarations(name)
+    for si, (suffix, metavar, factor, text) in PAPER_UNITS.items():
+        laws = [law for law, p in params.items() if p.units == si]
+        if laws:
+            return suffix, metavar, factor, text, laws
+    return None
+
+
+def add_parameters(p: argparse.ArgumentParser) -> None:
+    """One option per sweep parameter (pipeline.grid.PARAMS, from the laws' declarations),
+    with a paper-unit variant (-cm, -kn-mm) where one applies."""
+    for name in PARAMS:
+        params = declarations(name)
+        first = next(iter(params.values()))
+        required = all(q.required for q in params.values())
+        variant = paper_unit(name)
+        group = p.add_mutually_exclusive_group(required=required) if variant else p
+        option = "--" + name.replace("_", "-")
+        group.add_argument(option, nargs="+", type=int if first.integer else float,
+                           required=required and not variant,
+                           metavar="N" if first.integer else METAVARS.get(first.units, "K"),
+                           help=declared(name))
+        if variant:
+            suffix, metavar, _, text, laws = variant
+            only = "" if len(laws) == len(params) else f" ({', '.join(laws)} only)"
+            group.add_argument(f"{option}-{suffix}", nargs="+", type=float, metavar=metavar,
+                               help=f"{name} in {text}{only}")
 
 
 def parser() -> argparse.ArgumentParser:
@@ -48,32 +88,7 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--records-dir", metavar="DIR",
                    help="folder of AT2 files searched for the paper's records "
                         "(default: $BUMPERS_RECORDS_DIR)")
-    gap = p.add_mutually_exclusive_group(required=True)
-    gap.add_argument("--gap", nargs="+", type=float, metavar="M",
-                     help="seismic gap between base slab and moat wall, before bumpers, m "
-                          "(with bumpers the clear gap is gap - thickness)")
-    gap.add_argument("--gap-cm", nargs="+", type=float, metavar="CM", help="the gap in cm")
-    thickness = p.add_mutually_exclusive_group()
-    thickness.add_argument("--thickness", nargs="+", type=float, metavar="M",
-                           help=declared("thickness"))
-    thickness.add_argument("--thickness-cm", nargs="+", type=float, metavar="CM",
-                           help="bumper thickness in cm")
-    cavity = p.add_mutually_exclusive_group()
-    cavity.add_argument("--cavity", nargs="+", type=float, metavar="M",
-                        help=declared("cavity"))
-    cavity.add_argument("--cavity-cm", nargs="+", type=float, metavar="CM",
-                        help="cavity depth in cm")
-    p.add_argument("--strain", nargs="+", type=float, metavar="EPS",
-                   help=declared("strain"))
-    p.add_argument("--n-bumpers", nargs="+", type=int, metavar="N",
-                   help=declared("n_bumpers"))
-    wall = p.add_mutually_exclusive_group()
-    wall.add_argument("--wall-k", nargs="+", type=float, metavar="K",
-                      help="wall stiffness, per law: " + declared("wall_k"))
-    wall.add_argument("--wall-k-kn-mm", nargs="+", type=float, metavar="K",
-                      help="wall stiffness in kN/mm (bumper and linear laws only)")
-    p.add_argument("--cor", nargs="+", type=float, metavar="E",
-                   help=declared("cor"))
+    add_parameters(p)
     p.add_argument("--impact", default="bumper",
                    choices=IMPACT_LAWS,
                    help="impact law at the moat wall (default: bumper)")
@@ -119,6 +134,28 @@ def _one_or_many(values, scale: float = 1.0):
     return values[0] if len(values) == 1 else values
 
 
+def parameters(args) -> dict:
+    """Sweep parameter -> None, a scalar or a list in SI units, from the options (those in
+    paper units converted); SweepError for a paper unit the chosen law does not use."""
+    from pipeline.errors import SweepError
+
+    values = {}
+    for name in PARAMS:
+        values[name] = _one_or_many(getattr(args, name))
+        variant = paper_unit(name)
+        given = getattr(args, f"{name}_{variant[0].replace('-', '_')}", None) if variant \
+            else None
+        if given is not None:
+            suffix, _, factor, _, laws = variant
+            if args.impact not in laws:
+                unit = declarations(name)[args.impact].units
+                raise SweepError(f"{name}: --{name.replace('_', '-')}-{suffix} is for the "
+                                 f"{', '.join(laws)} laws; give --{name.replace('_', '-')} "
+                                 f"in {unit} for impact={args.impact!r}")
+            values[name] = _one_or_many(given, factor)
+    return values
+
+
 def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
     import engine
@@ -128,24 +165,13 @@ def main(argv: list[str] | None = None) -> int:
     from ._recipe import announce_stand_ins
 
     try:
-        if args.wall_k_kn_mm is not None and args.impact not in ("bumper", "linear"):
-            raise SweepError(f"wall_k: --wall-k-kn-mm is for N/m stiffnesses (bumper, linear); "
-                             f"give --wall-k in N/m^1.5 for impact={args.impact!r}")
         building = engine.Building(damping=args.damping)
         archive, _ = outputs(args.out, "sweep", archives=(".nc", ".zarr"))
         with announce_stand_ins():
             ds = pipeline.sweep(
                 records=args.records,
-                gap=_one_or_many(args.gap) if args.gap else _one_or_many(args.gap_cm, CM),
-                thickness=_one_or_many(args.thickness) if args.thickness
-                else _one_or_many(args.thickness_cm, CM),
-                cavity=_one_or_many(args.cavity) if args.cavity
-                else _one_or_many(args.cavity_cm, CM),
-                strain=_one_or_many(args.strain),
-                n_bumpers=_one_or_many(args.n_bumpers),
-                wall_k=_one_or_many(args.wall_k) if args.wall_k
-                else _one_or_many(args.wall_k_kn_mm, KN_PER_MM),
-                cor=_one_or_many(args.cor), impact=args.impact, dt=args.dt, workers=args.workers,
+                **parameters(args),
+                impact=args.impact, dt=args.dt, workers=args.workers,
                 scheduler=args.scheduler, out=archive, baseline=args.baseline,
                 unconstrained=args.unconstrained, building=building, m_eff=args.m_eff,
                 batch_size=args.batch_size, records_dir=args.records_dir, quiet=args.quiet)

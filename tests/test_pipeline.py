@@ -17,8 +17,10 @@ import xarray as xr
 from conftest import assert_udunits
 
 import pipeline
-from pipeline import run as run_module
 from pipeline.errors import SweepError
+from pipeline.execute import batches as batches_module
+from pipeline.execute import netcdf_store
+from pipeline.execute import progress as progress_module
 from pipeline.records import Record
 
 PROJECT = Path(__file__).resolve().parents[1]
@@ -51,13 +53,13 @@ def reference():
 def count_simulated(monkeypatch):
     """Count batches and members simulated in this process."""
     calls = []
-    real = run_module.simulate_batch
+    real = batches_module.simulate_batch
 
     def counting(accel, accel_dt, rows, *args, **kwargs):
         calls.append(len(rows))
         return real(accel, accel_dt, rows, *args, **kwargs)
 
-    monkeypatch.setattr(run_module, "simulate_batch", counting)
+    monkeypatch.setattr(batches_module, "simulate_batch", counting)
     return calls
 
 
@@ -191,7 +193,7 @@ def test_interrupted_sweep_resumes_with_only_the_rest(reference, tmp_path, monke
     work = tmp_path / "resume.nc.work"
     kwargs = dict(**SMALL, workers=1, baseline=True, unconstrained=True, batch_size=2,
                   quiet=True, out=out)
-    real_save = run_module.WorkFolder.save
+    real_save = netcdf_store.WorkFolder.save
     saved = []
 
     def dying_save(self, *args):
@@ -200,11 +202,11 @@ def test_interrupted_sweep_resumes_with_only_the_rest(reference, tmp_path, monke
         if len(saved) == 3:
             raise Killed
 
-    monkeypatch.setattr(run_module.WorkFolder, "save", dying_save)
+    monkeypatch.setattr(netcdf_store.WorkFolder, "save", dying_save)
     with pytest.raises(Killed):
         pipeline.sweep(RECORDS, **kwargs)
     assert not out.exists() and len(list(work.glob("*.npz"))) == 3
-    monkeypatch.setattr(run_module.WorkFolder, "save", real_save)
+    monkeypatch.setattr(netcdf_store.WorkFolder, "save", real_save)
 
     count_simulated.clear()
     ds = pipeline.sweep(RECORDS, **kwargs)
@@ -219,16 +221,16 @@ def test_interrupted_sweep_resumes_with_only_the_rest(reference, tmp_path, monke
 
 def test_changed_arguments_never_reuse_stale_results(tmp_path, monkeypatch, count_simulated):
     out = tmp_path / "stale.nc"
-    real_save = run_module.WorkFolder.save
+    real_save = netcdf_store.WorkFolder.save
 
     def dying_save(self, *args):
         real_save(self, *args)
         raise Killed
 
-    monkeypatch.setattr(run_module.WorkFolder, "save", dying_save)
+    monkeypatch.setattr(netcdf_store.WorkFolder, "save", dying_save)
     with pytest.raises(Killed):
         pipeline.sweep(RECORDS, **SMALL, workers=1, batch_size=6, quiet=True, out=out)
-    monkeypatch.setattr(run_module.WorkFolder, "save", real_save)
+    monkeypatch.setattr(netcdf_store.WorkFolder, "save", real_save)
     count_simulated.clear()
     changed = {**SMALL, "thickness": 0.04}
     ds = pipeline.sweep(RECORDS, **changed, workers=1, batch_size=6, quiet=True, out=out)
@@ -309,7 +311,7 @@ def no_compute(monkeypatch):
     def fail(*args, **kwargs):
         raise AssertionError("simulated despite bad input")
 
-    monkeypatch.setattr(run_module, "simulate_batch", fail)
+    monkeypatch.setattr(batches_module, "simulate_batch", fail)
 
 
 @pytest.mark.parametrize("change, match", [
@@ -401,19 +403,19 @@ def test_records_entry_point_stays_light():
 
 def test_progress_bar_shows_counts_and_time_left():
     stream = io.StringIO()
-    progress = run_module.Progress(total=10, done=2, stream=stream, delay=0.0)
+    progress = progress_module.Progress(total=10, done=2, stream=stream, delay=0.0)
     progress.advance(3)
     progress.close()
     text = stream.getvalue()
     assert " 50% (5 of 10 simulations finished)" in text and "left" in text
     # a running batch's partial work moves the percentage, never the count of finished ones
     partial = io.StringIO()
-    progress = run_module.Progress(total=10, stream=partial, delay=0.0)
+    progress = progress_module.Progress(total=10, stream=partial, delay=0.0)
     progress.running("batch", 1.4)
     progress.close()
     assert " 14% (0 of 10 simulations finished)" in partial.getvalue()
     quiet = io.StringIO()
-    run_module.Progress(total=10, quiet=True, stream=quiet, delay=0.0).close()
+    progress_module.Progress(total=10, quiet=True, stream=quiet, delay=0.0).close()
     assert quiet.getvalue() == ""
 
 
@@ -452,7 +454,7 @@ def test_stand_in_is_announced_before_any_compute(monkeypatch, tmp_path, capsys)
     def computed(*args, **kwargs):
         raise Computed
 
-    monkeypatch.setattr(run_module, "simulate_batch", computed)
+    monkeypatch.setattr(batches_module, "simulate_batch", computed)
     with pytest.warns(records_module.StandInWarning, match="STAND-IN: Kobe"), \
             pytest.raises(Computed):
         pipeline.sweep(["kobe"], gap=0.3, workers=0, quiet=True)

@@ -1,0 +1,82 @@
+"""Batches: one engine call each, one record and some of the grid's members; what a worker
+runs for one (`simulate_batch`), and how many members a batch holds by default."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+import engine
+from engine.results import PEAKS
+
+from ..grid import contact_for
+
+
+@dataclass(frozen=True)
+class Batch:
+    """One engine call of a run.
+
+    record: index into the run's records; members: which of the grid's members (an index
+    array or a slice of grid.members); size: how many; key: unique among the run's batches
+    (it names the batch in progress reports and its dask task); place: where the store puts
+    its results (the store's own; None when the store needs nothing).
+    """
+
+    record: int
+    members: np.ndarray | slice
+    size: int
+    key: str
+    place: object = None
+
+
+def simulate_batch(accel: np.ndarray, accel_dt: float, members: np.ndarray,
+                   building: engine.Building, dt: float, progress=None,
+                   report: tuple[str, str] | None = None) -> dict[str, np.ndarray]:
+    """Peaks of (b,) members (grid.MEMBER_DTYPE) under one record (m/s^2 every accel_dt s):
+    peak name -> (b, ...) array (engine.results.PEAKS).
+
+    progress(step, n_steps) is called as the engine goes; on a dask worker, report =
+    (topic, tag) sends [tag, step / n_steps] to the client's event topic instead.
+    """
+    if report is not None:
+        from distributed import get_worker
+
+        worker, (topic, tag) = get_worker(), report
+
+        def progress(step, n_steps):
+            worker.log_event(topic, [tag, step / n_steps])
+
+    result = engine.simulate(accel, accel_dt, contact_for(members), building=building, dt=dt,
+                             progress=progress)
+    return {q.name: np.asarray(getattr(result, q.name), dtype=q.dtype) for q in PEAKS}
+
+
+def default_batch_size(n_members: int, n_records: int, workers: int,
+                       max_batch: int = 4096, *, steps: int = 80_000,
+                       member_step_seconds: float = 35e-9, min_batch_seconds: float = 0.5) -> int:
+    """Default members per engine batch, sized for the compiled kernel.
+
+    With the kernel a batch costs ~35 ns per member-step and nearly nothing else, so the only
+    reasons for large batches are dask's overhead per task (a few ms: a batch of at least
+    min_batch_seconds keeps it under 5%) and memory (max_batch members, ~2 KB each). Batches
+    should be small enough that every worker has several (4 per worker), so that no worker
+    idles while another finishes a long record; the executor further splits the batches of
+    records longer than the typical one (`record_batch_sizes`). steps: a typical record's
+    number of steps (80,000 = 40 s at 0.5 ms).
+    """
+    workers = max(workers, 1)
+    floor = math.ceil(min_batch_seconds / (max(steps, 1) * member_step_seconds))
+    wanted = 4 * workers if workers > 1 else 1
+    per_record = max(math.ceil(n_members / max_batch), math.ceil(wanted / max(n_records, 1)))
+    size = math.ceil(n_members / per_record)
+    return max(1, min(max_batch, n_members, max(size, floor)))
+
+
+def record_batch_sizes(records, batch_size: int) -> list[int]:
+    """Members per batch for each record: batch_size for records up to the median length,
+    fewer for longer ones so that every batch is about as long as a typical one (a long
+    record's batch would otherwise keep one worker busy after the others finish)."""
+    lengths = [max(len(rec.accel) * rec.dt, 1e-9) for rec in records]
+    typical = float(np.median(lengths)) if lengths else 1.0
+    return [max(1, math.floor(batch_size * min(1.0, typical / length))) for length in lengths]

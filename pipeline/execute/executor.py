@@ -1,0 +1,124 @@
+"""The one executor: run a store's remaining batches in this process or on dask, with a
+progress line, Ctrl-C turned into pipeline.errors.Interrupted.
+
+A store (netcdf_store.NetCDFStore, zarr_store.ZarrStore) decides what a run keeps and where;
+the executor only runs batches. The interface (`Store`):
+
+    store.records          the Record objects run (batches index them)
+    store.total            simulations of the whole run (records x members)
+    store.kept_in          where finished batches survive an interruption (None: nowhere)
+    store.pending(sizes)   the batches still to run; sizes[r] is the most members a batch of
+                           record r should hold (a store with fixed batches, Zarr's chunk
+                           regions, may ignore it)
+    store.task(batch)      (function, args): a worker runs function(accel, *args,
+                           progress=None, report=None), accel the record's samples
+    store.accept(batch, output)  on the client, as each batch finishes, with what the
+                           function returned
+
+Batches of the longest records run first (a long record's batch starting last would leave
+workers idle). In this process the compiled kernel spreads each batch over every core with
+threads; with workers >= 2 or a scheduler the batches go to dask workers, the records
+scattered once, running batches reporting their progress through a dask event topic.
+"""
+from __future__ import annotations
+
+import uuid
+from typing import Protocol
+
+import numpy as np
+
+from ..errors import Interrupted
+from .batches import Batch, record_batch_sizes
+from .dask_client import client, silence_dask
+from .progress import Progress
+
+
+class Store(Protocol):
+    """Where a run's results go (see the module docstring)."""
+
+    records: list
+    total: int
+    kept_in: object
+
+    def pending(self, sizes: list[int]) -> list[Batch]: ...
+
+    def task(self, batch: Batch) -> tuple: ...
+
+    def accept(self, batch: Batch, output) -> None: ...
+
+
+def execute(store: Store, *, workers: int, scheduler, batch_size: int,
+            quiet: bool) -> None:
+    """Run every batch `store` has pending, here (scheduler None and workers <= 1) or on dask
+    (scheduler: None for a local cluster of `workers` processes, an address, or a Client).
+    Ctrl-C raises Interrupted saying how many simulations are kept, and where."""
+    records = store.records
+    in_process = scheduler is None and workers <= 1
+    # Splitting long records keeps worker processes equally busy; in this process the
+    # kernel's threads share each batch anyway, and bigger batches balance them better.
+    sizes = [batch_size] * len(records) if in_process \
+        else record_batch_sizes(records, batch_size)
+    batches = sorted(store.pending(sizes),
+                     key=lambda b: -len(records[b.record].accel) * records[b.record].dt)
+    progress = Progress(store.total, store.total - sum(b.size for b in batches), quiet)
+    try:
+        if batches and in_process:
+            _run_here(store, batches, progress)
+        elif batches:
+            _run_on_dask(store, batches, workers, scheduler, progress)
+    except KeyboardInterrupt:
+        progress.interrupted()
+        kept = progress.done if store.kept_in is not None else 0
+        raise Interrupted(int(kept), progress.total, store.kept_in) from None
+    progress.close()
+
+
+def _run_here(store: Store, batches: list[Batch], progress: Progress) -> None:
+    for batch in batches:
+        function, args = store.task(batch)
+        # The kernel returns to Python every ~1% of the steps to report progress, which is
+        # also where Ctrl-C takes effect: always pass the callback.
+        output = function(store.records[batch.record].accel, *args,
+                          progress=lambda step, steps, b=batch:
+                          progress.running(b.key, b.size * step / steps))
+        store.accept(batch, output)
+        progress.advance(batch.size, batch.key)
+
+
+def _run_on_dask(store: Store, batches: list[Batch], workers: int, scheduler,
+                 progress: Progress) -> None:
+    """Submit every batch; accept each as it completes, here in the client process."""
+    from distributed import as_completed
+
+    records = store.records
+    with client(workers, scheduler) as dask:
+        sizes = {b.key: b.size for b in batches}
+        topic = f"bumpers-progress-{uuid.uuid4().hex}"
+
+        def on_event(event):  # (timestamp, [batch key, fraction done])
+            key, fraction = event[1]
+            progress.running(key, sizes[key] * fraction)
+
+        dask.subscribe_topic(topic, on_event)
+        futures = {}
+        try:
+            accel = {r: dask.scatter(np.asarray(records[r].accel), hash=False)
+                     for r in sorted({b.record for b in batches})}
+            for batch in batches:
+                function, args = store.task(batch)
+                future = dask.submit(function, accel[batch.record], *args,
+                                     report=(topic, batch.key),
+                                     key=f"bumpers-batch-{batch.record}-{batch.key}")
+                futures[future] = batch
+            for future in as_completed(futures, loop=dask.loop):
+                batch = futures[future]
+                store.accept(batch, future.result())
+                progress.advance(batch.size, batch.key)
+        except KeyboardInterrupt:
+            # Stop quietly: cancel what is queued; shutting down then makes dask log lost
+            # scattered data and closed comms, which say nothing to the user.
+            silence_dask()
+            dask.cancel(list(futures), force=True)
+            raise
+        finally:
+            dask.unsubscribe_topic(topic)

@@ -1,0 +1,144 @@
+"""The NetCDF store: peaks gathered in this process, written as one NetCDF archive at the end;
+finished batches kept meanwhile in a work folder, so that a run can resume.
+
+Workers return peak arrays and this process alone writes them (no races on shared files).
+Finished batches are kept in the work folder as .npz files holding their context key and
+members (grid.MEMBER_DTYPE) with their peaks, so a killed sweep rerun with the same arguments
+computes only the members it is missing. Every member is looked up by its context key and its
+member record (pipeline.execute.keys): batch sizes and worker counts may change between runs.
+"""
+from __future__ import annotations
+
+import os
+import shutil
+import tempfile
+import zipfile
+from pathlib import Path
+
+import numpy as np
+
+from engine.results import PEAK_NAMES, empty_peaks
+
+from ..archive import build_dataset, write_netcdf
+from ..errors import SweepError
+from ..grid import MEMBER_DTYPE
+from . import batches
+from .keys import batch_key, context_key
+
+
+class WorkFolder:
+    """Finished batches on disk: `<key>.npz` with the context, members and peaks."""
+
+    def __init__(self, path: Path):
+        self.path = Path(path)
+        self.path.mkdir(parents=True, exist_ok=True)
+
+    def load(self) -> dict[tuple[str, bytes], dict[str, np.ndarray]]:
+        """(context, member record bytes) -> that member's peaks, from every readable batch."""
+        found = {}
+        for file in sorted(self.path.glob("*.npz")):
+            try:
+                with np.load(file, allow_pickle=False) as data:
+                    context, members = str(data["context"]), data["members"]
+                    peaks = {name: data[name] for name in PEAK_NAMES}
+            except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
+                continue  # a damaged file (killed mid-write elsewhere) is simply recomputed
+            if members.dtype != MEMBER_DTYPE:
+                continue  # written by another version: its keys cannot match
+            for i, member in enumerate(members):
+                found[context, member.tobytes()] = {name: value[i]
+                                                    for name, value in peaks.items()}
+        return found
+
+    def save(self, key: str, context: str, members: np.ndarray,
+             peaks: dict[str, np.ndarray]):
+        """Write atomically: a batch file is complete or absent."""
+        fd, tmp = tempfile.mkstemp(dir=self.path, prefix=f".{key}.", suffix=".tmp")
+        try:
+            with os.fdopen(fd, "wb") as f:
+                np.savez(f, context=np.array(context), members=members, **peaks)
+            os.replace(tmp, self.path / f"{key}.npz")
+        except BaseException:
+            Path(tmp).unlink(missing_ok=True)
+            raise
+
+
+def check_work_dir(work_dir) -> Path | None:
+    """Create the work folder, or refuse one that cannot be written, before any compute."""
+    if work_dir is None:
+        return None
+    work_dir = Path(work_dir)
+    try:
+        work_dir.mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryFile(dir=work_dir):
+            pass
+    except OSError as err:
+        raise SweepError(f"work_dir: cannot write to {work_dir} "
+                         f"({err.strerror or err})") from None
+    return work_dir
+
+
+class NetCDFStore:
+    """A sweep's peaks in memory, its finished batches in a work folder (pipeline.execute's
+    Store interface); `finish` labels them and writes the archive.
+
+    out: the NetCDF path, or None (the Dataset is only returned); work_dir: the work folder
+    (None: `<out>.work` when out is given, removed once out is written; an explicit one is
+    kept, and may be shared by several sweeps; no out and no work_dir: nothing is kept).
+    """
+
+    def __init__(self, grid, records, names, dt, building, arguments, out=None,
+                 work_dir=None):
+        self.grid, self.records, self.names = grid, records, names
+        self.dt, self.building, self.arguments, self.out = dt, building, arguments, out
+        self.own_work_dir = work_dir is None and out is not None
+        if self.own_work_dir:
+            work_dir = out.with_name(out.name + ".work")
+        self.kept_in = check_work_dir(work_dir)
+        self.work = WorkFolder(self.kept_in) if self.kept_in is not None else None
+        self.contexts = [context_key(rec, dt, building) for rec in records]
+        self.members = grid.members
+        self.total = len(records) * grid.n_members
+        self.results = [empty_peaks(grid.n_members, building.n_levels) for _ in records]
+
+    def pending(self, sizes: list[int]) -> list[batches.Batch]:
+        """Fill in the members the work folder holds; the rest in batches of sizes[r]."""
+        cached = self.work.load() if self.work is not None else {}
+        todo = []
+        for r, context in enumerate(self.contexts):
+            missing = []
+            for i, member in enumerate(self.members):
+                peaks = cached.get((context, member.tobytes()))
+                if peaks is None:
+                    missing.append(i)
+                else:
+                    for name, value in peaks.items():
+                        self.results[r][name][i] = value
+            for start in range(0, len(missing), sizes[r]):
+                which = np.array(missing[start:start + sizes[r]])
+                todo.append(batches.Batch(r, which, which.size,
+                                          batch_key(context, self.members[which])))
+        return todo
+
+    def task(self, batch: batches.Batch) -> tuple:
+        """The peaks of the batch: batches.simulate_batch."""
+        return batches.simulate_batch, (self.records[batch.record].dt,
+                                        self.members[batch.members], self.building, self.dt)
+
+    def accept(self, batch: batches.Batch, peaks: dict[str, np.ndarray]) -> None:
+        """Keep the batch in the work folder, and its peaks here."""
+        if self.work is not None:
+            self.work.save(batch.key, self.contexts[batch.record], self.members[batch.members],
+                           peaks)
+        for name, value in peaks.items():
+            self.results[batch.record][name][batch.members] = value
+
+    def finish(self):
+        """The labelled Dataset, written to out when given (the own work folder then goes)."""
+        ds = build_dataset(self.grid, self.records, self.results, self.dt, self.building,
+                           self.names, self.arguments)
+        if self.out is not None:
+            write_netcdf(ds, self.out)
+        if self.own_work_dir:
+            shutil.rmtree(self.kept_in, ignore_errors=True)
+        return ds

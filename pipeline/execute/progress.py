@@ -1,0 +1,80 @@
+"""The progress line of a run: 'done/total simulations, elapsed, time left' on stderr."""
+from __future__ import annotations
+
+import math
+import sys
+import threading
+import time
+
+
+class Progress:
+    """'done/total simulations, elapsed, time left' on stderr, once a run passes `delay` s.
+
+    Thread-safe: dask reports running batches from the client's event-loop thread.
+    """
+
+    def __init__(self, total: int, done: int = 0, quiet: bool = False, stream=None,
+                 delay: float = 2.0):
+        self.total, self.done = total, done
+        self.start_done = done
+        self.partial: dict = {}  # running batch -> simulations' worth done
+        self.quiet = quiet
+        self.stream = sys.stderr if stream is None else stream
+        self.tty = getattr(self.stream, "isatty", lambda: False)()
+        self.delay = delay
+        self.every = 0.5 if self.tty else 10.0  # a log file gets a line now and then
+        self.t0 = time.monotonic()
+        self.last = -math.inf
+        self.last_line = ""
+        self.lock = threading.Lock()
+
+    def advance(self, n: int, batch=None) -> None:
+        """n more simulations finished (those of `batch`, if it was reported running)."""
+        with self.lock:
+            self.done += n
+            self.partial.pop(batch, None)
+            self._draw()
+
+    def running(self, batch, n: float) -> None:
+        """`batch` has done n simulations' worth so far."""
+        with self.lock:
+            self.partial[batch] = n
+            self._draw()
+
+    def close(self) -> None:
+        with self.lock:
+            self._draw(final=True)
+
+    def interrupted(self) -> None:
+        """End a bar left open on a terminal, so the next line starts clean."""
+        with self.lock:
+            if self.tty and self.last_line and not self.quiet:
+                self.stream.write("\n")
+                self.stream.flush()
+            self.quiet = True
+
+    def _draw(self, final: bool = False) -> None:
+        now = time.monotonic()
+        elapsed = now - self.t0
+        if self.quiet or elapsed < self.delay or (not final and now - self.last < self.every):
+            return
+        done = self.done + sum(self.partial.values())
+        rate = (done - self.start_done) / elapsed
+        left = (self.total - done) / rate if rate > 0 else math.nan
+        line = (f"sweep: {100 * done / max(self.total, 1):3.0f}% ({int(self.done)} of "
+                f"{self.total} simulations finished), {_clock(elapsed)} elapsed, "
+                f"~{_clock(left)} left")
+        if final and line == self.last_line and not self.tty:
+            return  # already said
+        self.last, self.last_line = now, line
+        end = "\n" if final or not self.tty else ""
+        self.stream.write(("\r" if self.tty else "") + line + end)
+        self.stream.flush()
+
+
+def _clock(seconds: float) -> str:
+    if not math.isfinite(seconds):
+        return "?"
+    minutes, sec = divmod(int(round(seconds)), 60)
+    hours, minutes = divmod(minutes, 60)
+    return f"{hours}:{minutes:02d}:{sec:02d}" if hours else f"{minutes}:{sec:02d}"

@@ -1,0 +1,213 @@
+"""The Zarr store, for sweeps too large for one NetCDF file or one client's memory.
+
+`pipeline.sweep(..., out="big.zarr")` writes a Zarr store instead of NetCDF. The client
+writes the template first: every variable, coordinate and attribute of the NetCDF archive of
+the same sweep (pipeline.archive's builders), the data still lazy. Each batch of members is
+then exactly one chunk region of its block's variables: records are chunked by 1, the swept
+dimensions in C order by 1 up to one dimension cut in blocks, so that a chunk holds a
+contiguous range of the block's members. Whoever runs the batch (this process, or a dask
+worker) writes its peaks into that region and sets its own element of `batch_done` (one chunk
+per batch: no two writers share a chunk). The results never pass through the client, which
+holds only the member table and the batch list.
+
+`batch_done` is the resume record: a rerun with the same sweep skips the batches marked
+done; the store's `sweep_key` attribute (pipeline.execute.keys: engine, records, dt, building,
+members) must match, so a store of another sweep is refused, not mixed. When every batch is
+done the client adds the amplification ratios (chunk by chunk, through dask) and sets the
+attribute `complete = 1`; a store without it is unfinished. It opens with
+`xr.open_zarr(path)`.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import SweepError
+from . import batches
+from .keys import context_key, region_key, sweep_key
+
+TARGET_CHUNK = 4096  # members per chunk (= per batch) at most
+ZARR_FORMAT = 2
+
+
+@dataclass(frozen=True)
+class Region:
+    """One chunk region: its index in batch_done, record index, block prefix, member range
+    within the block and the region of the block's variables (a tuple of slices over record
+    and the block's dims)."""
+
+    index: int
+    record: int
+    prefix: str
+    offset: int  # the block's first member in grid.members
+    start: int
+    stop: int
+    region: tuple
+
+
+def block_chunks(shape: tuple[int, ...], target: int) -> tuple[int, ...]:
+    """Chunk sizes over a block's swept dims such that a chunk is a contiguous C-order range
+    of members: trailing dims whole while they fit in `target`, one dim cut, the rest 1."""
+    chunks = [1] * len(shape)
+    size = 1
+    for axis in range(len(shape) - 1, -1, -1):
+        if size * shape[axis] <= target:
+            chunks[axis] = shape[axis]
+            size *= shape[axis]
+        else:
+            chunks[axis] = max(1, target // size)
+            break
+    return tuple(chunks)
+
+
+def regions_for(grid, n_records: int, target: int) -> list[Region]:
+    """Every chunk region of every block under every record, in a fixed order."""
+    out = []
+    offset = 0
+    for block in grid.blocks:
+        chunks = block_chunks(block.shape, target)
+        grid_counts = [math.ceil(n / c) for n, c in zip(block.shape, chunks, strict=True)]
+        for r in range(n_records):
+            for idx in np.ndindex(*grid_counts) if block.shape else [()]:
+                lo = [i * c for i, c in zip(idx, chunks, strict=True)]
+                hi = [min(n, i * c + c) for i, n, c in zip(idx, block.shape, chunks,
+                                                           strict=True)]
+                start = int(np.ravel_multi_index(lo, block.shape)) if block.shape else 0
+                stop = (int(np.ravel_multi_index([h - 1 for h in hi], block.shape)) + 1
+                        if block.shape else 1)
+                region = (slice(r, r + 1), *(slice(a, b) for a, b in zip(lo, hi,
+                                                                         strict=True)))
+                out.append(Region(len(out), r, block.prefix, offset, start, stop, region))
+        offset += block.size
+    return out
+
+
+def write_template(path: Path, grid, records, names, dt, building, arguments, key,
+                   n_batches: int, target: int) -> None:
+    """Create the store: labelled variables (lazy), coordinates, attributes, batch_done."""
+    import dask.array as da
+    import xarray as xr
+    import zarr
+
+    from ..archive import build_dataset
+
+    def chunks(block):
+        return block_chunks(block.shape, target)
+
+    # The labels of the NetCDF archive, its data lazy fill values: nothing of the size of the
+    # results is ever held here.
+    ds = build_dataset(grid, records, None, dt, building, names, arguments, chunks=chunks)
+    encoding = {name: {"chunks": var.data.chunksize} for name, var in ds.data_vars.items()}
+    ds["batch_done"] = xr.Variable("batch", da.zeros(n_batches, dtype=np.int8, chunks=1),
+                                   {"units": "1", "long_name": "1 once the batch's chunk "
+                                    "region is written (the resume record)"})
+    encoding["batch_done"] = {"chunks": (1,)}
+    ds.attrs.update(sweep_key=key, complete=0, members_per_chunk=target)
+    # Zarr format 2: its string and attribute encodings are read by every Zarr library.
+    ds.to_zarr(path, mode="w", compute=False, encoding=encoding, consolidated=False,
+               zarr_format=ZARR_FORMAT)
+    # The template's fill values are the data until a batch writes its region: write the
+    # (all-zero) batch_done explicitly so that it reads as 0, not as missing.
+    zarr.open_group(str(path), mode="r+")["batch_done"][:] = 0
+
+
+def write_batch(accel, accel_dt, members, building, dt, path: str, prefix: str, region,
+                index: int, progress=None, report=None) -> int:
+    """A worker's task: simulate one batch (batches.simulate_batch) and write its peaks into
+    its chunk region, then mark it done; returns its size."""
+    import zarr
+
+    peaks = batches.simulate_batch(accel, accel_dt, members, building, dt, progress=progress,
+                                   report=report)
+    group = zarr.open_group(path, mode="r+")
+    for name, values in peaks.items():
+        target = group[prefix + name]
+        shape = tuple(s.stop - s.start for s in region) + values.shape[1:]
+        target[region] = values.reshape(shape)
+    group["batch_done"][index] = 1
+    return members.size
+
+
+class ZarrStore:
+    """A sweep written region by region into the Zarr store at `out` (pipeline.execute's
+    Store interface): created with its template, or reopened to resume when it holds this
+    sweep (SweepError when it holds another); `finish` completes it and opens it lazily.
+
+    batch_size: members per chunk (at most TARGET_CHUNK) of a new store; a store being resumed
+    keeps its own chunks.
+    """
+
+    def __init__(self, grid, records, names, dt, building, arguments, out: Path,
+                 batch_size: int):
+        import zarr
+
+        self.grid, self.records, self.dt, self.building = grid, records, dt, building
+        self.out = self.kept_in = out
+        self.members = grid.members
+        self.total = len(records) * grid.n_members
+        self.key = sweep_key(self.members, [context_key(rec, dt, building) for rec in records])
+        target = max(1, min(batch_size, TARGET_CHUNK))
+        resuming = out.exists()
+        if resuming:
+            try:
+                group = zarr.open_group(str(out), mode="r")
+                same = group.attrs.get("sweep_key") == self.key
+            except Exception:  # noqa: BLE001 - anything unreadable is not this sweep's store
+                same = False
+            if not same:
+                raise SweepError(f"out: {out} holds another sweep (or no store): remove it or "
+                                 "choose another path")
+            target = int(group.attrs["members_per_chunk"])  # the store's chunks, not batch_size
+        self.regions = regions_for(grid, len(records), target)
+        if resuming:
+            self.done = group["batch_done"][:].astype(bool)
+        else:
+            self.done = np.zeros(len(self.regions), dtype=bool)
+            write_template(out, grid, records, names, dt, building, arguments, self.key,
+                           len(self.regions), target)
+
+    def pending(self, sizes: list[int]) -> list[batches.Batch]:
+        """The regions not marked done (their size is the store's chunk, whatever `sizes`)."""
+        return [batches.Batch(r.record, slice(r.offset + r.start, r.offset + r.stop),
+                              r.stop - r.start, region_key(self.key, r.index), r)
+                for r in self.regions if not self.done[r.index]]
+
+    def task(self, batch: batches.Batch) -> tuple:
+        """Simulate the batch and write its region: write_batch."""
+        r = batch.place
+        return write_batch, (self.records[batch.record].dt, self.members[batch.members],
+                             self.building, self.dt, str(self.out), r.prefix, r.region,
+                             r.index)
+
+    def accept(self, batch: batches.Batch, size: int) -> None:
+        """Nothing to do: the worker wrote the region."""
+
+    def finish(self):
+        """Amplification ratios (lazily, chunk by chunk), the `complete` mark, consolidated
+        metadata; the store opened lazily."""
+        import xarray as xr
+        import zarr
+
+        from ..archive import AMPLIFICATION, amplification_ratios
+
+        if self.grid.block("baseline_") is not None:
+            ds = xr.open_zarr(self.out, consolidated=False)
+            if "amplification_total_accel" not in ds:
+                ratios = {}
+                for name, ratio in amplification_ratios(ds).items():
+                    peak = ds[AMPLIFICATION[name][0]]  # the ratio's chunks are its peak's
+                    # The variable alone: its coordinates are in the store already (written
+                    # again, chunked by record, they would straddle the store's chunks).
+                    ratios[name] = ratio.variable.chunk(dict(zip(peak.dims,
+                                                                 peak.data.chunksize,
+                                                                 strict=True)))
+                # mode "a" rewrites the group's attributes with the Dataset's: keep them
+                xr.Dataset(ratios, attrs=ds.attrs).to_zarr(self.out, mode="a",
+                                                           consolidated=False)
+        group = zarr.open_group(str(self.out), mode="r+")
+        group.attrs["complete"] = 1
+        zarr.consolidate_metadata(str(self.out))
+        return xr.open_zarr(self.out, consolidated=True)
