@@ -29,6 +29,7 @@ import engine
 from engine.impact import LAWS
 
 from .grid import BASELINE, BASELINE_LAW, Grid, baseline_text
+from .records.record import samples_digest
 
 TITLE = "bumpers: peak responses of a seismically isolated building pounding on its moat wall"
 INTEGRATOR = ("explicit central differences (engine.simulate); ground motion linearly "
@@ -72,7 +73,7 @@ def engine_fingerprint() -> str:
 
 def record_hash(accel: np.ndarray, accel_dt: float) -> str:
     """sha256 of a record's samples (float64) and its step."""
-    digest = hashlib.sha256(np.ascontiguousarray(accel, dtype="<f8").tobytes())
+    digest = samples_digest(accel)
     digest.update(float(accel_dt).hex().encode())
     return digest.hexdigest()
 

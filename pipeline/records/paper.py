@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import dataclasses
 import fnmatch
-import hashlib
 import importlib.resources
 import math
 import os
@@ -30,6 +29,7 @@ from .record import (
     norm_component,
     normalize,
     records_directory,
+    samples_digest,
 )
 
 
@@ -112,7 +112,7 @@ def _builtin_resource():
 
 def values_sha256(values_g: np.ndarray) -> str:
     """Hex sha256 of samples as little-endian float64 bytes: the built-in data's checksum."""
-    return hashlib.sha256(np.ascontiguousarray(values_g, dtype="<f8").tobytes()).hexdigest()
+    return samples_digest(values_g).hexdigest()
 
 
 def builtin_records() -> dict[str, Record]:

@@ -8,6 +8,7 @@ numbers, the RSN in a file name) and the user's records directory (``$BUMPERS_RE
 from __future__ import annotations
 
 import dataclasses
+import hashlib
 import math
 import os
 import re
@@ -202,3 +203,10 @@ class Record:
     def time(self) -> np.ndarray:
         """Sample times in s, starting at 0."""
         return np.arange(self.npts) * self.dt
+
+
+def samples_digest(values: np.ndarray):
+    """A sha256 hash object fed with samples as little-endian float64 bytes: the one way the
+    project hashes record samples (the built-in data's checksum, the archives' record hashes,
+    the resume keys); callers add what else identifies them (e.g. the step)."""
+    return hashlib.sha256(np.ascontiguousarray(values, dtype="<f8").tobytes())

@@ -3,11 +3,11 @@ numbers: a history's maxima are the engine's peaks."""
 import numpy as np
 import pytest
 import xarray as xr
-from conftest import assert_udunits
 
 from pipeline.errors import SweepError
 from pipeline.histories import concat_records, histories
 from studies import practical_example
+from tests.helpers import assert_udunits
 
 PEAKS = ("peak_total_accel", "peak_interstory_drift", "peak_isolator_disp", "max_indentation",
          "max_impact_force", "n_impacts")

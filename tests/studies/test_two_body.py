@@ -3,11 +3,11 @@ engine.damping_fit, the energy-equilibrium procedure of section 3.2."""
 import numpy as np
 import pytest
 import xarray as xr
-from conftest import assert_udunits
 
 from engine import EngineError, damping_fit
 from engine.impact.calibration import hunt_crossley_chi
 from studies import damping_calibration, impact_validation
+from tests.helpers import assert_udunits
 
 KAJITA = dict(thickness=0.010, area=0.040**2, strain=0.8, n_bumpers=1)  # 0.45 kN/mm^2.65
 

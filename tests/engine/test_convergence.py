@@ -2,10 +2,10 @@
 default step moves every peak by less than 0.5%. This is how DEFAULT_DT was chosen."""
 import numpy as np
 import pytest
-from conftest import strong_motion
 
 import engine
 from engine import Contact
+from tests.helpers import strong_motion
 
 PRACTICAL_EXAMPLE = {"kobe": 0.15, "pacoima": 0.24}  # m, the paper's gaps
 PEAKS = ("peak_total_accel", "peak_interstory_drift", "peak_isolator_disp", "max_indentation",

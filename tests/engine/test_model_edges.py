@@ -11,13 +11,13 @@ The engine integrates the same physics with central differences at dt = 0.5 ms. 
     indentation is still positive;
 (d) grazing contacts, where C_imp (Eq. 9) and Hertzdamp's chi / v_imp diverge.
 """
-import independent_building as ib
 import numpy as np
 import pytest
 from scipy.optimize import brentq
 
 import engine
 from engine import Contact
+from tests.reference import independent_building as ib
 
 PEAKS = ("peak_total_accel", "peak_interstory_drift", "peak_isolator_disp", "max_indentation",
          "max_impact_force")

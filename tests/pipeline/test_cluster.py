@@ -20,7 +20,7 @@ from pipeline.errors import ClusterError
 from pipeline.histories import segment
 from pipeline.records import load_record
 
-PROJECT = Path(__file__).resolve().parents[1]
+PROJECT = Path(__file__).resolve().parents[2]
 ENV = {**os.environ, "NUMBA_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"}
 
 

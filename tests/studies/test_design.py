@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import assert_udunits, run_recipe
 
 import pipeline
 from studies import design
 from studies._recipe import verdicts
+from tests.helpers import assert_udunits, run_recipe
 
 RECORDS = ["kobe", "pacoima", "sylmar_converter", "olive_view"]
 

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-PROJECT = Path(__file__).resolve().parents[1]
+PROJECT = Path(__file__).resolve().parents[2]
 # Three records, longest first, at a fine step so that each batch takes a second or more.
 COMMAND = [sys.executable, "-m", "studies.n_bumpers", "--records", "kobe", "sylmar_converter",
            "pacoima", "--dt", "1e-4"]

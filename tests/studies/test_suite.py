@@ -6,12 +6,12 @@ import json
 
 import numpy as np
 import pytest
-from conftest import assert_udunits, run_recipe
 
 import pipeline
 from studies import suite
 from studies._paper import FIG21_WALL_KS, THICKNESS
 from studies._recipe import verdicts
+from tests.helpers import assert_udunits, run_recipe
 
 RECORDS = ["kobe", "pacoima", "sylmar_converter", "olive_view", "RSN1690:360"]
 

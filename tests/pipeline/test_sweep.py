@@ -14,7 +14,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 import xarray as xr
-from conftest import assert_udunits
 
 import pipeline
 from pipeline.errors import SweepError
@@ -22,8 +21,9 @@ from pipeline.execute import batches as batches_module
 from pipeline.execute import netcdf_store
 from pipeline.execute import progress as progress_module
 from pipeline.records import Record
+from tests.helpers import assert_udunits
 
-PROJECT = Path(__file__).resolve().parents[1]
+PROJECT = Path(__file__).resolve().parents[2]
 DT = 0.004  # s: stable for every law used here, 4x coarser than needed for accuracy
 GAPS = [0.06, 0.10, 0.14]  # m
 N_BUMPERS = [4, 8]

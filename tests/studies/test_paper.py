@@ -13,7 +13,7 @@ from engine.units import KN_PER_MM
 from pipeline.grid import BASELINE
 from studies import _paper as paper
 
-STUDIES = Path(__file__).resolve().parents[1] / "studies"
+STUDIES = Path(__file__).resolve().parents[2] / "studies"
 SHARED = {"__init__", "_paper", "_plot", "_recipe", "_peaks_vs_gap", "_suite_records"}
 
 

@@ -1,17 +1,15 @@
 """The parametric recipes of sections 5.2-5.6 (Figs. 16, 18-22), each run once in --quick form:
 archive dimensions and units, finite peaks, the paper check, the figure files, --replot, --help.
 """
-from pathlib import Path
 
 import numpy as np
 import pytest
 import xarray as xr
-from conftest import assert_udunits
 
 from studies import n_bumpers, restitution, strain, thickness, wall_stiffness
 from studies._recipe import verdicts
+from tests.helpers import SHARED_RECORDS, assert_udunits
 
-SHARED_RECORDS = Path(__file__).resolve().parents[1].parent / "shared" / "records"
 RECORDS_DIR = ["--records-dir", str(SHARED_RECORDS)] if SHARED_RECORDS.is_dir() else []
 QUICK_GAPS = [0.15, 0.25, 0.35, 0.45]  # m
 

@@ -2,10 +2,10 @@
 import numpy as np
 import pytest
 import xarray as xr
-from conftest import assert_udunits
 
 from studies import gap_size
 from studies._recipe import verdicts
+from tests.helpers import assert_udunits
 
 
 @pytest.fixture(scope="module")

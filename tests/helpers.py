@@ -1,0 +1,69 @@
+"""What several tests use besides fixtures: paths, archive checks, and how heavy engine tests
+and recipes are run. Imported as `from tests.helpers import ...` (fixtures stay in
+conftest.py)."""
+from pathlib import Path
+
+import numpy as np
+
+PROJECT = Path(__file__).resolve().parents[1]
+"""The project's checkout."""
+SHARED_RECORDS = PROJECT.parent / "shared" / "records"
+"""../shared/records: real AT2 files the project must read in place, never copy."""
+
+
+def assert_udunits(ds) -> None:
+    """Every variable and coordinate of an archive has a `units` string that UDUNITS (through
+    cf-units) reads as what it says, or one UDUNITS refuses and long_name repeats.
+
+    "Reads as what it says": UDUNITS folds a malformed power into a scale factor ("N m-1.5" is
+    1.5 N/m, definition "0.5 kg.s-2"), so a scale in the definition must be written at the
+    start of the string itself (as in "9.81 m s-2")."""
+    import re
+
+    import cf_units
+
+    for name, var in ds.variables.items():
+        units = var.attrs.get("units")
+        assert isinstance(units, str) and units, f"{name}: no units"
+        try:
+            unit = cf_units.Unit(units)
+        except ValueError:
+            assert units in var.attrs.get("long_name", ""), \
+                f"{name}: UDUNITS refuses {units!r} and long_name does not give it"
+            continue
+        scale = re.match(r"^\s*([-+0-9.eE]+)(?=\s|$)", unit.definition)
+        if scale and unit.definition.strip() != "1":
+            assert units.strip().startswith(scale.group(1)), \
+                f"{name}: {units!r} reads as {unit.definition!r} in UDUNITS"
+
+
+NUMPY_SECONDS = 15.0
+"""s of a record that the heavy engine tests run on the NumPy loop (~1e4 member-steps/s at
+B = 1, 2000x slower than the kernel): the strong motion, where every peak of the paper's
+records lies (`strong_motion` checks that on the kernel)."""
+
+
+def strong_motion(record, backend: str, contact):
+    """The record as an engine test should run it on `backend`: whole on the kernel; on the
+    NumPy loop its first NUMPY_SECONDS, after checking with the kernel that the segment holds
+    every peak of the whole record for `contact`."""
+    import engine
+    from pipeline.histories import segment
+
+    if backend != "numpy":
+        return record
+    part = segment(record, NUMPY_SECONDS)
+    whole = engine.simulate(record.accel, record.dt, contact, backend="numba")
+    cut = engine.simulate(part.accel, part.dt, contact, backend="numba")
+    for name, value in whole.peaks().items():
+        np.testing.assert_array_equal(getattr(cut, name), value, err_msg=name)
+    return part
+
+
+def run_recipe(module, argv: list[str], out: Path):
+    """Run a recipe's main into `out` (must succeed) and return its archive, loaded."""
+    import xarray as xr
+
+    assert module.main([*argv, "--quiet", "--out", str(out)]) == 0
+    with xr.open_dataset(out / f"{module.recipe.name}.nc") as ds:
+        return ds.load()
