@@ -1,6 +1,7 @@
-"""The 5-mass shear building on bilinear isolators (paper section 4, Fig. 7; SPEC section 1).
+"""The shear building on its isolators: the paper's 5-mass building by default (section 4,
+Fig. 7; SPEC section 1), any number of stories N (1 <= N <= MAX_STORIES) otherwise.
 
-Levels are numbered 0 (isolation slab) to 4 (roof); story i joins level i-1 to level i.
+Levels are numbered 0 (isolation slab) to N (roof); story i joins level i-1 to level i.
 Everything is SI: kg, N/m, N*s/m, s.
 """
 from __future__ import annotations
@@ -14,15 +15,16 @@ import numpy as np
 from .errors import EngineError
 from .units import G
 
-N_LEVELS = 5
-N_STORIES = 4
+MAX_STORIES = 30
+PAPER_MASSES = (320e3, 320e3, 320e3, 320e3, 250e3)
+"""kg, levels 0 (isolation slab) .. 4 (roof): the paper's Fig. 7c."""
 
 
 @dataclass(frozen=True)
 class Building:
     """One building's properties. Defaults are the paper's (Fig. 7c).
 
-    masses : kg per level 0..4; story_stiffness : N/m per story 1..4;
+    masses : kg per level 0..N (N + 1 values); story_stiffness : N/m per story 1..N (N values);
     k1, k2 : isolator initial and post-yield stiffness (N/m);
     fy_ratio : isolator yield force Fy as a fraction of the total weight (u_y = Fy / k1);
     zeta_iso, zeta_sup : damping ratios of the isolation system and the superstructure;
@@ -33,8 +35,8 @@ class Building:
     g : m/s^2, used for the weight.
     """
 
-    masses: tuple[float, ...] = (320e3, 320e3, 320e3, 320e3, 250e3)
-    story_stiffness: tuple[float, ...] = (600e6,) * N_STORIES
+    masses: tuple[float, ...] = PAPER_MASSES
+    story_stiffness: tuple[float, ...] = (600e6,) * (len(PAPER_MASSES) - 1)
     k1: float = 200e6
     k2: float = 25e6
     fy_ratio: float = 0.1
@@ -46,11 +48,14 @@ class Building:
     def __post_init__(self):
         masses = np.asarray(self.masses, dtype=float)
         stiff = np.asarray(self.story_stiffness, dtype=float)
-        if masses.shape != (N_LEVELS,) or not np.all(masses > 0):
-            raise EngineError(f"masses must be 5 positive values in kg, got {self.masses!r}")
-        if stiff.shape != (N_STORIES,) or not np.all(stiff > 0):
+        if masses.ndim != 1 or not 2 <= masses.size <= MAX_STORIES + 1 \
+                or not np.all(masses > 0):
+            raise EngineError(f"masses must be 2 to {MAX_STORIES + 1} positive values in kg "
+                              f"(levels 0..N, level 0 the isolation slab), got {self.masses!r}")
+        if stiff.shape != (masses.size - 1,) or not np.all(stiff > 0):
             raise EngineError(
-                f"story_stiffness must be 4 positive values in N/m, got {self.story_stiffness!r}")
+                f"story_stiffness must be {masses.size - 1} positive values in N/m (one per "
+                f"story, as masses has {masses.size} levels), got {self.story_stiffness!r}")
         if not 0 < self.k2 < self.k1:
             raise EngineError(
                 f"isolator stiffness needs 0 < k2 < k1, got k1={self.k1}, k2={self.k2}")
@@ -88,7 +93,7 @@ class Building:
         return self.yield_force / self.k1
 
     def stiffness_matrix(self, isolator_stiffness: float | None = None) -> np.ndarray:
-        """(5, 5) linear stiffness matrix (N/m) with the isolator at `isolator_stiffness` (k1)."""
+        """(L, L) linear stiffness matrix (N/m) with the isolator at `isolator_stiffness` (k1)."""
         k_iso = self.k1 if isolator_stiffness is None else isolator_stiffness
         springs = np.concatenate([[k_iso], np.asarray(self.story_stiffness, dtype=float)])
         return _chain_matrix(springs)
@@ -100,7 +105,7 @@ class Building:
         return float(np.sqrt(_generalized_eigvals(k, m)[0]))
 
     def damping_matrix(self) -> np.ndarray:
-        """(5, 5) viscous damping matrix, N*s/m, per the `damping` choice."""
+        """(L, L) viscous damping matrix, N*s/m, per the `damping` choice."""
         if self.damping == "paper":
             c_iso = 2 * self.zeta_iso * np.sqrt(self.k1 * self.total_mass)
             omega_1 = self.fixed_base_omega1()
@@ -108,13 +113,13 @@ class Building:
             return _chain_matrix(np.concatenate([[c_iso], c_story]))
         m = np.asarray(self.masses, dtype=float)
         omega2, phi = _generalized_eig(self.stiffness_matrix(), m)
-        zeta = np.full(N_LEVELS, self.zeta_sup)
+        zeta = np.full(self.n_levels, self.zeta_sup)
         zeta[0] = self.zeta_iso
         mphi = m[:, None] * phi  # mass-normalised modes: C = M Phi diag(2 zeta omega) Phi^T M
         return mphi @ np.diag(2 * zeta * np.sqrt(omega2)) @ mphi.T
 
     def natural_periods(self, isolator_stiffness: float | None = None) -> np.ndarray:
-        """(5,) periods (s) of the linear building, isolator at k1 unless given."""
+        """(L,) periods (s) of the linear building, isolator at k1 unless given."""
         omega2 = _generalized_eigvals(self.stiffness_matrix(isolator_stiffness), self.masses)
         return 2 * np.pi / np.sqrt(omega2)
 
@@ -148,9 +153,10 @@ def _generalized_eigvals(k: np.ndarray, m) -> np.ndarray:
 class BuildingArrays:
     """Per-member building arrays for a batch of B simulations.
 
-    masses (B, 5) kg; story_k (B, 4) N/m; k2, k_plastic, f_plastic_yield (B,) for the isolator
-    (k_plastic = k1 - k2, f_plastic_yield = (k1 - k2) * u_y); damping (B, 5, 5) N*s/m;
-    stiffness (B, 5, 5) N/m with the isolator at k1 (for stability limits).
+    masses (B, L) kg; story_k (B, L - 1) N/m; k2, k_plastic, f_plastic_yield (B,) for the
+    isolator (k_plastic = k1 - k2, f_plastic_yield = (k1 - k2) * u_y); damping (B, L, L) N*s/m;
+    stiffness (B, L, L) N/m with the isolator at k1 (for stability limits). Every member of a
+    batch has the same number of levels L.
     """
 
     masses: np.ndarray
@@ -176,6 +182,10 @@ def building_arrays(building: Building | Sequence[Building], size: int) -> Build
         if not all(isinstance(b, Building) for b in members):
             raise EngineError("building must be a Building or a sequence of Building")
     unique = {b: i for i, b in enumerate(dict.fromkeys(members))}
+    levels = {b.n_levels for b in unique}
+    if len(levels) > 1:
+        raise EngineError(f"building: the members of one batch must have the same number of "
+                          f"levels, got {sorted(levels)}; run each height in its own batch")
     rows = [_building_row(b) for b in unique]
     fields = [np.array(col) for col in zip(*rows, strict=True)]
     which = np.array([unique[b] for b in members]) if len(members) > 1 else np.zeros(size, int)

@@ -19,10 +19,11 @@ from pathlib import Path
 
 import numba
 import numpy as np
-from numba import njit, prange
+from numba import carray, njit, prange
+from numba.core import cgutils, types
+from numba.extending import intrinsic
 
 from .. import isolator, scheme
-from ..building import N_LEVELS
 from ..impact import registry
 from ..impact.contact import LAW_ARGUMENTS
 from ..results import PEAKS
@@ -99,59 +100,48 @@ def _law_dispatch():
 
 _law_terms = _law_dispatch()
 
-# Columns of the per-member parameter matrix.
-_WALL, _COMPLIANCE, _MASS, _STORY_K = 0, 5, 6, 11
-_K2, _K_PLASTIC, _F_YIELD, _GAP, _SCALE, _LAW_ARGS = 15, 16, 17, 18, 19, 20
+
+@intrinsic
+def _stack_doubles(typingctx, size):
+    """A pointer to `size` float64 on the stack of the calling function. With a compile-time
+    size (the member's number of levels is a literal) LLVM keeps them in registers."""
+    if not isinstance(size, types.IntegerLiteral):
+        return None
+    count = size.literal_value
+
+    def codegen(context, builder, signature, args):
+        return cgutils.alloca_once(builder, context.get_value_type(types.float64),
+                                   size=context.get_constant(types.intp, count))
+    return types.CPointer(types.float64)(size), codegen
+
+
+# Columns of the per-member scalar parameters.
+_COMPLIANCE, _K2, _K_PLASTIC, _F_YIELD, _GAP, _SCALE, _LAW_ARGS = range(7)
 _N_PAR = _LAW_ARGS + len(LAW_ARGUMENTS)
-# Columns of the per-member state carried between chunks of steps.
-_U, _V, _FP, _V_IMP, _DELTA_PREV, _IN_CONTACT = 0, 5, 10, 11, 12, 13
-_N_STATE = 14
-
-
-def _peak_columns(n_levels: int) -> dict[str, slice]:
-    """Columns of the float peaks in the kernel's (B, columns) matrix, in PEAKS order; the
-    integer counts (n_impacts) are kept in their own (B,) array."""
-    columns, start = {}, 0
-    for q in PEAKS:
-        if q.dtype is np.int64:
-            continue
-        width = int(np.prod(q.trailing_shape(n_levels), dtype=int))
-        columns[q.name] = slice(start, start + width)
-        start += width
-    return columns
-
-
-_PEAK_COLUMNS = _peak_columns(N_LEVELS)
-_P_ACCEL = _PEAK_COLUMNS["peak_total_accel"].start
-_P_DRIFT = _PEAK_COLUMNS["peak_interstory_drift"].start
-_P_ISO = _PEAK_COLUMNS["peak_isolator_disp"].start
-_P_INDENT = _PEAK_COLUMNS["max_indentation"].start
-_P_FORCE = _PEAK_COLUMNS["max_impact_force"].start
-_P_ENERGY = _PEAK_COLUMNS["impact_energy"].start
-_N_PEAKS = max(c.stop for c in _PEAK_COLUMNS.values())
+# Columns of the per-member scalar state carried between chunks of steps (the displacements
+# and velocities of every level are arrays of their own).
+_FP, _V_IMP, _DELTA_PREV, _IN_CONTACT = range(4)
+_N_STATE = 4
+# The peaks: per level (peak_total_accel), per story (peak_interstory_drift), the scalar
+# float peaks in PEAKS order in one matrix, the integer count (n_impacts) in its own array.
+_SCALAR_PEAKS = tuple(q.name for q in PEAKS if q.along is None and q.dtype is not np.int64)
+_P_ISO, _P_INDENT, _P_FORCE, _P_ENERGY = (_SCALAR_PEAKS.index(name) for name in (
+    "peak_isolator_disp", "max_indentation", "max_impact_force", "impact_energy"))
 
 
 @njit(**_JIT)
-def _member(b, s0, s1, ag, dt, op, law, par, state, peaks, n_impacts, hist_row, every,
-            h_u, h_acc, h_f, h_d):
-    """Steps s0 <= step < s1 of member b: the NumPy loop's step, on scalars."""
-    o = op[b]
-    # The step operator's 50 coefficients as locals: registers or the stack, never reloaded.
-    o00, o01, o02, o03, o04 = o[0, 0], o[0, 1], o[0, 2], o[0, 3], o[0, 4]
-    o05, o06, o07, o08, o09 = o[0, 5], o[0, 6], o[0, 7], o[0, 8], o[0, 9]
-    o10, o11, o12, o13, o14 = o[1, 0], o[1, 1], o[1, 2], o[1, 3], o[1, 4]
-    o15, o16, o17, o18, o19 = o[1, 5], o[1, 6], o[1, 7], o[1, 8], o[1, 9]
-    o20, o21, o22, o23, o24 = o[2, 0], o[2, 1], o[2, 2], o[2, 3], o[2, 4]
-    o25, o26, o27, o28, o29 = o[2, 5], o[2, 6], o[2, 7], o[2, 8], o[2, 9]
-    o30, o31, o32, o33, o34 = o[3, 0], o[3, 1], o[3, 2], o[3, 3], o[3, 4]
-    o35, o36, o37, o38, o39 = o[3, 5], o[3, 6], o[3, 7], o[3, 8], o[3, 9]
-    o40, o41, o42, o43, o44 = o[4, 0], o[4, 1], o[4, 2], o[4, 3], o[4, 4]
-    o45, o46, o47, o48, o49 = o[4, 5], o[4, 6], o[4, 7], o[4, 8], o[4, 9]
+def _member(n_levels, b, s0, s1, ag, dt, op, wall, mass, story_k, law, par, u_all, v_all,
+            state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u, h_acc,
+            h_f, h_d):
+    """Steps s0 <= step < s1 of member b: the NumPy loop's step, on scalars and the member's
+    own small arrays (L levels, L - 1 stories). Sums run in the NumPy loop's order, so the
+    two agree to round-off, and a member's result never depends on the batch."""
+    ot = op[b]
+    w = wall[b]
+    m = mass[b]
+    k_story = story_k[b]
     p = par[b]
-    w0, w1, w2, w3, w4 = p[_WALL], p[_WALL + 1], p[_WALL + 2], p[_WALL + 3], p[_WALL + 4]
     comp = p[_COMPLIANCE]
-    m0, m1, m2, m3, m4 = p[_MASS], p[_MASS + 1], p[_MASS + 2], p[_MASS + 3], p[_MASS + 4]
-    sk1, sk2, sk3, sk4 = p[_STORY_K], p[_STORY_K + 1], p[_STORY_K + 2], p[_STORY_K + 3]
     k2, kp, fy, gap = p[_K2], p[_K_PLASTIC], p[_F_YIELD], p[_GAP]
     scale = p[_SCALE]
     q = _LAW_ARGS
@@ -161,136 +151,128 @@ def _member(b, s0, s1, ag, dt, op, law, par, state, peaks, n_impacts, hist_row, 
     hrow = hist_row[b]
 
     st = state[b]
-    u0, u1, u2, u3, u4 = st[_U], st[_U + 1], st[_U + 2], st[_U + 3], st[_U + 4]
-    v0, v1, v2, v3, v4 = st[_V], st[_V + 1], st[_V + 2], st[_V + 3], st[_V + 4]
     fp, v_imp, delta_prev = st[_FP], st[_V_IMP], st[_DELTA_PREV]
     in_contact = st[_IN_CONTACT] != 0.0
-
-    pk = peaks[b]
-    pa0, pa1, pa2 = pk[_P_ACCEL], pk[_P_ACCEL + 1], pk[_P_ACCEL + 2]
-    pa3, pa4 = pk[_P_ACCEL + 3], pk[_P_ACCEL + 4]
-    pd1, pd2, pd3, pd4 = pk[_P_DRIFT], pk[_P_DRIFT + 1], pk[_P_DRIFT + 2], pk[_P_DRIFT + 3]
+    pk = peak_scalar[b]
     p_iso, p_indent, p_force, energy = pk[_P_ISO], pk[_P_INDENT], pk[_P_FORCE], pk[_P_ENERGY]
     n_imp = n_impacts[b]
     half_dt = 0.5 * dt
 
+    # The member's working arrays on the stack: with n_levels a literal, registers.
+    u = carray(_stack_doubles(n_levels), (n_levels,))
+    v = carray(_stack_doubles(n_levels), (n_levels,))
+    pa = carray(_stack_doubles(n_levels), (n_levels,))
+    pd = carray(_stack_doubles(n_levels), (n_levels - 1,))
+    for i in range(n_levels):
+        u[i], v[i], pa[i] = u_all[b, i], v_all[b, i], peak_level[b, i]
+    for i in range(n_levels - 1):
+        pd[i] = peak_story[b, i]
+    chain = carray(_stack_doubles(n_levels), (n_levels,))  # isolator, stories 1..N
+    drift = carray(_stack_doubles(n_levels), (n_levels - 1,))
+    r = carray(_stack_doubles(n_levels), (n_levels,))
+    nxt = carray(_stack_doubles(n_levels), (n_levels,))
     for step in range(s0, s1):
         a = ag[step] * scale  # x 1.0 is exact: unscaled members are unchanged
         # Structure without wall force: p - f(u_n), then the free velocities v_{n+1/2}.
-        c0 = _isolator_force(u0, fp, k2)
-        d1 = u1 - u0
-        d2 = u2 - u1
-        d3 = u3 - u2
-        d4 = u4 - u3
-        c1 = sk1 * d1
-        c2 = sk2 * d2
-        c3 = sk3 * d3
-        c4 = sk4 * d4
-        r0 = (c1 - c0) - m0 * a
-        r1 = (c2 - c1) - m1 * a
-        r2 = (c3 - c2) - m2 * a
-        r3 = (c4 - c3) - m3 * a
-        r4 = (0.0 - c4) - m4 * a
-        n0 = (o00 * r0 + o01 * r1 + o02 * r2 + o03 * r3 + o04 * r4
-              + o05 * v0 + o06 * v1 + o07 * v2 + o08 * v3 + o09 * v4)
-        n1 = (o10 * r0 + o11 * r1 + o12 * r2 + o13 * r3 + o14 * r4
-              + o15 * v0 + o16 * v1 + o17 * v2 + o18 * v3 + o19 * v4)
-        n2 = (o20 * r0 + o21 * r1 + o22 * r2 + o23 * r3 + o24 * r4
-              + o25 * v0 + o26 * v1 + o27 * v2 + o28 * v3 + o29 * v4)
-        n3 = (o30 * r0 + o31 * r1 + o32 * r2 + o33 * r3 + o34 * r4
-              + o35 * v0 + o36 * v1 + o37 * v2 + o38 * v3 + o39 * v4)
-        n4 = (o40 * r0 + o41 * r1 + o42 * r2 + o43 * r3 + o44 * r4
-              + o45 * v0 + o46 * v1 + o47 * v2 + o48 * v3 + o49 * v4)
+        chain[0] = _isolator_force(u[0], fp, k2)
+        for i in range(n_levels - 1):
+            drift[i] = u[i + 1] - u[i]
+            chain[i + 1] = k_story[i] * drift[i]
+        for i in range(n_levels - 1):
+            r[i] = (chain[i + 1] - chain[i]) - m[i] * a
+        r[n_levels - 1] = (0.0 - chain[n_levels - 1]) - m[n_levels - 1] * a  # the free roof
+        # nxt = op @ [r, v], each row summed in column order (the order of the unrolled sums
+        # this loop replaced, bit for bit). Rows are independent: the inner loop over them
+        # keeps their sums in flight at once (ot is the operator transposed, (2L, L)).
+        for i in range(n_levels):
+            nxt[i] = ot[0, i] * r[0]
+        for j in range(1, n_levels):
+            rj = r[j]
+            for i in range(n_levels):
+                nxt[i] += ot[j, i] * rj
+        for j in range(n_levels):
+            vj = v[j]
+            for i in range(n_levels):
+                nxt[i] += ot[n_levels + j, i] * vj
 
         # Wall contact on the side the slab moves towards (clamped as in the NumPy loop).
+        u0 = u[0]
         side = np.sign(u0)
         delta = max(abs(u0) - gap, -1.0)
         touching = delta > 0.0
         new = touching and not in_contact
         if new:
             n_imp += 1
-            v_imp = side * v0
+            v_imp = side * v[0]
         in_contact = touching
         force = 0.0
         if touching:
-            rate_free = side * 0.5 * (v0 + n0)
+            rate_free = side * 0.5 * (v[0] + nxt[0])
             elastic, dashpot_now = _law_terms(code, delta, rate_free, v_imp, k, n, m_eff,
                                               delta_u, k_w, dashpot, xi, chi, c_coef, c_exp)
             if new:
                 dashpot_now = dashpot_now * _onset_weight(delta, delta_prev)
             force = _implicit_force(elastic, dashpot_now, rate_free, comp)
             push = side * force
-            n0 = n0 - w0 * push
-            n1 = n1 - w1 * push
-            n2 = n2 - w2 * push
-            n3 = n3 - w3 * push
-            n4 = n4 - w4 * push
+            for i in range(n_levels):
+                nxt[i] = nxt[i] - w[i] * push
         delta_prev = delta
 
-        a0 = (n0 - v0) / dt + a
-        a1 = (n1 - v1) / dt + a
-        a2 = (n2 - v2) / dt + a
-        a3 = (n3 - v3) / dt + a
-        a4 = (n4 - v4) / dt + a
-        pa0 = max(pa0, abs(a0))
-        pa1 = max(pa1, abs(a1))
-        pa2 = max(pa2, abs(a2))
-        pa3 = max(pa3, abs(a3))
-        pa4 = max(pa4, abs(a4))
-        pd1 = max(pd1, abs(d1))
-        pd2 = max(pd2, abs(d2))
-        pd3 = max(pd3, abs(d3))
-        pd4 = max(pd4, abs(d4))
+        for i in range(n_levels):
+            total = (nxt[i] - v[i]) / dt + a
+            pa[i] = max(pa[i], abs(total))
+            if hrow >= 0 and step % every == 0:
+                h_acc[hrow, step // every, i] = total
+        for i in range(n_levels - 1):
+            pd[i] = max(pd[i], abs(drift[i]))
         p_iso = max(p_iso, abs(u0))
         p_indent = max(p_indent, delta)
         p_force = max(p_force, force)
-        energy += force * side * (v0 + n0) * half_dt
+        energy += force * side * (v[0] + nxt[0]) * half_dt
 
         if hrow >= 0 and step % every == 0:
             t = step // every
             h_u[hrow, t] = u0
-            h_acc[hrow, t, 0] = a0
-            h_acc[hrow, t, 1] = a1
-            h_acc[hrow, t, 2] = a2
-            h_acc[hrow, t, 3] = a3
-            h_acc[hrow, t, 4] = a4
             h_f[hrow, t] = force
             h_d[hrow, t] = max(delta, 0.0)
 
         # Advance: the isolator's plastic spring sees this step's displacement increment.
-        fp = _plastic_spring(fp, dt * n0, kp, fy)
-        v0, v1, v2, v3, v4 = n0, n1, n2, n3, n4
-        u0 = u0 + dt * n0
-        u1 = u1 + dt * n1
-        u2 = u2 + dt * n2
-        u3 = u3 + dt * n3
-        u4 = u4 + dt * n4
+        fp = _plastic_spring(fp, dt * nxt[0], kp, fy)
+        for i in range(n_levels):
+            v[i] = nxt[i]
+            u[i] = u[i] + dt * nxt[i]
 
-    st[_U], st[_U + 1], st[_U + 2], st[_U + 3], st[_U + 4] = u0, u1, u2, u3, u4
-    st[_V], st[_V + 1], st[_V + 2], st[_V + 3], st[_V + 4] = v0, v1, v2, v3, v4
+    for i in range(n_levels):
+        u_all[b, i], v_all[b, i], peak_level[b, i] = u[i], v[i], pa[i]
+    for i in range(n_levels - 1):
+        peak_story[b, i] = pd[i]
     st[_FP], st[_V_IMP], st[_DELTA_PREV] = fp, v_imp, delta_prev
     st[_IN_CONTACT] = 1.0 if in_contact else 0.0
-    pk[_P_ACCEL], pk[_P_ACCEL + 1], pk[_P_ACCEL + 2] = pa0, pa1, pa2
-    pk[_P_ACCEL + 3], pk[_P_ACCEL + 4] = pa3, pa4
-    pk[_P_DRIFT], pk[_P_DRIFT + 1], pk[_P_DRIFT + 2], pk[_P_DRIFT + 3] = pd1, pd2, pd3, pd4
     pk[_P_ISO], pk[_P_INDENT], pk[_P_FORCE], pk[_P_ENERGY] = p_iso, p_indent, p_force, energy
     n_impacts[b] = n_imp
 
 
 @njit(**_JIT)
-def _run_serial(s0, s1, ag, dt, op, law, par, state, peaks, n_impacts, hist_row, every,
-                h_u, h_acc, h_f, h_d):
+def _run_serial(n_levels, s0, s1, ag, dt, op, wall, mass, story_k, law, par, u, v, state,
+                peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u, h_acc,
+                h_f, h_d):
+    # One compilation per number of levels: loops of known length, arrays on the stack.
+    numba.literally(n_levels)
     for b in range(law.size):
-        _member(b, s0, s1, ag, dt, op, law, par, state, peaks, n_impacts, hist_row, every,
-                h_u, h_acc, h_f, h_d)
+        _member(n_levels, b, s0, s1, ag, dt, op, wall, mass, story_k, law, par, u, v, state,
+                peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u, h_acc,
+                h_f, h_d)
 
 
 @njit(parallel=True, **_JIT)
-def _run_parallel(s0, s1, ag, dt, op, law, par, state, peaks, n_impacts, hist_row, every,
-                  h_u, h_acc, h_f, h_d):
+def _run_parallel(n_levels, s0, s1, ag, dt, op, wall, mass, story_k, law, par, u, v, state,
+                  peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u, h_acc,
+                  h_f, h_d):
+    numba.literally(n_levels)
     for b in prange(law.size):
-        _member(b, s0, s1, ag, dt, op, law, par, state, peaks, n_impacts, hist_row, every,
-                h_u, h_acc, h_f, h_d)
+        _member(n_levels, b, s0, s1, ag, dt, op, wall, mass, story_k, law, par, u, v, state,
+                peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u, h_acc,
+                h_f, h_d)
 
 
 @njit(**_JIT)
@@ -324,14 +306,10 @@ def threads() -> int:
     return numba.get_num_threads()
 
 
-def member_parameters(arrays, contact, wall_response, compliance, scale) -> np.ndarray:
-    """(B, _N_PAR) float matrix of every per-member constant the step reads."""
-    size = len(contact)
-    par = np.empty((size, _N_PAR))
-    par[:, _WALL:_WALL + N_LEVELS] = wall_response
+def member_parameters(arrays, contact, compliance, scale) -> np.ndarray:
+    """(B, _N_PAR) float matrix of every per-member scalar the step reads."""
+    par = np.empty((len(contact), _N_PAR))
     par[:, _COMPLIANCE] = compliance
-    par[:, _MASS:_MASS + N_LEVELS] = arrays.masses
-    par[:, _STORY_K:_STORY_K + N_LEVELS - 1] = arrays.story_k
     par[:, _K2] = arrays.k2
     par[:, _K_PLASTIC] = arrays.k_plastic
     par[:, _F_YIELD] = arrays.f_plastic_yield
@@ -351,13 +329,16 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
     between chunks (the same arithmetic, so the same bits); without, in one call.
     """
     size = len(contact)
+    n_levels = arrays.masses.shape[1]
     n_steps = ag.size
     op, wall_response, compliance = step_operators(arrays, dt)
-    par = member_parameters(arrays, contact, wall_response, compliance, scale)
+    par = member_parameters(arrays, contact, compliance, scale)
     law = np.ascontiguousarray(contact.law, dtype=np.int64)
+    u, v = np.zeros((size, n_levels)), np.zeros((size, n_levels))
     state = np.zeros((size, _N_STATE))
     state[:, _V_IMP] = 1.0
-    peaks = np.zeros((size, _N_PEAKS))
+    peak_level, peak_story = np.zeros((size, n_levels)), np.zeros((size, n_levels - 1))
+    peak_scalar = np.zeros((size, len(_SCALAR_PEAKS)))
     n_impacts = np.zeros(size, dtype=np.int64)
     ag = np.ascontiguousarray(ag, dtype=np.float64)
 
@@ -371,10 +352,14 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
         every = int(history.every)
         n_out = (n_steps - 1) // every + 1
     h_u, h_f, h_d = (np.zeros((rows, n_out)) for _ in range(3))
-    h_acc = np.zeros((rows, n_out, N_LEVELS))
+    h_acc = np.zeros((rows, n_out, n_levels))
 
     run = _run_parallel if threads() > 1 and size > 1 else _run_serial
-    args = (ag, float(dt), op, law, par, state, peaks, n_impacts, hist_row, every,
+    # The operator transposed, (B, 2L, L): the step reads it column by column.
+    args = (ag, float(dt), np.ascontiguousarray(op.transpose(0, 2, 1)),
+            np.ascontiguousarray(wall_response),
+            np.ascontiguousarray(arrays.masses), np.ascontiguousarray(arrays.story_k), law,
+            par, u, v, state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every,
             h_u, h_acc, h_f, h_d)
     # Members one at a time to whichever thread is free: they cost unequally (a member that
     # pounds does more work), and even halves of the batch would leave one thread waiting
@@ -382,23 +367,20 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
     previous = numba.set_parallel_chunksize(1)
     try:
         if progress is None:
-            run(0, n_steps, *args)
+            run(n_levels, 0, n_steps, *args)
         else:
             chunk = max(n_steps // 100, 1)
             for start in range(0, n_steps, chunk):
                 progress(start, n_steps)
-                run(start, min(start + chunk, n_steps), *args)
+                run(n_levels, start, min(start + chunk, n_steps), *args)
             progress(n_steps, n_steps)
     finally:
         numba.set_parallel_chunksize(previous)
 
-    result = {}
-    for q in PEAKS:
-        if q.name in _PEAK_COLUMNS:
-            values = peaks[:, _PEAK_COLUMNS[q.name]]
-            result[q.name] = (values if q.along else values[:, 0]).copy()
-        else:
-            result[q.name] = n_impacts
+    by_name = {"peak_total_accel": peak_level, "peak_interstory_drift": peak_story,
+               "n_impacts": n_impacts,
+               **{name: peak_scalar[:, i].copy() for i, name in enumerate(_SCALAR_PEAKS)}}
+    result = {q.name: by_name[q.name] for q in PEAKS}
     hist = None
     if history is not None:
         hist = {"time": np.arange(n_out) * every * dt, "isolator_disp": h_u[inverse],

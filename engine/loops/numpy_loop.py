@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..building import N_LEVELS, BuildingArrays
+from ..building import BuildingArrays
 from ..impact.contact import fill_force_terms, law_blocks
 from ..isolator import isolator_force, plastic_spring_force
 from ..results import empty_peaks
@@ -47,10 +47,11 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
     mass = b.masses
     step_op, wall_response, compliance = step_operators(b, dt)
 
-    u = np.zeros((size, N_LEVELS))
-    v_half = np.zeros((size, N_LEVELS))
-    rhs = np.zeros((size, 2 * N_LEVELS))  # [p - f(u_n), v_{n-1/2}]
-    chain = np.zeros((size, N_LEVELS + 1))  # forces in isolator, stories 1..4, free end
+    n_levels = mass.shape[1]
+    u = np.zeros((size, n_levels))
+    v_half = np.zeros((size, n_levels))
+    rhs = np.zeros((size, 2 * n_levels))  # [p - f(u_n), v_{n-1/2}]
+    chain = np.zeros((size, n_levels + 1))  # forces in isolator, stories 1..N, free end
     f_plastic = np.zeros(size)
     elastic = np.zeros(size)
     dashpot = np.zeros(size)
@@ -58,7 +59,7 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
     delta_prev = np.zeros(size)
     in_contact = np.zeros(size, dtype=bool)
 
-    peaks = empty_peaks(size, N_LEVELS)
+    peaks = empty_peaks(size, n_levels)
     peak_accel, peak_drift = peaks["peak_total_accel"], peaks["peak_interstory_drift"]
     peak_iso, max_indent = peaks["peak_isolator_disp"], peaks["max_indentation"]
     max_force, n_impacts = peaks["max_impact_force"], peaks["n_impacts"]
@@ -71,7 +72,7 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
         m_out = hist_members.size
         hist = {"time": np.arange(n_out) * hist_every * dt,
                 "isolator_disp": np.zeros((m_out, n_out)),
-                "total_accel": np.zeros((m_out, n_out, N_LEVELS)),
+                "total_accel": np.zeros((m_out, n_out, n_levels)),
                 "impact_force": np.zeros((m_out, n_out)),
                 "indentation": np.zeros((m_out, n_out))}
     report_every = max(n_steps // 100, 1)
@@ -82,10 +83,10 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
         # Structure without wall force this step: p - f and the free velocities.
         chain[:, 0] = isolator_force(u0, f_plastic, b.k2)
         drift = np.diff(u, axis=1)
-        np.multiply(b.story_k, drift, out=chain[:, 1:N_LEVELS])
-        np.subtract(chain[:, 1:], chain[:, :-1], out=rhs[:, :N_LEVELS])
-        rhs[:, :N_LEVELS] -= mass * a[:, None]
-        rhs[:, N_LEVELS:] = v_half
+        np.multiply(b.story_k, drift, out=chain[:, 1:n_levels])
+        np.subtract(chain[:, 1:], chain[:, :-1], out=rhs[:, :n_levels])
+        rhs[:, :n_levels] -= mass * a[:, None]
+        rhs[:, n_levels:] = v_half
         v_next = np.einsum("bij,bj->bi", step_op, rhs)
 
         # Wall contact on the side the slab moves towards.
