@@ -3,10 +3,12 @@
 Arrays in, arrays out; SI units (units.py converts the paper's cm, g, kN); a leading batch
 axis B on every state array. Where things live:
 
-    building.py   the shear building (masses, story stiffnesses, damping, the isolator's k1/k2)
-    isolator.py   the bilinear isolator law (exact return mapping)
+    building.py   the shear building: any number of stories, linear or yielding, damping
+    isolators/    the isolator laws, one module each in isolators/laws/ (bilinear, friction
+                  pendulum), the Isolator a building stands on, and the hysteresis they share
     impact/       the moat-wall impact laws, one module each in impact/laws/ (each declares
                   its parameters once), the registry that finds them, and Contact
+    parameters.py how a law declares its parameters; registry.py how laws are found
     scheme.py     the integration scheme: default dt, step operators, stability limit, the
                   exact contact solve and onset weighting, shared by both loops
     results.py    what the engine returns, declared once (every peak and history: shape, unit,
@@ -22,9 +24,10 @@ from . import units
 from .building import Building
 from .errors import EngineError, UnstableTimeStep
 from .impact import Contact
+from .isolators import Isolator
 from .results import History, Result, TwoBodyResult
 from .scheme import DEFAULT_DT
 from .simulate import simulate, stable_dt, two_body
 
-__all__ = ["Building", "Contact", "DEFAULT_DT", "EngineError", "History", "Result",
+__all__ = ["Building", "Contact", "DEFAULT_DT", "EngineError", "History", "Isolator", "Result",
            "TwoBodyResult", "UnstableTimeStep", "simulate", "stable_dt", "two_body", "units"]

@@ -1,5 +1,7 @@
-"""The shear building on its isolators: the paper's 5-mass building by default (section 4,
-Fig. 7; SPEC section 1), any number of stories N (1 <= N <= MAX_STORIES) otherwise.
+"""The shear building on its isolators: the paper's 5-mass building on bilinear isolators by
+default (section 4, Fig. 7; SPEC section 1); any number of stories N (1 <= N <= MAX_STORIES),
+stories that yield (bilinear kinematic hardening) and any isolator law (engine/isolators/)
+otherwise.
 
 Levels are numbered 0 (isolation slab) to N (roof); story i joins level i-1 to level i.
 Everything is SI: kg, N/m, N*s/m, s.
@@ -13,6 +15,7 @@ from functools import lru_cache
 import numpy as np
 
 from .errors import EngineError
+from .isolators import Isolator
 from .units import G
 
 MAX_STORIES = 30
@@ -25,14 +28,23 @@ class Building:
     """One building's properties. Defaults are the paper's (Fig. 7c).
 
     masses : kg per level 0..N (N + 1 values); story_stiffness : N/m per story 1..N (N values);
-    k1, k2 : isolator initial and post-yield stiffness (N/m);
-    fy_ratio : isolator yield force Fy as a fraction of the total weight (u_y = Fy / k1);
-    zeta_iso, zeta_sup : damping ratios of the isolation system and the superstructure;
-    damping : "paper" (isolation dashpot 2*zeta_iso*sqrt(k1*M_tot) plus stiffness-proportional
-        story dashpots 2*zeta_sup*k/omega_1 of the fixed-base superstructure; SPEC decision) or
-        "modal" (classical damping of the linear building with the isolator at k1: zeta_iso in
-        mode 1, zeta_sup in modes 2-5);
-    g : m/s^2, used for the weight.
+    k1, k2, fy_ratio : the bilinear isolator's initial and post-yield stiffness (N/m) and yield
+        force as a fraction of the total weight: the shorthand for
+        isolator=Isolator.bilinear(k1, k2, fy_ratio) (leave them at their defaults when an
+        isolator is given);
+    isolator : an engine.Isolator (engine/isolators/laws/: bilinear, friction_pendulum), or
+        None for the bilinear shorthand;
+    zeta_iso : isolation damping ratio on the isolator's initial stiffness; None: the isolator
+        law's default (bilinear 0.05, friction pendulum 0: friction is its damping);
+    zeta_sup : superstructure damping ratio;
+    damping : "paper" (isolation dashpot 2*zeta_iso*sqrt(k_0*M_tot), k_0 the isolator's
+        initial stiffness, plus stiffness-proportional story dashpots 2*zeta_sup*k/omega_1 of
+        the fixed-base superstructure; SPEC decision) or "modal" (classical damping of the
+        linear building with the isolator at k_0: zeta_iso in mode 1, zeta_sup in the others);
+    g : m/s^2, used for the weight;
+    story_yield_force : None (linear stories) or N yield forces F_i (N): each story then
+        follows bilinear kinematic hardening, elastic k_i up to the yield drift F_i / k_i, then
+        story_post_yield_ratio * k_i (exact return mapping, like the isolator's).
     """
 
     masses: tuple[float, ...] = PAPER_MASSES
@@ -40,10 +52,13 @@ class Building:
     k1: float = 200e6
     k2: float = 25e6
     fy_ratio: float = 0.1
-    zeta_iso: float = 0.05
+    zeta_iso: float | None = None
     zeta_sup: float = 0.02
     damping: str = "paper"
     g: float = G
+    isolator: Isolator | None = None
+    story_yield_force: tuple[float, ...] | None = None
+    story_post_yield_ratio: float = 0.02
 
     def __post_init__(self):
         masses = np.asarray(self.masses, dtype=float)
@@ -56,16 +71,54 @@ class Building:
             raise EngineError(
                 f"story_stiffness must be {masses.size - 1} positive values in N/m (one per "
                 f"story, as masses has {masses.size} levels), got {self.story_stiffness!r}")
-        if not 0 < self.k2 < self.k1:
-            raise EngineError(
-                f"isolator stiffness needs 0 < k2 < k1, got k1={self.k1}, k2={self.k2}")
-        if not self.fy_ratio > 0:
-            raise EngineError(f"fy_ratio must be positive, got {self.fy_ratio}")
-        for name in ("zeta_iso", "zeta_sup"):
-            if not 0 <= getattr(self, name) < 1:
-                raise EngineError(f"{name} must be in [0, 1), got {getattr(self, name)}")
+        if self.isolator is None:
+            try:
+                object.__setattr__(self, "_isolation", Isolator.bilinear(
+                    k1=self.k1, k2=self.k2, fy_ratio=self.fy_ratio))
+            except EngineError as err:
+                raise EngineError(f"isolator: {err}") from None
+        elif not isinstance(self.isolator, Isolator):
+            raise EngineError(f"isolator must be an engine.Isolator, got {self.isolator!r}")
+        else:
+            shorthand = {name: getattr(self, name) for name in ("k1", "k2", "fy_ratio")
+                         if getattr(self, name) != _FIELDS[name].default}
+            if shorthand:
+                raise EngineError(f"give the isolator either as isolator= or by k1, k2, "
+                                  f"fy_ratio, not both (got isolator and {shorthand})")
+            object.__setattr__(self, "_isolation", self.isolator)
+        zeta_iso = self.isolation_zeta
+        if not 0 <= zeta_iso < 1:
+            raise EngineError(f"zeta_iso must be in [0, 1), got {zeta_iso}")
+        if not 0 <= self.zeta_sup < 1:
+            raise EngineError(f"zeta_sup must be in [0, 1), got {self.zeta_sup}")
         if self.damping not in ("paper", "modal"):
             raise EngineError(f"damping must be 'paper' or 'modal', got {self.damping!r}")
+        if not 0 <= self.story_post_yield_ratio < 1:
+            raise EngineError(f"story_post_yield_ratio must be in [0, 1), got "
+                              f"{self.story_post_yield_ratio}")
+        if self.story_yield_force is not None:
+            yields = np.asarray(self.story_yield_force, dtype=float)
+            if yields.shape != stiff.shape or not np.all(yields > 0):
+                raise EngineError(f"story_yield_force must be {stiff.size} positive forces in N "
+                                  f"(one per story), got {self.story_yield_force!r}")
+
+    @property
+    def isolation(self) -> Isolator:
+        """The isolator this building stands on: `isolator`, or the bilinear shorthand's."""
+        return self._isolation
+
+    @property
+    def isolation_zeta(self) -> float:
+        """The isolation damping ratio in force: zeta_iso, or the isolator law's default."""
+        return self.isolation.default_zeta if self.zeta_iso is None else self.zeta_iso
+
+    @property
+    def story_yield_drift(self) -> np.ndarray | None:
+        """(N,) yield drifts F_i / k_i (m), or None for linear stories."""
+        if self.story_yield_force is None:
+            return None
+        return np.asarray(self.story_yield_force, float) / np.asarray(self.story_stiffness,
+                                                                      float)
 
     @property
     def n_levels(self) -> int:
@@ -83,18 +136,26 @@ class Building:
         return float(np.sum(self.masses))
 
     @property
-    def yield_force(self) -> float:
-        """Isolator yield force Fy (N) = fy_ratio * g * total mass."""
-        return self.fy_ratio * self.g * self.total_mass
+    def yield_displacement(self) -> float:
+        """Isolator displacement at which it starts to yield or slide (m): u_y = Fy / K1 for
+        the bilinear law, Fy = fy_ratio * g * total mass."""
+        return self.isolation.yield_displacement(self.total_mass, self.g)
 
     @property
-    def yield_displacement(self) -> float:
-        """Isolator yield displacement u_y = Fy / k1 (m)."""
-        return self.yield_force / self.k1
+    def yield_force(self) -> float:
+        """Isolator force (N) where it starts to yield or slide: Fy = fy_ratio * g * total
+        mass for the bilinear law, mu_fast W + W yield_disp / R for a friction pendulum."""
+        return self.isolator_stiffness * self.yield_displacement
+
+    @property
+    def isolator_stiffness(self) -> float:
+        """The isolator's initial stiffness (N/m): K1, or k_0 + W/R for a friction pendulum."""
+        return self.isolation.initial_stiffness(self.total_mass, self.g)
 
     def stiffness_matrix(self, isolator_stiffness: float | None = None) -> np.ndarray:
-        """(L, L) linear stiffness matrix (N/m) with the isolator at `isolator_stiffness` (k1)."""
-        k_iso = self.k1 if isolator_stiffness is None else isolator_stiffness
+        """(L, L) linear stiffness matrix (N/m) with the isolator at `isolator_stiffness` (its
+        initial stiffness unless given)."""
+        k_iso = self.isolator_stiffness if isolator_stiffness is None else isolator_stiffness
         springs = np.concatenate([[k_iso], np.asarray(self.story_stiffness, dtype=float)])
         return _chain_matrix(springs)
 
@@ -107,19 +168,21 @@ class Building:
     def damping_matrix(self) -> np.ndarray:
         """(L, L) viscous damping matrix, N*s/m, per the `damping` choice."""
         if self.damping == "paper":
-            c_iso = 2 * self.zeta_iso * np.sqrt(self.k1 * self.total_mass)
+            c_iso = 2 * self.isolation_zeta * np.sqrt(self.isolator_stiffness
+                                                      * self.total_mass)
             omega_1 = self.fixed_base_omega1()
             c_story = 2 * self.zeta_sup * np.asarray(self.story_stiffness) / omega_1
             return _chain_matrix(np.concatenate([[c_iso], c_story]))
         m = np.asarray(self.masses, dtype=float)
         omega2, phi = _generalized_eig(self.stiffness_matrix(), m)
         zeta = np.full(self.n_levels, self.zeta_sup)
-        zeta[0] = self.zeta_iso
+        zeta[0] = self.isolation_zeta
         mphi = m[:, None] * phi  # mass-normalised modes: C = M Phi diag(2 zeta omega) Phi^T M
         return mphi @ np.diag(2 * zeta * np.sqrt(omega2)) @ mphi.T
 
     def natural_periods(self, isolator_stiffness: float | None = None) -> np.ndarray:
-        """(L,) periods (s) of the linear building, isolator at k1 unless given."""
+        """(L,) periods (s) of the linear building, the isolator at its initial stiffness
+        unless given."""
         omega2 = _generalized_eigvals(self.stiffness_matrix(isolator_stiffness), self.masses)
         return 2 * np.pi / np.sqrt(omega2)
 
@@ -151,19 +214,27 @@ def _generalized_eigvals(k: np.ndarray, m) -> np.ndarray:
 
 @dataclass(frozen=True)
 class BuildingArrays:
-    """Per-member building arrays for a batch of B simulations.
+    """Per-member building arrays for a batch of B simulations, L levels each.
 
-    masses (B, L) kg; story_k (B, L - 1) N/m; k2, k_plastic, f_plastic_yield (B,) for the
-    isolator (k_plastic = k1 - k2, f_plastic_yield = (k1 - k2) * u_y); damping (B, L, L) N*s/m;
-    stiffness (B, L, L) N/m with the isolator at k1 (for stability limits). Every member of a
-    batch has the same number of levels L.
+    masses (B, L) kg; story_k (B, L - 1) N/m; the isolator's hysteresis fields (B,) each
+    (engine/isolators/hysteresis.py): k_elastic, k_slip N/m, f_limit N, slow_drop, rate s/m;
+    the stories' (B, L - 1) each: story_k_post (post-yield stiffness), story_k_slip,
+    story_f_limit (N; inf for linear stories) and story_yields (B,) bool; damping (B, L, L)
+    N*s/m; stiffness (B, L, L) N/m with the isolator at its initial stiffness (for stability
+    limits). Every member of a batch has the same number of levels L.
     """
 
     masses: np.ndarray
     story_k: np.ndarray
-    k2: np.ndarray
-    k_plastic: np.ndarray
-    f_plastic_yield: np.ndarray
+    k_elastic: np.ndarray
+    k_slip: np.ndarray
+    f_limit: np.ndarray
+    slow_drop: np.ndarray
+    rate: np.ndarray
+    story_k_post: np.ndarray
+    story_k_slip: np.ndarray
+    story_f_limit: np.ndarray
+    story_yields: np.ndarray
     damping: np.ndarray
     stiffness: np.ndarray
 
@@ -194,8 +265,19 @@ def building_arrays(building: Building | Sequence[Building], size: int) -> Build
 
 @lru_cache(maxsize=4096)
 def _building_row(b: Building) -> tuple:
-    """One building's batch arrays (its damping needs eigenvalues: computed once per Building;
-    the arrays are copied into the batch, never handed out)."""
-    return (np.asarray(b.masses, float), np.asarray(b.story_stiffness, float), b.k2,
-            b.k1 - b.k2, (b.k1 - b.k2) * b.yield_displacement, b.damping_matrix(),
-            b.stiffness_matrix())
+    """One building's batch arrays, in BuildingArrays' order (its damping needs eigenvalues:
+    computed once per Building; the arrays are copied into the batch, never handed out)."""
+    iso = b.isolation.fields(b.total_mass, b.g)
+    k = np.asarray(b.story_stiffness, float)
+    if b.story_yield_force is None:
+        post, slip, limit = k, np.zeros_like(k), np.full_like(k, np.inf)
+    else:
+        ratio = b.story_post_yield_ratio
+        post, slip = ratio * k, (1 - ratio) * k
+        limit = (1 - ratio) * np.asarray(b.story_yield_force, float)
+    return (np.asarray(b.masses, float), k, iso["k_elastic"], iso["k_slip"], iso["f_limit"],
+            iso["slow_drop"], iso["rate"], post, slip, limit, b.story_yield_force is not None,
+            b.damping_matrix(), b.stiffness_matrix())
+
+
+_FIELDS = Building.__dataclass_fields__

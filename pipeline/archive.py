@@ -26,6 +26,9 @@ from .errors import SweepError
 from .grid import Grid, baseline_text, swept_parameter
 from .provenance import attributes
 
+STORY_DUCTILITY = Quantity("peak_story_ductility", "1", "peak story ductility (peak "
+                           "interstory deflection / yield deflection F_i / k_i)", "story")
+"""Derived from peak_interstory_drift when the building's stories yield."""
 AMPLIFICATION = {
     "amplification_total_accel": ("peak_total_accel",
                                   "peak floor acceleration, bumpers / no bumpers (Fig. 14)"),
@@ -89,15 +92,27 @@ def level_coords(n_levels: int) -> dict:
             for axis, (values, units, long_name) in level_axes(n_levels).items()}
 
 
-def amplification_ratios(ds: xr.Dataset) -> dict[str, xr.DataArray]:
-    """The amplification ratios bumpers / no bumpers of a Dataset with a baseline block, each
-    over the dims of its peak (lazy when ds is)."""
-    ratios = {}
-    for name, (peak, long_name) in AMPLIFICATION.items():
-        ratio = (ds[peak] / ds["baseline_" + peak]).transpose(*ds[peak].dims)
-        ratio.attrs = {"units": "1", "long_name": long_name}
-        ratios[name] = ratio
-    return ratios
+def derived_variables(ds: xr.Dataset, building: engine.Building) -> dict:
+    """Variables computed from a sweep's peaks, name -> (DataArray, the peak whose dims and
+    chunks it shares), lazy when ds is: the amplification ratios bumpers / no bumpers when ds
+    has a baseline block; the peak story ductility (peak drift / yield drift F_i / k_i) of
+    every block when the building's stories yield."""
+    derived = {}
+    if "baseline_peak_total_accel" in ds:
+        for name, (peak, long_name) in AMPLIFICATION.items():
+            ratio = (ds[peak] / ds["baseline_" + peak]).transpose(*ds[peak].dims)
+            ratio.attrs = {"units": "1", "long_name": long_name}
+            derived[name] = (ratio, peak)
+    if building.story_yield_drift is not None:
+        yield_drift = xr.DataArray(building.story_yield_drift, dims="story")
+        for drift in [name for name in ds.data_vars
+                      if name.endswith("peak_interstory_drift")]:
+            prefix = drift[: -len("peak_interstory_drift")]
+            ductility = (ds[drift] / yield_drift).transpose(*ds[drift].dims)
+            ductility.attrs = {"units": STORY_DUCTILITY.units,
+                               "long_name": block_long_name(STORY_DUCTILITY, prefix)}
+            derived[prefix + "peak_story_ductility"] = (ductility, drift)
+    return derived
 
 
 def record_coords(records, names: list[str]) -> dict:
@@ -194,8 +209,9 @@ def build_dataset(grid: Grid, records, results: list[dict[str, np.ndarray]] | No
               **parameter_coords(grid)}
     ds = labelled_dataset(data_vars, coords,
                           attributes(grid, records, names, dt, building, arguments))
-    if grid.block("baseline_") is not None and results is not None:
-        ds = ds.assign(amplification_ratios(ds))
+    if results is not None:
+        ds = ds.assign({name: value for name, (value, _) in
+                        derived_variables(ds, building).items()})
     return ds
 
 

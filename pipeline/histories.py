@@ -34,6 +34,7 @@ from engine.impact import M_EFF
 from engine.results import HISTORIES, HISTORY_NAMES
 
 from .archive import (
+    derived_variables,
     labelled_dataset,
     level_coords,
     parameter_meta,
@@ -317,7 +318,9 @@ def _dataset(names, grids, members, contact, rec, rec_name, result, dt, every, b
                            else f"first {float(duration):g} s only (peaks of the segment)"),
         **arguments_attribute("histories", arguments),
     }
-    return labelled_dataset(data_vars, coords, attrs)
+    ds = labelled_dataset(data_vars, coords, attrs)
+    return ds.assign({name: value for name, (value, _) in
+                      derived_variables(ds, building).items()})
 
 
 def _finite(values) -> np.ndarray:

@@ -37,8 +37,9 @@ def isolated_period(displacement, building=None):
     """Effective period (s) of the isolated building at isolator displacement D (m).
 
     T_eff = 2 pi sqrt(M / k_eff): M the total mass (kg; the superstructure taken as rigid on
-    the isolators), k_eff the secant stiffness of the bilinear isolator at D,
-    k_eff = (k1 min(D, u_y) + k2 max(D - u_y, 0)) / D (N/m), u_y its yield displacement.
+    the isolators), k_eff the secant stiffness of the building's isolator at D (N/m; the
+    isolator law's effective_stiffness: for the bilinear law (k1 min(D, u_y) + k2 max(D - u_y,
+    0)) / D, u_y its yield displacement; for the friction pendulum W / R + mu_fast W / D).
     This is the effective period at the design displacement of the equivalent-linear
     isolator design (ASCE 7 chapter 17, T = 2 pi sqrt(W / (k_eff g))).
 
@@ -50,8 +51,7 @@ def isolated_period(displacement, building=None):
 
     b = engine.Building() if building is None else building
     D = np.asarray(displacement, dtype=float)
-    u_y = b.yield_displacement
-    secant = (b.k1 * np.minimum(D, u_y) + b.k2 * np.maximum(D - u_y, 0.0)) / D
+    secant = b.isolation.effective_stiffness(b.total_mass, b.g, D)
     period = 2 * np.pi * np.sqrt(b.total_mass / secant)
     return float(period) if period.ndim == 0 else period
 

@@ -14,6 +14,7 @@ runs (pipeline.execute.keys): a changed engine or record is a new key.
 """
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import json
 import os
@@ -216,15 +217,33 @@ def two_body_attributes(title: str, arguments: dict | None = None) -> dict:
 
 
 def building_attributes(building: engine.Building) -> dict:
-    """The building's every property, its units and the damping decision, as attributes."""
+    """The building's every property, its isolator, their units and the damping decision, as
+    attributes. zeta_iso is the ratio in force (the isolator law's default when not given);
+    k1, k2, fy_ratio appear when they are the isolator (the bilinear shorthand)."""
     attrs = {}
-    for name, value in vars(building).items():
+    shorthand = building.isolator is None
+    for field in dataclasses.fields(building):
+        name = field.name
+        if name == "isolator" or (name in ("k1", "k2", "fy_ratio") and not shorthand):
+            continue
+        value = building.isolation_zeta if name == "zeta_iso" else getattr(building, name)
         attrs[f"building_{name}"] = _attr_value(value)
+    isolation = building.isolation
+    attrs["building_isolator"] = isolation.describe()
+    attrs["building_isolator_law"] = isolation.law
+    for name, value in isolation.parameters:
+        attrs[f"building_isolator_{name}"] = value
     attrs["building_units"] = ("masses kg, story_stiffness k1 k2 N/m, fy_ratio of the total "
                                "weight, g m s-2")
+    if building.story_yield_force is not None:
+        attrs["building_units"] += ", story_yield_force N"
     attrs["building_yield_displacement"] = building.yield_displacement
+    if isolation.law == "bilinear":
+        iso_text = "2 zeta_iso sqrt(k1 M_tot)"
+    else:
+        iso_text = "2 zeta_iso sqrt(k_0 M_tot), k_0 the isolator's initial stiffness"
     attrs["damping_decision"] = (
-        "paper: isolation dashpot 2 zeta_iso sqrt(k1 M_tot), stiffness-proportional story "
+        f"paper: isolation dashpot {iso_text}, stiffness-proportional story "
         "dashpots 2 zeta_sup k / omega_1 (fixed-base)" if building.damping == "paper" else
         "modal: classical damping, zeta_iso in mode 1, zeta_sup in modes 2-5")
     return attrs

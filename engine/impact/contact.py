@@ -8,13 +8,12 @@ LAW_ARGUMENTS, the same for every law, so that one call signature serves every l
 """
 from __future__ import annotations
 
-import inspect
 from dataclasses import dataclass, fields
 
 import numpy as np
 
 from ..errors import EngineError
-from .parameters import REQUIRED, Declaration, Parameter
+from ..parameters import Declaration, Parameter, law_constructor
 from .registry import LAW_CODES, LAW_MODULES, LAW_NAMES, LAWS, NONE
 
 LAW_ARGUMENTS = ("k", "n", "m_eff", "delta_u", "k_w", "dashpot", "damping_ratio", "chi",
@@ -24,34 +23,6 @@ LAW_ARGUMENTS = ("k", "n", "m_eff", "delta_u", "k_w", "dashpot", "damping_ratio"
 # Contact fields a law leaves unset, and their neutral values.
 _UNSET = {"delta_u": np.inf, "k_w": 0.0, "dashpot": 0.0, "damping_ratio": 0.0, "chi": 0.0,
           "c_imp_coef": 0.0, "c_imp_exponent": 0.0}
-
-
-def _law_constructor(law: str):
-    """Contact.<law>(gap, ...): a classmethod whose signature and docstring are the law's
-    declaration, so that the declaration is the only place defaults and ranges are written."""
-    declaration = LAWS[law].PARAMETERS
-    signature = inspect.Signature(
-        [inspect.Parameter("gap", inspect.Parameter.POSITIONAL_OR_KEYWORD)]
-        + [inspect.Parameter(name, inspect.Parameter.POSITIONAL_OR_KEYWORD,
-                             default=inspect.Parameter.empty if entry.default is REQUIRED
-                             else entry.default)
-           for name, entry in declaration.items() if name != "gap"])
-
-    def constructor(cls, *args, **kwargs) -> Contact:
-        try:
-            bound = signature.bind(*args, **kwargs)
-        except TypeError as err:
-            raise EngineError(f"Contact.{law}: {err}") from None
-        return cls.of(law, **bound.arguments)
-
-    constructor.__name__ = constructor.__qualname__ = law
-    constructor.__signature__ = signature.replace(
-        parameters=[inspect.Parameter("cls", inspect.Parameter.POSITIONAL_ONLY),
-                    *signature.parameters.values()])
-    constructor.__doc__ = (f"A {law} moat wall ({LAWS[law].__name__}); every parameter is a "
-                           "scalar or a (B,) array, broadcast together:\n"
-                           + declaration.describe())
-    return classmethod(constructor)
 
 
 @dataclass(frozen=True)
@@ -149,8 +120,15 @@ class Contact:
         return out
 
 
-for _name in LAWS:
-    setattr(Contact, _name, _law_constructor(_name))
+def _build(cls, law, **arguments):
+    return cls.of(law, **arguments)
+
+
+for _name, _module in LAWS.items():
+    setattr(Contact, _name, law_constructor(
+        "Contact", _name, _module.PARAMETERS,
+        f"A {_name} moat wall ({_module.__name__}); every parameter is a scalar or a (B,) "
+        "array, broadcast together:", _build))
 
 
 def law_blocks(contact: Contact):

@@ -1,17 +1,15 @@
 """The impact laws, derived from the modules in engine/impact/laws/ (in the manner of pygmm's
-registry: a hand-written list could drift from the modules it lists).
-
-Every module of that folder is a law (see its package docstring for what a law module holds);
-the registry imports each, checks that it is complete, and numbers the laws: 0 is "no wall",
-then 1, 2, ... in the laws' ORDER. The numbers are the `Contact.law` codes the time loops
-dispatch on; they are never stored (archives and work folders name laws by NAME).
+registry: a hand-written list could drift from the modules it lists). Every module of that
+folder is a law (see its package docstring for what a law module holds); engine/registry.py
+imports each and checks that it is complete; here the laws are numbered: 0 is "no wall", then
+1, 2, ... in the laws' ORDER. The numbers are the `Contact.law` codes the time loops dispatch
+on; they are never stored (archives and work folders name laws by NAME).
 """
 from __future__ import annotations
 
-import importlib
-import pkgutil
 from types import ModuleType
 
+from ..registry import discover
 from . import laws as _laws_package
 
 NONE = 0
@@ -21,24 +19,7 @@ NO_WALL = "none"
 LAW_INTERFACE = ("NAME", "ORDER", "PARAMETERS", "contact_fields", "force_terms",
                  "max_tangent_stiffness")
 
-
-def _discover() -> dict[str, ModuleType]:
-    modules = []
-    for info in pkgutil.iter_modules(_laws_package.__path__):
-        module = importlib.import_module(f"{_laws_package.__name__}.{info.name}")
-        missing = [name for name in LAW_INTERFACE if not hasattr(module, name)]
-        if missing:
-            raise ImportError(f"{module.__name__} is in engine/impact/laws/ but is not an "
-                              f"impact law: it lacks {', '.join(missing)}")
-        modules.append(module)
-    modules.sort(key=lambda m: (m.ORDER, m.NAME))
-    names = [m.NAME for m in modules]
-    if len(set(names)) != len(names) or NO_WALL in names:
-        raise ImportError(f"impact law names must be unique and not {NO_WALL!r}: {names}")
-    return {m.NAME: m for m in modules}
-
-
-LAWS: dict[str, ModuleType] = _discover()
+LAWS: dict[str, ModuleType] = discover(_laws_package, LAW_INTERFACE, reserved=(NO_WALL,))
 """Law name -> its module (PARAMETERS, contact_fields, force_terms, ...), in ORDER."""
 LAW_CODES: dict[str, int] = {NO_WALL: NONE, **{name: code for code, name in
                                                enumerate(LAWS, start=1)}}

@@ -23,15 +23,16 @@ from numba import carray, njit, prange
 from numba.core import cgutils, types
 from numba.extending import intrinsic
 
-from .. import isolator, scheme
+from .. import scheme
 from ..impact import registry
 from ..impact.contact import LAW_ARGUMENTS
+from ..isolators import hysteresis
 from ..results import PEAKS
 from ..scheme import step_operators
 
 _HERE = Path(__file__).resolve()
 _PHYSICS_SOURCES = [_HERE, *(Path(m.__file__).resolve() for m in (
-    isolator, scheme, registry, *registry.LAWS.values()))]
+    hysteresis, scheme, registry, *registry.LAWS.values()))]
 
 
 def _install_cache_locator() -> None:
@@ -66,8 +67,9 @@ _JIT = {"cache": True, "nogil": True, "error_model": "numpy"}
 _LINK = {"nogil": True, "error_model": "numpy"}  # compiled into the cached kernels that call it
 
 # The physics, written once in its own modules, compiled for scalars.
-_isolator_force = njit(isolator.isolator_force)
-_plastic_spring = njit(isolator.plastic_spring_force)
+_isolator_force = njit(hysteresis.isolator_force)
+_plastic_spring = njit(hysteresis.plastic_spring_force)
+_slip_limit = njit(hysteresis.slip_limit)
 _implicit_force = njit(scheme.implicit_force)
 _onset_weight = njit(scheme.onset_weight)
 
@@ -116,7 +118,8 @@ def _stack_doubles(typingctx, size):
 
 
 # Columns of the per-member scalar parameters.
-_COMPLIANCE, _K2, _K_PLASTIC, _F_YIELD, _GAP, _SCALE, _LAW_ARGS = range(7)
+(_COMPLIANCE, _K_ELASTIC, _K_SLIP, _F_LIMIT, _SLOW_DROP, _RATE, _STORIES_YIELD, _GAP, _SCALE,
+ _LAW_ARGS) = range(10)
 _N_PAR = _LAW_ARGS + len(LAW_ARGUMENTS)
 # Columns of the per-member scalar state carried between chunks of steps (the displacements
 # and velocities of every level are arrays of their own).
@@ -130,19 +133,22 @@ _P_ISO, _P_INDENT, _P_FORCE, _P_ENERGY = (_SCALAR_PEAKS.index(name) for name in 
 
 
 @njit(**_JIT)
-def _member(n_levels, b, s0, s1, ag, dt, op, wall, mass, story_k, law, par, u_all, v_all,
-            state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u, h_acc,
-            h_f, h_d):
+def _member(n_levels, b, s0, s1, ag, dt, op, wall, mass, story, law, par, u_all, v_all,
+            f_story_all, state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every,
+            h_u, h_acc, h_f, h_d):
     """Steps s0 <= step < s1 of member b: the NumPy loop's step, on scalars and the member's
     own small arrays (L levels, L - 1 stories). Sums run in the NumPy loop's order, so the
     two agree to round-off, and a member's result never depends on the batch."""
     ot = op[b]
     w = wall[b]
     m = mass[b]
-    k_story = story_k[b]
+    k_story, k_post, k_slip_story, f_limit_story = story[b, 0], story[b, 1], story[b, 2], \
+        story[b, 3]
     p = par[b]
     comp = p[_COMPLIANCE]
-    k2, kp, fy, gap = p[_K2], p[_K_PLASTIC], p[_F_YIELD], p[_GAP]
+    k_el, k_slip, f_limit, gap = p[_K_ELASTIC], p[_K_SLIP], p[_F_LIMIT], p[_GAP]
+    slow_drop, rate = p[_SLOW_DROP], p[_RATE]
+    stories_yield = p[_STORIES_YIELD] != 0.0
     scale = p[_SCALE]
     q = _LAW_ARGS
     k, n, m_eff, delta_u, k_w = p[q], p[q + 1], p[q + 2], p[q + 3], p[q + 4]
@@ -165,8 +171,10 @@ def _member(n_levels, b, s0, s1, ag, dt, op, wall, mass, story_k, law, par, u_al
     pd = carray(_stack_doubles(n_levels), (n_levels - 1,))
     for i in range(n_levels):
         u[i], v[i], pa[i] = u_all[b, i], v_all[b, i], peak_level[b, i]
+    f_story = carray(_stack_doubles(n_levels), (n_levels - 1,))  # yielding stories' slip
     for i in range(n_levels - 1):
         pd[i] = peak_story[b, i]
+        f_story[i] = f_story_all[b, i]
     chain = carray(_stack_doubles(n_levels), (n_levels,))  # isolator, stories 1..N
     drift = carray(_stack_doubles(n_levels), (n_levels - 1,))
     r = carray(_stack_doubles(n_levels), (n_levels,))
@@ -174,10 +182,13 @@ def _member(n_levels, b, s0, s1, ag, dt, op, wall, mass, story_k, law, par, u_al
     for step in range(s0, s1):
         a = ag[step] * scale  # x 1.0 is exact: unscaled members are unchanged
         # Structure without wall force: p - f(u_n), then the free velocities v_{n+1/2}.
-        chain[0] = _isolator_force(u[0], fp, k2)
+        chain[0] = _isolator_force(u[0], fp, k_el)
         for i in range(n_levels - 1):
             drift[i] = u[i + 1] - u[i]
-            chain[i + 1] = k_story[i] * drift[i]
+            if stories_yield:  # post-yield spring plus slip element
+                chain[i + 1] = _isolator_force(drift[i], f_story[i], k_post[i])
+            else:
+                chain[i + 1] = k_story[i] * drift[i]
         for i in range(n_levels - 1):
             r[i] = (chain[i + 1] - chain[i]) - m[i] * a
         r[n_levels - 1] = (0.0 - chain[n_levels - 1]) - m[n_levels - 1] * a  # the free roof
@@ -236,8 +247,15 @@ def _member(n_levels, b, s0, s1, ag, dt, op, wall, mass, story_k, law, par, u_al
             h_f[hrow, t] = force
             h_d[hrow, t] = max(delta, 0.0)
 
-        # Advance: the isolator's plastic spring sees this step's displacement increment.
-        fp = _plastic_spring(fp, dt * nxt[0], kp, fy)
+        # Advance: the isolator's slip element sees this step's displacement increment, its
+        # limit at this step's sliding speed (exactly f_limit without speed dependence: the
+        # branch only spares the bilinear law an exp); yielding stories their drift increments.
+        limit = f_limit if slow_drop == 0.0 else _slip_limit(f_limit, slow_drop, rate, nxt[0])
+        fp = _plastic_spring(fp, dt * nxt[0], k_slip, limit)
+        if stories_yield:
+            for i in range(n_levels - 1):
+                f_story[i] = _plastic_spring(f_story[i], dt * (nxt[i + 1] - nxt[i]),
+                                             k_slip_story[i], f_limit_story[i])
         for i in range(n_levels):
             v[i] = nxt[i]
             u[i] = u[i] + dt * nxt[i]
@@ -246,6 +264,7 @@ def _member(n_levels, b, s0, s1, ag, dt, op, wall, mass, story_k, law, par, u_al
         u_all[b, i], v_all[b, i], peak_level[b, i] = u[i], v[i], pa[i]
     for i in range(n_levels - 1):
         peak_story[b, i] = pd[i]
+        f_story_all[b, i] = f_story[i]
     st[_FP], st[_V_IMP], st[_DELTA_PREV] = fp, v_imp, delta_prev
     st[_IN_CONTACT] = 1.0 if in_contact else 0.0
     pk[_P_ISO], pk[_P_INDENT], pk[_P_FORCE], pk[_P_ENERGY] = p_iso, p_indent, p_force, energy
@@ -253,26 +272,26 @@ def _member(n_levels, b, s0, s1, ag, dt, op, wall, mass, story_k, law, par, u_al
 
 
 @njit(**_JIT)
-def _run_serial(n_levels, s0, s1, ag, dt, op, wall, mass, story_k, law, par, u, v, state,
-                peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u, h_acc,
-                h_f, h_d):
+def _run_serial(n_levels, s0, s1, ag, dt, op, wall, mass, story, law, par, u, v, f_story,
+                state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u,
+                h_acc, h_f, h_d):
     # One compilation per number of levels: loops of known length, arrays on the stack.
     numba.literally(n_levels)
     for b in range(law.size):
-        _member(n_levels, b, s0, s1, ag, dt, op, wall, mass, story_k, law, par, u, v, state,
-                peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u, h_acc,
-                h_f, h_d)
+        _member(n_levels, b, s0, s1, ag, dt, op, wall, mass, story, law, par, u, v, f_story,
+                state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u,
+                h_acc, h_f, h_d)
 
 
 @njit(parallel=True, **_JIT)
-def _run_parallel(n_levels, s0, s1, ag, dt, op, wall, mass, story_k, law, par, u, v, state,
-                  peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u, h_acc,
-                  h_f, h_d):
+def _run_parallel(n_levels, s0, s1, ag, dt, op, wall, mass, story, law, par, u, v, f_story,
+                  state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u,
+                  h_acc, h_f, h_d):
     numba.literally(n_levels)
     for b in prange(law.size):
-        _member(n_levels, b, s0, s1, ag, dt, op, wall, mass, story_k, law, par, u, v, state,
-                peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u, h_acc,
-                h_f, h_d)
+        _member(n_levels, b, s0, s1, ag, dt, op, wall, mass, story, law, par, u, v, f_story,
+                state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u,
+                h_acc, h_f, h_d)
 
 
 @njit(**_JIT)
@@ -310,9 +329,12 @@ def member_parameters(arrays, contact, compliance, scale) -> np.ndarray:
     """(B, _N_PAR) float matrix of every per-member scalar the step reads."""
     par = np.empty((len(contact), _N_PAR))
     par[:, _COMPLIANCE] = compliance
-    par[:, _K2] = arrays.k2
-    par[:, _K_PLASTIC] = arrays.k_plastic
-    par[:, _F_YIELD] = arrays.f_plastic_yield
+    par[:, _K_ELASTIC] = arrays.k_elastic
+    par[:, _K_SLIP] = arrays.k_slip
+    par[:, _F_LIMIT] = arrays.f_limit
+    par[:, _SLOW_DROP] = arrays.slow_drop
+    par[:, _RATE] = arrays.rate
+    par[:, _STORIES_YIELD] = arrays.story_yields
     par[:, _GAP] = contact.clear_gap
     par[:, _SCALE] = scale
     for i, name in enumerate(LAW_ARGUMENTS):
@@ -335,6 +357,10 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
     par = member_parameters(arrays, contact, compliance, scale)
     law = np.ascontiguousarray(contact.law, dtype=np.int64)
     u, v = np.zeros((size, n_levels)), np.zeros((size, n_levels))
+    f_story = np.zeros((size, n_levels - 1))
+    # Per story: elastic stiffness, post-yield stiffness, slip stiffness, slip limit.
+    story = np.ascontiguousarray(np.stack([arrays.story_k, arrays.story_k_post,
+                                           arrays.story_k_slip, arrays.story_f_limit], axis=1))
     state = np.zeros((size, _N_STATE))
     state[:, _V_IMP] = 1.0
     peak_level, peak_story = np.zeros((size, n_levels)), np.zeros((size, n_levels - 1))
@@ -357,10 +383,9 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
     run = _run_parallel if threads() > 1 and size > 1 else _run_serial
     # The operator transposed, (B, 2L, L): the step reads it column by column.
     args = (ag, float(dt), np.ascontiguousarray(op.transpose(0, 2, 1)),
-            np.ascontiguousarray(wall_response),
-            np.ascontiguousarray(arrays.masses), np.ascontiguousarray(arrays.story_k), law,
-            par, u, v, state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every,
-            h_u, h_acc, h_f, h_d)
+            np.ascontiguousarray(wall_response), np.ascontiguousarray(arrays.masses), story,
+            law, par, u, v, f_story, state, peak_level, peak_story, peak_scalar, n_impacts,
+            hist_row, every, h_u, h_acc, h_f, h_d)
     # Members one at a time to whichever thread is free: they cost unequally (a member that
     # pounds does more work), and even halves of the batch would leave one thread waiting
     # (gap_size's batch: 81% -> 88% parallel efficiency on 2 threads). Bitwise the same.

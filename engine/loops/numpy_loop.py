@@ -12,7 +12,7 @@ import numpy as np
 
 from ..building import BuildingArrays
 from ..impact.contact import fill_force_terms, law_blocks
-from ..isolator import isolator_force, plastic_spring_force
+from ..isolators.hysteresis import isolator_force, plastic_spring_force, slip_limit
 from ..results import empty_peaks
 from ..scheme import implicit_force, onset_weight, step_operators
 
@@ -53,6 +53,8 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
     rhs = np.zeros((size, 2 * n_levels))  # [p - f(u_n), v_{n-1/2}]
     chain = np.zeros((size, n_levels + 1))  # forces in isolator, stories 1..N, free end
     f_plastic = np.zeros(size)
+    f_story = np.zeros((size, n_levels - 1))  # slip forces of yielding stories
+    yields = b.story_yields
     elastic = np.zeros(size)
     dashpot = np.zeros(size)
     v_imp = np.ones(size)
@@ -81,9 +83,12 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
         a = ag[step] * scale  # (B,): x 1.0 is exact, unscaled members are unchanged
         u0 = u[:, 0]
         # Structure without wall force this step: p - f and the free velocities.
-        chain[:, 0] = isolator_force(u0, f_plastic, b.k2)
+        chain[:, 0] = isolator_force(u0, f_plastic, b.k_elastic)
         drift = np.diff(u, axis=1)
         np.multiply(b.story_k, drift, out=chain[:, 1:n_levels])
+        if yields.any():  # bilinear stories: post-yield spring plus slip element
+            chain[yields, 1:n_levels] = isolator_force(drift[yields], f_story[yields],
+                                                       b.story_k_post[yields])
         np.subtract(chain[:, 1:], chain[:, :-1], out=rhs[:, :n_levels])
         rhs[:, :n_levels] -= mass * a[:, None]
         rhs[:, n_levels:] = v_half
@@ -125,9 +130,15 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
             hist["impact_force"][:, k] = force[hist_members]
             hist["indentation"][:, k] = np.maximum(delta[hist_members], 0.0)
 
-        # Advance: the isolator's plastic spring sees this step's displacement increment.
-        f_plastic = plastic_spring_force(f_plastic, dt * v_next[:, 0], b.k_plastic,
-                                         b.f_plastic_yield)
+        # Advance: the isolator's slip element sees this step's displacement increment, its
+        # limit at this step's sliding speed; yielding stories their drift increments.
+        f_plastic = plastic_spring_force(f_plastic, dt * v_next[:, 0], b.k_slip,
+                                         slip_limit(b.f_limit, b.slow_drop, b.rate,
+                                                    v_next[:, 0]))
+        if yields.any():
+            f_story[yields] = plastic_spring_force(
+                f_story[yields], dt * np.diff(v_next[yields], axis=1),
+                b.story_k_slip[yields], b.story_f_limit[yields])
         v_half = v_next
         u = u + dt * v_next
         if progress is not None and step % report_every == 0:

@@ -13,7 +13,8 @@ holds only the member table and the batch list.
 `batch_done` is the resume record: a rerun with the same sweep skips the batches marked
 done; the store's `sweep_key` attribute (pipeline.execute.keys: engine, records, dt, building,
 members) must match, so a store of another sweep is refused, not mixed. When every batch is
-done the client adds the amplification ratios (chunk by chunk, through dask) and sets the
+done the client adds the derived variables (amplification ratios, story ductility; chunk by
+chunk, through dask) and sets the
 attribute `complete = 1`; a store without it is unfinished. It opens with
 `xr.open_zarr(path)`.
 """
@@ -186,27 +187,26 @@ class ZarrStore:
         """Nothing to do: the worker wrote the region."""
 
     def finish(self):
-        """Amplification ratios (lazily, chunk by chunk), the `complete` mark, consolidated
+        """Derived variables (lazily, chunk by chunk), the `complete` mark, consolidated
         metadata; the store opened lazily."""
         import xarray as xr
         import zarr
 
-        from ..archive import AMPLIFICATION, amplification_ratios
+        from ..archive import derived_variables
 
-        if self.grid.block("baseline_") is not None:
-            ds = xr.open_zarr(self.out, consolidated=False)
-            if "amplification_total_accel" not in ds:
-                ratios = {}
-                for name, ratio in amplification_ratios(ds).items():
-                    peak = ds[AMPLIFICATION[name][0]]  # the ratio's chunks are its peak's
-                    # The variable alone: its coordinates are in the store already (written
-                    # again, chunked by record, they would straddle the store's chunks).
-                    ratios[name] = ratio.variable.chunk(dict(zip(peak.dims,
-                                                                 peak.data.chunksize,
-                                                                 strict=True)))
-                # mode "a" rewrites the group's attributes with the Dataset's: keep them
-                xr.Dataset(ratios, attrs=ds.attrs).to_zarr(self.out, mode="a",
-                                                           consolidated=False)
+        ds = xr.open_zarr(self.out, consolidated=False)
+        derived = {name: pair for name, pair in derived_variables(ds, self.building).items()
+                   if name not in ds}
+        if derived:
+            variables = {}
+            for name, (value, peak) in derived.items():
+                # The variable alone, chunked as its peak: its coordinates are in the store
+                # already (written again, chunked by record, they would straddle its chunks).
+                variables[name] = value.variable.chunk(dict(zip(
+                    ds[peak].dims, ds[peak].data.chunksize, strict=True)))
+            # mode "a" rewrites the group's attributes with the Dataset's: keep them
+            xr.Dataset(variables, attrs=ds.attrs).to_zarr(self.out, mode="a",
+                                                          consolidated=False)
         group = zarr.open_group(str(self.out), mode="r+")
         group.attrs["complete"] = 1
         zarr.consolidate_metadata(str(self.out))

@@ -68,7 +68,7 @@ def test_linear_building_matches_exact_solution(paper_record, damping, backend):
 
 def test_isolator_hysteresis_is_exact_bilinear():
     """Quasi-static check of the isolator law: force = k2 u + clipped plastic spring."""
-    from engine.isolator import isolator_force, plastic_spring_force
+    from engine.isolators.hysteresis import isolator_force, plastic_spring_force
 
     b = Building()
     uy, k1, k2 = b.yield_displacement, b.k1, b.k2

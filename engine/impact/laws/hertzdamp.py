@@ -16,9 +16,10 @@ dashpot of k delta^n chi / v_imp.
 """
 import numpy as np
 
+from ...parameters import REQUIRED, Declaration, Option, Parameter
 from ...units import power_law_units
 from ..calibration import hunt_crossley_chi
-from ..parameters import GAP, M_EFF, REQUIRED, Declaration, Option, Parameter
+from ..parameters import GAP, M_EFF
 
 CHI_RULES = ("lankarani", "calibrated")
 

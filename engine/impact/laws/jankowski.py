@@ -7,8 +7,9 @@ xi = 9 sqrt(5) (1 - COR^2) / (2 COR (COR (9 pi - 16) + 16))  (Jankowski 2006).
 """
 import numpy as np
 
+from ...parameters import REQUIRED, Declaration, Parameter
 from ...units import power_law_units
-from ..parameters import GAP, M_EFF, REQUIRED, Declaration, Parameter
+from ..parameters import GAP, M_EFF
 
 EXPONENT = 1.5
 

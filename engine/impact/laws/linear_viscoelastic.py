@@ -15,7 +15,8 @@ defaults: k = 2500 kN/mm, COR 0.5 (SPEC decision).
 """
 import numpy as np
 
-from ..parameters import GAP, M_EFF, Declaration, Option, Parameter
+from ...parameters import Declaration, Option, Parameter
+from ..parameters import GAP, M_EFF
 
 XI_RULES = ("no_tension", "eq3")
 

@@ -36,8 +36,9 @@ tests/engine/test_model_edges.py):
 import numpy as np
 
 from ...errors import EngineError
+from ...parameters import Declaration, Option, Parameter
 from ..calibration import hunt_crossley_chi
-from ..parameters import GAP, M_EFF, Declaration, Option, Parameter
+from ..parameters import GAP, M_EFF
 
 C_IMP_RULES = ("eq9", "calibrated")
 EQ9_COEFFICIENT = 1.55

@@ -1,0 +1,28 @@
+"""The isolator's physics, written once for both time loops: an elastic spring in parallel with
+a slip element, i.e. an elastic-perfectly-plastic spring whose limit force may depend on the
+sliding speed (every isolator law maps its parameters onto these, engine/isolators/laws/).
+
+Scalars or (B,) arrays alike: the NumPy loop calls these functions on arrays, the compiled loop
+compiles the very same functions for scalars.
+"""
+import numpy as np
+
+
+def isolator_force(u0, f_slip, k_elastic):
+    """Total isolator force (N) at displacement u0 (m): the elastic spring's plus the slip
+    element's force f_slip (N)."""
+    return k_elastic * u0 + f_slip
+
+
+def slip_limit(f_limit, slow_drop, rate, speed):
+    """The slip element's limit force (N) at sliding speed `speed` (m/s, either sign):
+    f_limit (1 - slow_drop exp(-rate |speed|)). With slow_drop 0 it is f_limit exactly (the
+    bilinear law); the friction pendulum's mu(v) W otherwise (Constantinou et al. 1990)."""
+    return f_limit * (1.0 - slow_drop * np.exp(-rate * np.abs(speed)))
+
+
+def plastic_spring_force(f_prev, du, k_slip, f_yield):
+    """Return-mapped force (N) of the elastic-perfectly-plastic element after an increment du
+    (m): the elastic trial force clipped to +-f_yield, the exact return mapping for a perfectly
+    plastic spring (and, with f_yield the limit at the step's speed, for friction)."""
+    return np.minimum(np.maximum(f_prev + k_slip * du, -f_yield), f_yield)

@@ -1,0 +1,84 @@
+"""`Isolator`: one building's isolation system, a law and its parameters, built from the law's
+declaration (`Isolator.of(law, ...)` or the constructor named after the law, e.g.
+`Isolator.friction_pendulum(radius=2.0, mu_slow=0.05, mu_fast=0.10, rate=30.0)`: one per law
+of the registry, its signature and docstring generated from the law's declaration).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..errors import EngineError
+from ..parameters import Option, law_constructor
+from .registry import LAWS
+
+
+@dataclass(frozen=True)
+class Isolator:
+    """law: a registered isolator law's name; parameters: (name, value) pairs in the law's
+    declaration order, SI units, checked. Hashable, so that equal buildings share their
+    operators in a batch."""
+
+    law: str
+    parameters: tuple[tuple[str, float], ...]
+
+    @classmethod
+    def of(cls, law: str, **params) -> Isolator:
+        """An isolator of the named law from its declared parameters; omitted ones take their
+        defaults. EngineError names a parameter that is unknown, missing or out of range."""
+        if law not in LAWS:
+            raise EngineError(f"unknown isolator law {law!r}; choose one of {tuple(LAWS)}")
+        declaration = LAWS[law].PARAMETERS
+        values = declaration.resolve(params)
+        for name, value in values.items():
+            if not isinstance(declaration[name], Option):
+                if getattr(value, "ndim", 0) != 0:
+                    raise EngineError(f"isolator {name} must be one number, got {value!r}")
+                values[name] = float(value)
+        try:
+            LAWS[law].check(**values)
+        except ValueError as err:
+            raise EngineError(str(err)) from None
+        return cls(law, tuple(values.items()))
+
+    @property
+    def values(self) -> dict[str, float]:
+        """Parameter name -> value (SI)."""
+        return dict(self.parameters)
+
+    @property
+    def default_zeta(self) -> float:
+        """The isolation damping ratio this law implies unless one is given."""
+        return LAWS[self.law].DEFAULT_ZETA
+
+    def fields(self, mass: float, g: float) -> dict[str, float]:
+        """The hysteresis fields (k_elastic, k_slip N/m; f_limit N; slow_drop; rate s/m) under
+        a building of total mass `mass` kg (weight g M; engine/isolators/hysteresis.py)."""
+        return LAWS[self.law].fields(mass, g, **self.values)
+
+    def initial_stiffness(self, mass: float, g: float) -> float:
+        """Stiffness before any slip, N/m (stability limit, damping rules)."""
+        return LAWS[self.law].initial_stiffness(mass, g, **self.values)
+
+    def yield_displacement(self, mass: float, g: float) -> float:
+        """Displacement at which the slip element starts to slip, m."""
+        return LAWS[self.law].yield_displacement(mass, g, **self.values)
+
+    def effective_stiffness(self, mass: float, g: float, displacement):
+        """Secant stiffness, N/m, at a displacement (m; scalar or array)."""
+        return LAWS[self.law].effective_stiffness(mass, g, displacement, **self.values)
+
+    def describe(self) -> str:
+        """'bilinear(k1 = 2e+08 N m-1, k2 = 2.5e+07 N m-1, fy_ratio = 0.1)'."""
+        declaration = LAWS[self.law].PARAMETERS
+        return f"{self.law}(" + ", ".join(declaration[name].value_text(value)
+                                          for name, value in self.parameters) + ")"
+
+
+def _build(cls, law, **arguments):
+    return cls.of(law, **arguments)
+
+
+for _name, _module in LAWS.items():
+    setattr(Isolator, _name, law_constructor(
+        "Isolator", _name, _module.PARAMETERS,
+        f"A {_name} isolator ({_module.__name__}); every parameter one number:", _build))

@@ -1,0 +1,56 @@
+"""The bilinear isolator (SPEC section 1, the paper's lead-rubber bearings): an elastic K2
+spring in parallel with an elastic-perfectly-plastic spring of stiffness K1 - K2 that yields at
+(K1 - K2) u_y, u_y = Fy / K1, Fy = fy_ratio g M (M: the mass of the whole building).
+Exact return mapping (engine/isolators/hysteresis.py); the limit does not depend on speed.
+"""
+import numpy as np
+
+from ...parameters import Declaration, Parameter
+
+NAME = "bilinear"
+"""The law's name in Isolator.of, building files and archives."""
+ORDER = 1
+"""Its place in listings."""
+DEFAULT_ZETA = 0.05
+"""Isolation damping ratio on K1 unless one is given (SPEC decision, the paper's 5%)."""
+
+PARAMETERS = Declaration(
+    Parameter("k1", "N m-1", "isolator initial stiffness K1", 200e6, "(0, inf)",
+              equation="SPEC section 1"),
+    Parameter("k2", "N m-1", "isolator post-yield stiffness K2", 25e6, "(0, inf)",
+              equation="SPEC section 1"),
+    Parameter("fy_ratio", "1", "isolator yield force Fy as a fraction of the building's weight",
+              0.1, "(0, inf)", equation="SPEC section 1"),
+)
+
+
+def check(k1, k2, fy_ratio):
+    """The law's own consistency: 0 < K2 < K1 (ValueError otherwise)."""
+    if not 0 < k2 < k1:
+        raise ValueError(f"isolator stiffness needs 0 < k2 < k1, got k1={k1}, k2={k2}")
+
+
+def yield_displacement(mass, g, k1, k2, fy_ratio):
+    """u_y = Fy / K1 (m), Fy = fy_ratio g M."""
+    return fy_ratio * g * mass / k1
+
+
+def initial_stiffness(mass, g, k1, k2, fy_ratio):
+    """K1 (N/m)."""
+    return k1
+
+
+def effective_stiffness(mass, g, displacement, k1, k2, fy_ratio):
+    """Secant stiffness (N/m) at displacement D (m, scalar or array): (K1 min(D, u_y) +
+    K2 max(D - u_y, 0)) / D, the equivalent-linear isolator of ASCE 7 chapter 17."""
+    u_y = yield_displacement(mass, g, k1, k2, fy_ratio)
+    return (k1 * np.minimum(displacement, u_y) + k2 * np.maximum(displacement - u_y, 0.0)) \
+        / displacement
+
+
+def fields(mass, g, k1, k2, fy_ratio):
+    """K2 elastic; K1 - K2 slipping at (K1 - K2) u_y, whatever the speed."""
+    k_slip = k1 - k2
+    return {"k_elastic": k2, "k_slip": k_slip,
+            "f_limit": k_slip * yield_displacement(mass, g, k1, k2, fy_ratio),
+            "slow_drop": 0.0, "rate": 0.0}

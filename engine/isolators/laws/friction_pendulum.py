@@ -1,0 +1,65 @@
+"""The single friction pendulum bearing (SPEC section 7): a concave sliding surface of radius
+R under the weight W of the building (constant: no vertical motion), i.e. a restoring spring
+W / R in parallel with Coulomb friction mu(|v|) W, with the velocity dependence of Constantinou
+et al. (1990): mu(v) = mu_fast - (mu_fast - mu_slow) exp(-rate |v|). Before sliding the bearing
+is elastic with the constant pre-slip stiffness k_0 = mu_fast W / yield_disp (as OpenSees'
+bearings keep theirs), which the stability limit accounts for. Friction is the isolation's
+damping: no viscous isolation damping unless a zeta_iso is given (then on k_0 + W / R).
+Exact return mapping (engine/isolators/hysteresis.py), the friction limit at the step's
+sliding speed.
+"""
+from ...parameters import REQUIRED, Declaration, Parameter
+
+NAME = "friction_pendulum"
+"""The law's name in Isolator.of, building files and archives."""
+ORDER = 2
+"""Its place in listings."""
+DEFAULT_ZETA = 0.0
+"""No viscous isolation damping unless one is given: friction is the damping."""
+
+PARAMETERS = Declaration(
+    Parameter("radius", "m", "radius R of the concave sliding surface", REQUIRED, "(0, inf)",
+              equation="SPEC section 7"),
+    Parameter("mu_slow", "1", "friction coefficient at low sliding speed", REQUIRED, "(0, 1)",
+              equation="Constantinou et al. 1990"),
+    Parameter("mu_fast", "1", "friction coefficient at high sliding speed", REQUIRED, "(0, 1)",
+              equation="Constantinou et al. 1990"),
+    Parameter("rate", "s m-1", "rate of the change from mu_slow to mu_fast with the sliding "
+              "speed", REQUIRED, "[0, inf)", equation="Constantinou et al. 1990"),
+    Parameter("yield_disp", "m", "sliding displacement at which the pre-slip spring reaches "
+              "mu_fast W (sets k_0 = mu_fast W / yield_disp)", 5e-4, "(0, inf)",
+              equation="SPEC section 7"),
+)
+
+
+def check(radius, mu_slow, mu_fast, rate, yield_disp):
+    """mu_slow <= mu_fast (ValueError otherwise): friction rises with the sliding speed."""
+    if not mu_slow <= mu_fast:
+        raise ValueError(f"friction needs mu_slow <= mu_fast, got mu_slow={mu_slow}, "
+                         f"mu_fast={mu_fast}")
+
+
+def yield_displacement(mass, g, radius, mu_slow, mu_fast, rate, yield_disp):
+    """yield_disp (m): where the pre-slip spring reaches the fast friction force."""
+    return yield_disp
+
+
+def initial_stiffness(mass, g, radius, mu_slow, mu_fast, rate, yield_disp):
+    """k_0 + W / R (N/m), W = g M: pre-slip spring and pendulum together."""
+    weight = g * mass
+    return mu_fast * weight / yield_disp + weight / radius
+
+
+def effective_stiffness(mass, g, displacement, radius, mu_slow, mu_fast, rate, yield_disp):
+    """Secant stiffness (N/m) at displacement D (m, past yield_disp): W / R + mu_fast W / D
+    (the friction at the speeds of a design-level motion; ASCE 7 chapter 17's k_eff)."""
+    weight = g * mass
+    return weight / radius + mu_fast * weight / displacement
+
+
+def fields(mass, g, radius, mu_slow, mu_fast, rate, yield_disp):
+    """W / R elastic; k_0 slipping at mu(|v|) W = mu_fast W (1 - slow_drop exp(-rate |v|))."""
+    weight = g * mass
+    return {"k_elastic": weight / radius, "k_slip": mu_fast * weight / yield_disp,
+            "f_limit": mu_fast * weight, "slow_drop": (mu_fast - mu_slow) / mu_fast,
+            "rate": rate}

@@ -1,0 +1,197 @@
+"""How a law declares its parameters: once, with unit, valid range, default, meaning and the
+paper's equation (in the manner of pygmm's model declarations).
+
+Every impact law and every isolator law holds one `Declaration`. The constructors
+(`Contact.bumper(...)`, `Isolator.friction_pendulum(...)`: `law_constructor`), the sweep
+grid's defaults and checks, the archive's `units` / `long_name` attributes and provenance, and
+the command line's help all read it, so a default or a range is changed in one line, in the
+law's module. Ranges are written in interval notation, e.g. "(0, 1]" or "[1, inf)".
+"""
+from __future__ import annotations
+
+import inspect
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .errors import EngineError
+
+REQUIRED = object()
+"""Default of a parameter the caller must give."""
+
+_INTERVAL_RE = re.compile(r"^\s*([\[(])\s*(\S+?)\s*,\s*(\S+?)\s*([\])])\s*$")
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One numeric parameter of an impact law.
+
+    name: keyword of the Contact constructor; units: UDUNITS-style string of the SI unit;
+    meaning: one line (the archive's long_name); default: a number, None (optional, unset) or
+    REQUIRED; valid: interval notation of the values accepted; integer: whole numbers only;
+    equation: where the paper defines it; sweep: its name among pipeline.sweep's parameters
+    (None: not swept, it stays at its default in sweeps).
+    """
+
+    name: str
+    units: str
+    meaning: str
+    default: object
+    valid: str = "(-inf, inf)"
+    integer: bool = False
+    equation: str = ""
+    sweep: str | None = None
+    bounds: tuple = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self):
+        m = _INTERVAL_RE.match(self.valid)
+        if m is None:
+            raise ValueError(f"{self.name}: valid must be an interval like '(0, 1]', "
+                             f"got {self.valid!r}")
+        low, high = float(m.group(2)), float(m.group(3))
+        object.__setattr__(self, "bounds", (low, m.group(1) == "[", high, m.group(4) == "]"))
+
+    @property
+    def required(self) -> bool:
+        return self.default is REQUIRED
+
+    def check(self, value, name: str | None = None) -> np.ndarray:
+        """`value` as a float array, or EngineError naming the parameter (as `name` if given:
+        the caller's vocabulary, e.g. the sweep's wall_k for a bumper's k_w)."""
+        name = name or self.name
+        try:
+            array = np.asarray(value, dtype=float)
+        except (TypeError, ValueError):
+            raise EngineError(f"{name} must be a number or an array of numbers, "
+                              f"got {value!r}") from None
+        low, low_closed, high, high_closed = self.bounds
+        above = array >= low if low_closed else array > low
+        below = array <= high if high_closed else array < high
+        bad = ~(above & below)  # NaN fails both
+        if self.integer:
+            bad |= array != np.round(array)
+        if np.any(bad):
+            rule = f"in {self.valid}" + (" and a whole number" if self.integer else "")
+            unit = "" if self.units == "1" else f" {self.units}"
+            raise EngineError(f"{name} must be {rule}{unit}, got {np.atleast_1d(array)[bad]}")
+        return array
+
+    def value_text(self, value) -> str:
+        """'k = 2.5e+09 N m-1', 'cor = 0.5': a value of this parameter with its unit."""
+        return f"{self.name} = {value:g}" + ("" if self.units == "1" else f" {self.units}")
+
+    def describe(self) -> str:
+        """'thickness: bumper thickness t, m, in (0, inf), default 0.05 (Eq. 11)'."""
+        default = ("required" if self.required else "unset" if self.default is None
+                   else f"default {self.default:g}")
+        units = "" if self.units == "1" else f", {self.units}"
+        equation = f" ({self.equation})" if self.equation else ""
+        return f"{self.name}: {self.meaning}{units}, in {self.valid}, {default}{equation}"
+
+
+@dataclass(frozen=True)
+class Option:
+    """A choice of rule, e.g. how a damping constant is derived from the COR."""
+
+    name: str
+    choices: tuple[str, ...]
+    default: str
+    meaning: str
+
+    def check(self, value) -> str:
+        if value not in self.choices:
+            raise EngineError(f"{self.name} must be one of {self.choices}, got {value!r}")
+        return value
+
+    def describe(self) -> str:
+        return f"{self.name}: {self.meaning}, one of {self.choices}, default {self.default!r}"
+
+
+class Declaration(Mapping):
+    """A law's parameters and options in constructor order: name -> Parameter | Option.
+
+    Attribute access reads an entry: ``rubber_bumper.PARAMETERS.cor.default``.
+    """
+
+    def __init__(self, *entries: Parameter | Option):
+        self._entries = {e.name: e for e in entries}
+        if len(self._entries) != len(entries):
+            raise ValueError("a declaration names each parameter once")
+
+    def __getitem__(self, name):
+        return self._entries[name]
+
+    def __iter__(self):
+        return iter(self._entries)
+
+    def __len__(self):
+        return len(self._entries)
+
+    def __getattr__(self, name):
+        try:
+            return self.__dict__["_entries"][name]
+        except KeyError:
+            raise AttributeError(name) from None
+
+    @property
+    def numeric(self) -> dict[str, Parameter]:
+        return {n: e for n, e in self.items() if isinstance(e, Parameter)}
+
+    def defaults(self) -> dict:
+        """name -> default of every entry that has one (provenance of a run)."""
+        return {n: e.default for n, e in self.items() if e.default is not REQUIRED}
+
+    def swept(self) -> dict[str, Parameter]:
+        """sweep name -> Parameter, for the parameters pipeline.sweep can vary."""
+        return {e.sweep: e for e in self.numeric.values() if e.sweep is not None}
+
+    def resolve(self, given: dict) -> dict:
+        """Every entry's value: given ones checked, the others at their defaults.
+
+        Numeric values come back as float arrays (not yet broadcast); EngineError for an
+        unknown name, a missing required one or a value out of range.
+        """
+        unknown = sorted(set(given) - set(self))
+        if unknown:
+            raise EngineError(f"unknown parameter(s) {unknown}; this law takes "
+                              f"{', '.join(self)}")
+        values = {}
+        for name, entry in self.items():
+            value = given.get(name, entry.default)
+            if value is REQUIRED:
+                raise EngineError(f"{name} is required ({entry.units})")
+            if isinstance(entry, Option):
+                values[name] = entry.check(value)
+            else:
+                values[name] = None if value is None else entry.check(value)
+        return values
+
+    def describe(self) -> str:
+        return "\n".join("    " + e.describe() for e in self.values())
+
+
+def law_constructor(owner: str, law: str, declaration: Declaration, doc: str, build):
+    """A classmethod `<owner>.<law>(...)` whose signature and docstring are the law's
+    declaration (in order, each with its default), so that the declaration is the only place
+    defaults and ranges are written; it calls build(cls, law, **arguments)."""
+    signature = inspect.Signature(
+        [inspect.Parameter(name, inspect.Parameter.POSITIONAL_OR_KEYWORD,
+                           default=inspect.Parameter.empty if entry.default is REQUIRED
+                           else entry.default)
+         for name, entry in declaration.items()])
+
+    def constructor(cls, *args, **kwargs):
+        try:
+            bound = signature.bind(*args, **kwargs)
+        except TypeError as err:
+            raise EngineError(f"{owner}.{law}: {err}") from None
+        return build(cls, law, **bound.arguments)
+
+    constructor.__name__ = constructor.__qualname__ = law
+    constructor.__signature__ = signature.replace(
+        parameters=[inspect.Parameter("cls", inspect.Parameter.POSITIONAL_ONLY),
+                    *signature.parameters.values()])
+    constructor.__doc__ = doc + "\n" + declaration.describe()
+    return classmethod(constructor)
