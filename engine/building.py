@@ -21,6 +21,14 @@ from .units import G
 MAX_STORIES = 30
 PAPER_MASSES = (320e3, 320e3, 320e3, 320e3, 250e3)
 """kg, levels 0 (isolation slab) .. 4 (roof): the paper's Fig. 7c."""
+FIELD_UNITS = {"masses": "kg", "story_stiffness": "N m-1", "k1": "N m-1", "k2": "N m-1",
+               "fy_ratio": "1", "zeta_iso": "1", "zeta_sup": "1", "damping": None, "g": "m s-2",
+               "isolator": None, "story_yield_force": "N", "story_post_yield_ratio": "1"}
+"""Every Building field and its SI unit (None: text or an Isolator), for files and archives."""
+PER_LEVEL = ("masses",)
+"""Fields with one value per level, the isolation slab first."""
+PER_STORY = ("story_stiffness", "story_yield_force")
+"""Fields with one value per story, the first story first."""
 
 
 @dataclass(frozen=True)
@@ -281,3 +289,4 @@ def _building_row(b: Building) -> tuple:
 
 
 _FIELDS = Building.__dataclass_fields__
+assert set(_FIELDS) == set(FIELD_UNITS), "FIELD_UNITS must name every Building field"

@@ -41,6 +41,11 @@ def resolve_records(records, records_dir=None) -> tuple[list, list[str]]:
         raise SweepError(str(err)) from err
 
 
+class BuildingError(SweepError):
+    """A building file or setting that does not describe a building; the message names the
+    key and what it expects."""
+
+
 class ClusterError(SweepError):
     """A dask cluster that cannot run the sweep; the message names the cause and the fix."""
 

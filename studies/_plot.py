@@ -12,8 +12,22 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 from pipeline.records import paper_label  # noqa: E402
 
-FLOOR_LABELS = ["Base (isolation level)", "1st floor", "2nd floor", "3rd floor", "Roof"]
-STORY_LABELS = ["1st story", "2nd story", "3rd story", "4th story"]
+
+def ordinal(n: int) -> str:
+    """'1st', '2nd', '3rd', '4th', ..., '11th', '21st'."""
+    suffix = "th" if 10 <= n % 100 <= 20 else {1: "st", 2: "nd", 3: "rd"}.get(n % 10, "th")
+    return f"{n}{suffix}"
+
+
+def floor_labels(n_levels: int) -> list[str]:
+    """Labels of levels 0..n_levels-1: the base (isolation level), the floors, the roof."""
+    return (["Base (isolation level)"] + [f"{ordinal(i)} floor" for i in range(1, n_levels - 1)]
+            + ["Roof"])
+
+
+def story_labels(n_stories: int) -> list[str]:
+    """Labels of stories 1..n_stories."""
+    return [f"{ordinal(i)} story" for i in range(1, n_stories + 1)]
 
 plt.rcParams.update({
     "font.size": 8, "axes.titlesize": 8, "axes.labelsize": 8, "legend.fontsize": 7,

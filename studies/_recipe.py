@@ -60,6 +60,8 @@ class Recipe:
             p.add_argument("--workers", type=int, default=1, help=unused)
             p.add_argument("--scheduler", default=None, metavar="ADDRESS", help=unused)
             p.add_argument("--dt", type=float, default=None, metavar="S", help=unused)
+            p.add_argument("--building", action="append", default=[], metavar="FILE|NAME=VALUE",
+                           help=unused)
         else:
             p.add_argument("--records", nargs="+", default=list(self.records), metavar="NAME",
                            help="paper keys (kobe, sylmar_converter, olive_view, pacoima), "
@@ -77,6 +79,12 @@ class Recipe:
                            help="dask.distributed scheduler address to run on instead")
             p.add_argument("--dt", type=float, default=None, metavar="S",
                            help="integration step in s (default: the engine's, 0.5 ms)")
+            p.add_argument("--building", action="append", default=[],
+                           metavar="FILE|NAME=VALUE",
+                           help="the building: a TOML or JSON file (see examples/) and/or "
+                                "engine.Building fields as NAME=VALUE in SI units, e.g. "
+                                "zeta_sup=0.03 or masses=500e3,400e3,300e3 (repeatable; "
+                                "default: the paper's building)")
         p.add_argument("--out", type=Path, default=Path("results"), metavar="PATH",
                        help=f"where the archive goes: a path ending in .nc is the archive "
                             f"itself (the figures take its stem), anything else a folder "
@@ -117,6 +125,7 @@ class Recipe:
         import xarray as xr
 
         from pipeline.archive import check_out, write_netcdf
+        from pipeline.building_file import building_from
         from pipeline.errors import SweepError
 
         from ._plot import save_figure
@@ -134,6 +143,7 @@ class Recipe:
             for path in (archive, *figures):
                 check_out(path)  # before any compute
             args.work_dir = archive.with_name(archive.name + ".work")
+            args.building = building_from(args.building)  # a bad building: before compute
             ds = self.compute(args)
             ds.attrs.update(recipe=self.name, paper_figure=self.figure, quick=int(args.quick),
                             values_chosen=self.chosen or "none")
@@ -214,11 +224,12 @@ def verdicts(ds) -> list[dict]:
 
 
 def sweep_options(args) -> dict:
-    """The pipeline.sweep keywords every record-based recipe passes through, its work folder
-    (set by Recipe.main: <archive>.work, shared by all the recipe's sweeps) included."""
+    """The pipeline.sweep keywords every record-based recipe passes through: its work folder
+    (set by Recipe.main: <archive>.work, shared by all the recipe's sweeps) and its building
+    (resolved by Recipe.main from --building) included."""
     return dict(records=args.records, records_dir=args.records_dir, workers=args.workers,
                 scheduler=args.scheduler, dt=args.dt, quiet=args.quiet,
-                work_dir=getattr(args, "work_dir", None))
+                building=args.building, work_dir=getattr(args, "work_dir", None))
 
 
 @contextmanager

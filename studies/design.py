@@ -1,7 +1,7 @@
 """Beyond the paper: what bumpers to install for a given building and gap.
 
-For a building (the paper's by default; any engine.Building field can be set with --building
-NAME=VALUE), a record set (default: the suite studies.suite runs, studies._suite_records, every
+For a building (the paper's by default; --building FILE and/or NAME=VALUE settings, as every
+command), a record set (default: the suite studies.suite runs, studies._suite_records, every
 record scaled so that the building without wall reaches D) and a gap, search the bumper
 thickness, count, cavity depth (paper 5.3) and moat-wall stiffness for the configuration that
 minimises the median over the records of the largest peak floor acceleration, while the bumpers
@@ -51,39 +51,6 @@ def options(p) -> None:
                         "uncrushed (default 0.84)")
     p.add_argument("--no-scale", action="store_true",
                    help="run the records as given, not scaled to D")
-    p.add_argument("--building", action="append", default=[], metavar="NAME=VALUE",
-                   help="set an engine.Building field, SI units, e.g. k2=30e6 or "
-                        "masses=320e3,320e3,320e3,320e3,250e3 (repeatable; default: the "
-                        "paper's building)")
-
-
-def building_from(settings: list[str]):
-    """engine.Building with the NAME=VALUE settings applied (comma lists for tuples)."""
-    import dataclasses
-
-    import engine
-    from pipeline.errors import SweepError
-
-    fields = {f.name: f for f in dataclasses.fields(engine.Building)}
-    values = {}
-    for setting in settings:
-        name, sep, text = setting.partition("=")
-        if not sep or name not in fields:
-            raise SweepError(f"--building {setting!r}: expected NAME=VALUE with NAME one of "
-                             f"{', '.join(fields)}")
-        try:
-            if name == "damping":
-                values[name] = text
-            elif "," in text or isinstance(getattr(engine.Building(), name), tuple):
-                values[name] = tuple(float(v) for v in text.split(","))
-            else:
-                values[name] = float(text)
-        except ValueError:
-            raise SweepError(f"--building {setting!r}: {text!r} is not a number") from None
-    try:
-        return engine.Building(**values)
-    except engine.EngineError as err:
-        raise SweepError(f"--building: {err}") from None
 
 
 def compute(args):
@@ -92,7 +59,7 @@ def compute(args):
 
     if not 0 < args.uncrushed <= 1:
         raise SweepError(f"--uncrushed must be a fraction in (0, 1], got {args.uncrushed}")
-    building = building_from(args.building)
+    building = args.building
     D = args.displacement_cm * CM
     gap = GAP_RATIO * D if args.gap_cm is None else args.gap_cm * CM
     records = chosen_records(args.records)

@@ -13,7 +13,7 @@ from engine.units import CM
 
 from ._paper import N_BUMPERS, THICKNESS
 from ._peaks_vs_gap import gaps, ranges
-from ._plot import FLOOR_LABELS, STORY_LABELS, plt, record_label
+from ._plot import floor_labels, plt, record_label, story_labels
 from ._recipe import Recipe, Verdict, sweep_options
 
 
@@ -27,8 +27,9 @@ def compute(args):
 def plot(ds):
     fig, axes = plt.subplots(2, 5, figsize=(10, 4.4), sharex=True)
     gap_cm = ds.gap.values / CM
-    panels = [("amplification_total_accel", "floor", FLOOR_LABELS, axes[0]),
-              ("amplification_interstory_drift", "story", STORY_LABELS, axes[1])]
+    panels = [("amplification_total_accel", "floor", floor_labels(ds.sizes["floor"]), axes[0]),
+              ("amplification_interstory_drift", "story", story_labels(ds.sizes["story"]),
+               axes[1])]
     for name, dim, labels, row in panels:
         for ax, index, label in zip(row, ds[dim].values, labels, strict=False):
             for record in ds.record.values:

@@ -73,7 +73,7 @@ def compute(args):
         records = [segment(rec, QUICK_SECONDS) for rec in records]
     free = pipeline.unconstrained_peaks(records, dt=args.dt, workers=args.workers,
                                         scheduler=args.scheduler, quiet=args.quiet,
-                                        work_dir=args.work_dir)
+                                        building=args.building, work_dir=args.work_dir)
     parts, gaps = [], []
     # Each paper record also runs at the paper's own gap, to tell the gap rule from the model.
     at_paper_gap = all(name in PRACTICAL_GAPS for name in names)
@@ -86,7 +86,8 @@ def compute(args):
             configs.update({f"{key}{AT_PAPER_GAP}": config for key, config in
                             configurations(PRACTICAL_GAPS[name]).items()
                             if key != "no_pounding"})
-        parts.append(histories(rec, configs, dt=args.dt, every=EVERY, quiet=args.quiet))
+        parts.append(histories(rec, configs, dt=args.dt, every=EVERY, quiet=args.quiet,
+                               building=args.building))
     ds = concat_records(parts, t_end=history_end(parts))
     # Only the base level of the acceleration histories is kept (Figs. 9-10): 5x smaller.
     base = ds.total_accel.sel(floor=0, drop=True)

@@ -20,7 +20,7 @@ import numpy as np
 from engine.units import CM, G
 
 from ._paper import GAP_FRACTION, RESTITUTION_GAP, THICKNESS
-from ._plot import FLOOR_LABELS, STORY_LABELS, plt, record_label
+from ._plot import floor_labels, plt, record_label, story_labels
 from ._recipe import Recipe, Verdict, sweep_options
 
 NO_EFFECT = 0.05  # largest spread over the CORs, relative to the mean, read as 'no effect'
@@ -44,7 +44,7 @@ def compute(args):
                                         workers=min(args.workers, 1),
                                         scheduler=args.scheduler,
                                         records_dir=args.records_dir,
-                                        work_dir=args.work_dir)
+                                        building=args.building, work_dir=args.work_dir)
     peak = float(free.peak_isolator_disp.item())
     gap = round(GAP_FRACTION * peak, 3)  # m, to the mm
     gaps = sorted({gap, RESTITUTION_GAP})
@@ -79,7 +79,7 @@ def impact_sequence(ds, record, args) -> dict:
                             "cor": float(c)}
                for g in ds.gap.values for c in ds.cor.values}
     hist = histories(record, configs, dt=args.dt, every=1, records_dir=args.records_dir,
-                     quiet=args.quiet)
+                     quiet=args.quiet, building=args.building)
     shape = (1, ds.sizes["gap"], ds.sizes["cor"])
     out = {"peak_accel_impact": np.zeros(shape, int), "first_impact_max_force": np.zeros(shape),
            "first_impact_max_indentation": np.zeros(shape),
@@ -129,10 +129,10 @@ def plot(ds):
         style = {"ls": "-" if k == ds.sizes["gap"] - 1 else "--", "marker": "o"}
         left.set_prop_cycle(None)
         right.set_prop_cycle(None)
-        for floor, label in zip(ds.floor.values, FLOOR_LABELS, strict=True):
+        for floor, label in zip(ds.floor.values, floor_labels(ds.sizes["floor"]), strict=True):
             left.plot(cor, accel.sel(floor=floor, gap=gap), label=label if k == 0 else None,
                       **style)
-        for story, label in zip(ds.story.values, STORY_LABELS, strict=True):
+        for story, label in zip(ds.story.values, story_labels(ds.sizes["story"]), strict=True):
             right.plot(cor, drift.sel(story=story, gap=gap), label=label if k == 0 else None,
                        **style)
     left.set_ylabel("Peak floor acceleration (g)")
@@ -161,8 +161,8 @@ def check(ds) -> list[Verdict]:
         spreads = [(accel.max("cor") - accel.min("cor")) / accel.mean("cor"),
                    (drift.max("cor") - drift.min("cor")) / drift.mean("cor")]
         worst = [float(s.max()) for s in spreads]
-        floor = FLOOR_LABELS[int(spreads[0].values.argmax())].lower()
-        story = STORY_LABELS[int(spreads[1].values.argmax())]
+        floor = floor_labels(ds.sizes["floor"])[int(spreads[0].values.argmax())].lower()
+        story = story_labels(ds.sizes["story"])[int(spreads[1].values.argmax())]
         dent = sel.max_indentation
         impact = sel.peak_accel_impact.values
         speed = sel.impact_speed

@@ -67,7 +67,7 @@ def compute(args):
 
     D = args.displacement_cm * CM
     at_d = scaled(chosen_records(args.records), D, args.factor_limits, dt=args.dt,
-                  records_dir=args.records_dir, quiet=args.quiet)
+                  records_dir=args.records_dir, quiet=args.quiet, building=args.building)
     if not at_d.records:
         raise SweepError(f"no record reaches D = {D:g} m with a factor in "
                          f"{args.factor_limits}: nothing to run")
@@ -76,11 +76,11 @@ def compute(args):
                         n_bumpers=list(FIG19_COUNTS[::3] if args.quick else FIG19_COUNTS),
                         wall_k=list(FIG21_WALL_KS), baseline=True, dt=args.dt,
                         workers=args.workers, scheduler=args.scheduler, quiet=args.quiet,
-                        work_dir=args.work_dir)
+                        building=args.building, work_dir=args.work_dir)
     ds = ds.assign_coords(gap_ratio=("gap", ratios, {
         "units": "1", "long_name": "seismic gap / design displacement D"})) \
         .swap_dims(gap="gap_ratio")
-    ds = add_record_properties(ds, at_d.records, D)
+    ds = add_record_properties(ds, at_d.records, D, args.building)
     ds = add_statistics(ds)
     name, rho, _ = explaining_property(ds)
     ds.attrs.update(
@@ -95,7 +95,7 @@ def compute(args):
     return ds
 
 
-def add_record_properties(ds, records, D: float):
+def add_record_properties(ds, records, D: float, building):
     """Per record: PGV (m/s), FEMA P695 pulse flag, spectral displacement at the isolated
     period (m), each of the record as run (scaled)."""
     from pipeline.archive import variable
@@ -103,7 +103,7 @@ def add_record_properties(ds, records, D: float):
     from pipeline.records import library_index
 
     pulse_rsn = {info.rsn for info in library_index() if info.set == "near-field-pulse"}
-    period = isolated_period(D)
+    period = isolated_period(D, building)
     by_name = dict(zip(ds.record.values.tolist(), records, strict=True))
     pgv, pulse, sd = [], [], []
     for name in ds.record.values.tolist():

@@ -101,8 +101,13 @@ def parser() -> argparse.ArgumentParser:
                    help="also run each record without moat wall")
     p.add_argument("--m-eff", type=float, default=M_EFF.default, metavar="KG",
                    help=f"{M_EFF.meaning}, kg (default: {M_EFF.default:g})")
-    p.add_argument("--damping", choices=("paper", "modal"), default="paper",
-                   help="building damping model, see engine.Building (default: paper)")
+    p.add_argument("--building", action="append", default=[], metavar="FILE|NAME=VALUE",
+                   help="the building: a TOML or JSON file (see examples/) and/or "
+                        "engine.Building fields as NAME=VALUE in SI units (repeatable; "
+                        "default: the paper's building)")
+    p.add_argument("--damping", choices=("paper", "modal"), default=None,
+                   help="building damping model, see engine.Building (default: the "
+                        "building's, paper)")
     p.add_argument("--dt", type=float, metavar="S",
                    help="integration step, s (default: engine.DEFAULT_DT); refused above the "
                         "stability limit")
@@ -160,12 +165,14 @@ def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
     import engine
     import pipeline
+    from pipeline.building_file import building_from
     from pipeline.errors import Interrupted, SweepError
 
     from ._recipe import announce_stand_ins
 
     try:
-        building = engine.Building(damping=args.damping)
+        damping = [] if args.damping is None else [f"damping={args.damping}"]
+        building = building_from([*args.building, *damping])
         archive, _ = outputs(args.out, "sweep", archives=(".nc", ".zarr"))
         with announce_stand_ins():
             ds = pipeline.sweep(

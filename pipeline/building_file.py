@@ -1,0 +1,149 @@
+"""The user's building from text: a TOML or JSON file, and NAME=VALUE settings on the command
+line, into an engine.Building. SI units throughout (engine.building.FIELD_UNITS); a wrong key,
+type or unit is one BuildingError naming the key and what it expects.
+
+    # examples/eight_story_friction_pendulum.toml (abridged)
+    masses = [600e3, 450e3, 450e3, 450e3, 450e3, 450e3, 450e3, 450e3, 400e3]  # kg, slab first
+    story_stiffness = [1.2e9, 1.1e9, 1.0e9, 0.9e9, 0.8e9, 0.7e9, 0.6e9, 0.5e9]  # N/m
+    story_yield_force = [8e6, 7.5e6, 7e6, 6.2e6, 5.4e6, 4.4e6, 3.3e6, 2e6]  # N (optional)
+    [isolator]              # optional: the bilinear k1, k2, fy_ratio keys otherwise
+    law = "friction_pendulum"
+    radius = 2.2            # m
+    mu_slow = 0.05
+    mu_fast = 0.10
+    rate = 30.0             # s/m
+
+Every top-level key is an engine.Building field; the [isolator] table names a registered
+isolator law and its declared parameters (engine/isolators/laws/). A JSON file holds the same
+object.
+"""
+from __future__ import annotations
+
+import json
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+
+import engine
+from engine.building import FIELD_UNITS, PER_LEVEL, PER_STORY
+from engine.isolators import LAWS as ISOLATOR_LAWS
+
+from .errors import BuildingError
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+
+def read_building(path) -> engine.Building:
+    """The engine.Building described by a TOML (.toml) or JSON (.json) file."""
+    path = Path(path)
+    if not path.is_file():
+        raise BuildingError(f"building file {path} does not exist")
+    try:
+        if path.suffix.lower() == ".json":
+            data = json.loads(path.read_text())
+        elif path.suffix.lower() == ".toml":
+            data = tomllib.loads(path.read_text())
+        else:
+            raise BuildingError(f"building file {path}: give a .toml or .json file")
+    except (ValueError, UnicodeDecodeError) as err:  # tomllib.TOMLDecodeError is a ValueError
+        raise BuildingError(f"building file {path}: not valid "
+                            f"{path.suffix.lstrip('.').upper()}: {err}") from None
+    if not isinstance(data, dict):
+        raise BuildingError(f"building file {path}: expected a table of building fields")
+    return building(data, where=f"building file {path}")
+
+
+def building_from(specs: Sequence[str] = ()) -> engine.Building:
+    """The building of a command line's --building options: at most one FILE (TOML or JSON)
+    and any NAME=VALUE settings applied over it (or over the paper's building), e.g.
+    `masses=320e3,320e3,250e3` (comma lists for per-level and per-story fields)."""
+    files = [s for s in specs if "=" not in s]
+    if len(files) > 1:
+        raise BuildingError(f"--building: one building file at most, got {files}")
+    fields = {}
+    if files:
+        base = read_building(files[0])
+        fields = {name: getattr(base, name) for name in FIELD_UNITS}
+    for setting in (s for s in specs if "=" in s):
+        name, _, text = setting.partition("=")
+        name = name.strip()
+        if name not in FIELD_UNITS or name == "isolator":
+            raise BuildingError(f"--building {setting!r}: NAME must be one of "
+                                f"{', '.join(n for n in FIELD_UNITS if n != 'isolator')} "
+                                "(an isolator law is given in a building file)")
+        fields[name] = text if FIELD_UNITS[name] is None else \
+            _numbers(name, text.split(",") if name in PER_LEVEL + PER_STORY else text,
+                     f"--building {setting!r}")
+    return building(fields, where="--building")
+
+
+def building(data: dict, where: str = "building") -> engine.Building:
+    """engine.Building from a mapping of its fields (SI units; an `isolator` mapping with
+    `law` and the law's parameters), every value checked by name."""
+    unknown = sorted(set(data) - set(FIELD_UNITS))
+    if unknown:
+        raise BuildingError(f"{where}: unknown key(s) {unknown}; a building has "
+                            f"{', '.join(FIELD_UNITS)}")
+    fields = {}
+    for name, value in data.items():
+        if value is None:  # the field's default (JSON null)
+            continue
+        if name == "isolator":
+            fields[name] = value if isinstance(value, engine.Isolator) \
+                else _isolator(value, where)
+        elif FIELD_UNITS[name] is None:
+            if not isinstance(value, str):
+                raise BuildingError(f"{where}: {name} must be text, got {value!r}")
+            fields[name] = value
+        else:
+            fields[name] = _numbers(name, value, where)
+    try:
+        return engine.Building(**fields)
+    except engine.EngineError as err:
+        raise BuildingError(f"{where}: {err}") from None
+
+
+def _isolator(table, where: str) -> engine.Isolator:
+    if not isinstance(table, dict) or not isinstance(table.get("law"), str):
+        raise BuildingError(f"{where}: isolator must be a table with law = one of "
+                            f"{', '.join(ISOLATOR_LAWS)} and that law's parameters")
+    law = table["law"]
+    if law not in ISOLATOR_LAWS:
+        raise BuildingError(f"{where}: isolator law {law!r} is not one of "
+                            f"{', '.join(ISOLATOR_LAWS)}")
+    declaration = ISOLATOR_LAWS[law].PARAMETERS
+    params = {k: v for k, v in table.items() if k != "law"}
+    for name, value in params.items():
+        if name in declaration and not isinstance(value, (int, float)):
+            raise BuildingError(f"{where}: isolator {name} must be a number in "
+                                f"{declaration[name].units}, got {value!r}")
+    try:
+        return engine.Isolator.of(law, **params)
+    except engine.EngineError as err:
+        raise BuildingError(f"{where}: isolator ({law}): {err}") from None
+
+
+def _numbers(name: str, value, where: str):
+    """A float, or a tuple of floats for per-level and per-story fields, named in errors with
+    the unit the field expects."""
+    units = FIELD_UNITS[name]
+    many = name in PER_LEVEL + PER_STORY
+    what = ("a list of numbers, one per level from the isolation slab up" if name in PER_LEVEL
+            else "a list of numbers, one per story from the first up" if many else "a number")
+    unit = "" if units == "1" else f" in {units}"
+    try:
+        if many:
+            if isinstance(value, (str, int, float)) or value is None:
+                raise TypeError
+            return tuple(float(v) for v in value)
+        if isinstance(value, (list, tuple, dict)):
+            raise TypeError
+        return float(value)
+    except TypeError:
+        raise BuildingError(f"{where}: {name} must be {what}{unit}, got {value!r}") from None
+    except ValueError:
+        raise BuildingError(f"{where}: {name} must be {what}{unit}: {value!r} is not a "
+                            "number") from None

@@ -1,0 +1,96 @@
+"""Isolator laws and yielding stories: the declarations, the friction law's closed form, limit
+cases that must equal the bilinear law or linear stories, and the two time loops agreeing on
+buildings of 1 to 20 stories."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import engine
+from engine import Building, Contact, Isolator
+from engine.isolators.hysteresis import slip_limit
+
+FP = dict(radius=2.0, mu_slow=0.05, mu_fast=0.10, rate=30.0)
+
+
+def test_friction_follows_constantinou():
+    """mu(v) W = (mu_fast - (mu_fast - mu_slow) exp(-rate |v|)) W through the hysteresis
+    fields of the friction pendulum."""
+    b = Building(isolator=Isolator.friction_pendulum(**FP))
+    f = b.isolation.fields(b.total_mass, b.g)
+    weight = b.g * b.total_mass
+    for v in (0.0, 0.01, -0.05, 0.3, 5.0):
+        mu = 0.10 - (0.10 - 0.05) * np.exp(-30.0 * abs(v))
+        assert slip_limit(f["f_limit"], f["slow_drop"], f["rate"], v) == \
+            pytest.approx(mu * weight, rel=1e-14)
+    assert f["k_elastic"] == pytest.approx(weight / 2.0)
+    assert f["k_slip"] == pytest.approx(0.10 * weight / 5e-4)
+    assert b.isolation_zeta == 0.0 and b.yield_displacement == 5e-4
+    # the bilinear law's limit does not depend on speed: exactly f_limit
+    g = Building().isolation.fields(Building().total_mass, 9.81)
+    assert slip_limit(g["f_limit"], g["slow_drop"], g["rate"], 0.7) == g["f_limit"]
+
+
+def test_declarations_and_their_checks():
+    iso = Isolator.friction_pendulum(2.0, 0.05, 0.1, 30.0)
+    assert iso == Isolator.of("friction_pendulum", **FP)
+    assert iso.values["yield_disp"] == 5e-4  # the declared default
+    assert Building().isolation == Isolator.bilinear()  # the shorthand's defaults
+    with pytest.raises(engine.EngineError, match="mu_slow <= mu_fast"):
+        Isolator.friction_pendulum(2.0, 0.2, 0.1, 30.0)
+    with pytest.raises(engine.EngineError, match="radius is required"):
+        Isolator.of("friction_pendulum", mu_slow=0.05, mu_fast=0.1, rate=30.0)
+    with pytest.raises(engine.EngineError, match="unknown isolator law"):
+        Isolator.of("lead_rubber")
+    with pytest.raises(engine.EngineError, match="either as isolator= or by k1"):
+        Building(isolator=iso, k1=300e6)
+    with pytest.raises(engine.EngineError, match="story_yield_force must be 4 positive"):
+        Building(story_yield_force=(1e6, 1e6))
+    with pytest.raises(engine.EngineError, match="story_stiffness must be 2 positive"):
+        Building(masses=(1e5, 1e5, 1e5), story_stiffness=(1e9,))
+    with pytest.raises(engine.EngineError, match="same number of levels"):
+        engine.simulate(np.zeros(10), 0.01, Contact.none(2),
+                        building=[Building(), Building(masses=(1e5, 1e5),
+                                                       story_stiffness=(1e9,))])
+
+
+def _run(building, backend, seconds=12.0):
+    from pipeline.records import paper_record
+
+    rec = paper_record("olive_view")
+    accel = rec.accel[: int(seconds / rec.dt) + 1]
+    contact = Contact.concat([Contact.none(1), Contact.linear([0.10, 0.16])])
+    return engine.simulate(accel, rec.dt, contact, building=building, backend=backend)
+
+
+def _assert_close(a, b, rtol):
+    for name, value in a.peaks().items():
+        np.testing.assert_allclose(value, getattr(b, name), rtol=rtol,
+                                   atol=rtol * np.abs(value).max(), err_msg=name)
+
+
+def test_rate_independent_friction_pendulum_is_the_equivalent_bilinear(backend):
+    """mu_slow = mu_fast: Coulomb friction mu W with pre-slip stiffness k_0 in parallel with
+    W / R is the bilinear law with K1 = k_0 + W / R, K2 = W / R and u_y = yield_disp."""
+    fp = Building(isolator=Isolator.friction_pendulum(2.0, 0.08, 0.08, 30.0), zeta_iso=0.0)
+    weight = fp.g * fp.total_mass
+    k0, kr = 0.08 * weight / 5e-4, weight / 2.0
+    bilinear = Building(k1=k0 + kr, k2=kr, fy_ratio=(k0 + kr) * 5e-4 / weight, zeta_iso=0.0)
+    _assert_close(_run(fp, backend), _run(bilinear, backend), 1e-9)
+
+
+def test_stories_that_never_yield_are_linear(backend):
+    strong = Building(story_yield_force=(1e12,) * 4)
+    _assert_close(_run(strong, backend), _run(Building(), backend), 1e-9)
+
+
+@pytest.mark.parametrize("n", [1, 8, 20])
+def test_both_loops_agree_on_any_height(n):
+    yields = tuple(np.linspace(6e6, 2e6, n))
+    building = Building(masses=(500e3,) + (400e3,) * n, story_stiffness=(900e6,) * n,
+                        isolator=Isolator.friction_pendulum(**FP), story_yield_force=yields)
+    fast, ref = _run(building, "numba", 8.0), _run(building, "numpy", 8.0)
+    assert fast.peak_total_accel.shape == (3, n + 1)
+    assert fast.peak_interstory_drift.shape == (3, n)
+    _assert_close(fast, ref, 1e-9)
+    assert (fast.peak_interstory_drift / building.story_yield_drift).max() > 1  # it yields
