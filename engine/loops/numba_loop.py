@@ -104,17 +104,19 @@ _law_terms = _law_dispatch()
 
 
 @intrinsic
-def _stack_doubles(typingctx, size):
-    """A pointer to `size` float64 on the stack of the calling function. With a compile-time
-    size (the member's number of levels is a literal) LLVM keeps them in registers."""
-    if not isinstance(size, types.IntegerLiteral):
+def _stack_doubles(typingctx, levels):
+    """A pointer to len(levels) float64 on the stack of the calling function. `levels` is a
+    tuple with one element per level: its length is part of its type, so the size is known
+    when the kernel compiles (once per number of levels) and LLVM keeps the values in
+    registers."""
+    if not isinstance(levels, types.UniTuple):
         return None
-    count = size.literal_value
+    count = levels.count
 
     def codegen(context, builder, signature, args):
         return cgutils.alloca_once(builder, context.get_value_type(types.float64),
                                    size=context.get_constant(types.intp, count))
-    return types.CPointer(types.float64)(size), codegen
+    return types.CPointer(types.float64)(levels), codegen
 
 
 # Columns of the per-member scalar parameters.
@@ -133,12 +135,14 @@ _P_ISO, _P_INDENT, _P_FORCE, _P_ENERGY = (_SCALAR_PEAKS.index(name) for name in 
 
 
 @njit(**_JIT)
-def _member(n_levels, b, s0, s1, ag, dt, op, wall, mass, story, law, par, u_all, v_all,
+def _member(levels, b, s0, s1, ag, dt, op, wall, mass, story, law, par, u_all, v_all,
             f_story_all, state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every,
             h_u, h_acc, h_f, h_d):
     """Steps s0 <= step < s1 of member b: the NumPy loop's step, on scalars and the member's
-    own small arrays (L levels, L - 1 stories). Sums run in the NumPy loop's order, so the
-    two agree to round-off, and a member's result never depends on the batch."""
+    own small arrays (L levels, L - 1 stories; `levels` is a tuple of L zeros, so that L is a
+    compile-time constant). Sums run in the order of the scalar kernel this loop replaced,
+    and a member's result never depends on the batch."""
+    n_levels = len(levels)
     ot = op[b]
     w = wall[b]
     m = mass[b]
@@ -164,21 +168,21 @@ def _member(n_levels, b, s0, s1, ag, dt, op, wall, mass, story, law, par, u_all,
     n_imp = n_impacts[b]
     half_dt = 0.5 * dt
 
-    # The member's working arrays on the stack: with n_levels a literal, registers.
-    u = carray(_stack_doubles(n_levels), (n_levels,))
-    v = carray(_stack_doubles(n_levels), (n_levels,))
-    pa = carray(_stack_doubles(n_levels), (n_levels,))
-    pd = carray(_stack_doubles(n_levels), (n_levels - 1,))
+    # The member's working arrays on the stack: of a size known when it compiles, registers.
+    u = carray(_stack_doubles(levels), (n_levels,))
+    v = carray(_stack_doubles(levels), (n_levels,))
+    pa = carray(_stack_doubles(levels), (n_levels,))
+    pd = carray(_stack_doubles(levels), (n_levels - 1,))
     for i in range(n_levels):
         u[i], v[i], pa[i] = u_all[b, i], v_all[b, i], peak_level[b, i]
-    f_story = carray(_stack_doubles(n_levels), (n_levels - 1,))  # yielding stories' slip
+    f_story = carray(_stack_doubles(levels), (n_levels - 1,))  # yielding stories' slip
     for i in range(n_levels - 1):
         pd[i] = peak_story[b, i]
         f_story[i] = f_story_all[b, i]
-    chain = carray(_stack_doubles(n_levels), (n_levels,))  # isolator, stories 1..N
-    drift = carray(_stack_doubles(n_levels), (n_levels - 1,))
-    r = carray(_stack_doubles(n_levels), (n_levels,))
-    nxt = carray(_stack_doubles(n_levels), (n_levels,))
+    chain = carray(_stack_doubles(levels), (n_levels,))  # isolator, stories 1..N
+    drift = carray(_stack_doubles(levels), (n_levels - 1,))
+    r = carray(_stack_doubles(levels), (n_levels,))
+    nxt = carray(_stack_doubles(levels), (n_levels,))
     for step in range(s0, s1):
         a = ag[step] * scale  # x 1.0 is exact: unscaled members are unchanged
         # Structure without wall force: p - f(u_n), then the free velocities v_{n+1/2}.
@@ -272,24 +276,23 @@ def _member(n_levels, b, s0, s1, ag, dt, op, wall, mass, story, law, par, u_all,
 
 
 @njit(**_JIT)
-def _run_serial(n_levels, s0, s1, ag, dt, op, wall, mass, story, law, par, u, v, f_story,
+def _run_serial(levels, s0, s1, ag, dt, op, wall, mass, story, law, par, u, v, f_story,
                 state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u,
                 h_acc, h_f, h_d):
-    # One compilation per number of levels: loops of known length, arrays on the stack.
-    numba.literally(n_levels)
+    # One compilation per number of levels (the length of `levels` is part of its type):
+    # loops of known length, the member's arrays on the stack.
     for b in range(law.size):
-        _member(n_levels, b, s0, s1, ag, dt, op, wall, mass, story, law, par, u, v, f_story,
+        _member(levels, b, s0, s1, ag, dt, op, wall, mass, story, law, par, u, v, f_story,
                 state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u,
                 h_acc, h_f, h_d)
 
 
 @njit(parallel=True, **_JIT)
-def _run_parallel(n_levels, s0, s1, ag, dt, op, wall, mass, story, law, par, u, v, f_story,
+def _run_parallel(levels, s0, s1, ag, dt, op, wall, mass, story, law, par, u, v, f_story,
                   state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u,
                   h_acc, h_f, h_d):
-    numba.literally(n_levels)
     for b in prange(law.size):
-        _member(n_levels, b, s0, s1, ag, dt, op, wall, mass, story, law, par, u, v, f_story,
+        _member(levels, b, s0, s1, ag, dt, op, wall, mass, story, law, par, u, v, f_story,
                 state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u,
                 h_acc, h_f, h_d)
 
@@ -352,6 +355,7 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
     """
     size = len(contact)
     n_levels = arrays.masses.shape[1]
+    levels = (0,) * n_levels  # its length, part of its type, specialises the kernel
     n_steps = ag.size
     op, wall_response, compliance = step_operators(arrays, dt)
     par = member_parameters(arrays, contact, compliance, scale)
@@ -392,12 +396,12 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
     previous = numba.set_parallel_chunksize(1)
     try:
         if progress is None:
-            run(n_levels, 0, n_steps, *args)
+            run(levels, 0, n_steps, *args)
         else:
             chunk = max(n_steps // 100, 1)
             for start in range(0, n_steps, chunk):
                 progress(start, n_steps)
-                run(n_levels, start, min(start + chunk, n_steps), *args)
+                run(levels, start, min(start + chunk, n_steps), *args)
             progress(n_steps, n_steps)
     finally:
         numba.set_parallel_chunksize(previous)
