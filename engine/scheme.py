@@ -64,6 +64,42 @@ def step_operators(b: BuildingArrays, dt: float):
     return step_op, wall_response, wall_response[:, 0].copy()
 
 
+DENSE_LEVELS = 12
+"""Up to this many levels the compiled loop multiplies by the dense step operator (the
+paper's building: its numbers bit for bit); above, with chain damping, it solves the
+tridiagonal system (banded_operators), whose cost grows linearly with the levels."""
+
+
+def banded_operators(b: BuildingArrays, dt: float) -> np.ndarray | None:
+    """(B, 5, L) float: the scheme's operators as bands for the Thomas algorithm, or None when
+    the building is small (L <= DENSE_LEVELS) or a member's damping is not a chain (modal).
+
+    A = M/dt^2 + C/(2dt) and K = M/dt - C/2 are tridiagonal when C is (the paper's rule:
+    dashpots between neighbouring levels). Rows: 1 / pivot of A's LU factorisation (L),
+    A's off-diagonal (L - 1), the factor's eliminated off-diagonal (L - 1), K's diagonal (L)
+    and off-diagonal (L - 1); shorter rows padded with 0. v_{n+1/2} = A^-1 (p - f + K v) / dt.
+    """
+    size, n_levels = b.masses.shape
+    damping = b.damping
+    band = np.abs(np.arange(n_levels)[:, None] - np.arange(n_levels)[None, :]) <= 1
+    if n_levels <= DENSE_LEVELS or np.any(damping[:, ~band] != 0):
+        return None
+    diag = b.masses / dt**2 + np.diagonal(damping, axis1=1, axis2=2) / (2 * dt)
+    off = np.diagonal(damping, offset=1, axis1=1, axis2=2) / (2 * dt)
+    out = np.zeros((size, 5, n_levels))
+    pivot = diag[:, 0].copy()
+    out[:, 0, 0] = 1 / pivot
+    for i in range(1, n_levels):
+        eliminated = off[:, i - 1] / pivot  # A's upper entry over the previous pivot
+        out[:, 2, i - 1] = eliminated
+        pivot = diag[:, i] - off[:, i - 1] * eliminated
+        out[:, 0, i] = 1 / pivot
+    out[:, 1, :-1] = off
+    out[:, 3] = b.masses / dt - np.diagonal(damping, axis1=1, axis2=2) / 2
+    out[:, 4, :-1] = -np.diagonal(damping, offset=1, axis1=1, axis2=2) / 2
+    return out
+
+
 def checked_record(accel, accel_dt: float, dt: float) -> tuple[np.ndarray, int]:
     """The record as a float array, and the number of steps of dt it spans."""
     accel = np.ascontiguousarray(accel, dtype=float)

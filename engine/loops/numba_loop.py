@@ -28,7 +28,7 @@ from ..impact import registry
 from ..impact.contact import LAW_ARGUMENTS
 from ..isolators import hysteresis
 from ..results import PEAKS
-from ..scheme import step_operators
+from ..scheme import banded_operators, step_operators
 
 _HERE = Path(__file__).resolve()
 _PHYSICS_SOURCES = [_HERE, *(Path(m.__file__).resolve() for m in (
@@ -134,8 +134,31 @@ _P_ISO, _P_INDENT, _P_FORCE, _P_ENERGY = (_SCALAR_PEAKS.index(name) for name in 
     "peak_isolator_disp", "max_indentation", "max_impact_force", "impact_energy"))
 
 
+@njit(**_LINK)
+def _solve_banded(bd, r, v, out, n_levels, dt):
+    """out = A^-1 (r + C v) / dt for tridiagonal A = M/dt^2 + C/(2dt) and C = M/dt - C/2 (the
+    scheme's operators when the damping is a chain, as the paper's rule makes it): a product
+    with C and the Thomas algorithm, O(L) instead of the dense operator's O(L^2). bd rows
+    (scheme.banded_operators): 1 / pivots, A's off-diagonal, the eliminated off-diagonal,
+    C's diagonal and off-diagonal."""
+    last = n_levels - 1
+    for i in range(n_levels):
+        rhs = r[i] + bd[3, i] * v[i]
+        if i > 0:
+            rhs += bd[4, i - 1] * v[i - 1]
+        if i < last:
+            rhs += bd[4, i] * v[i + 1]
+        if i > 0:
+            rhs -= bd[1, i - 1] * out[i - 1]
+        out[i] = rhs * bd[0, i]
+    for i in range(last - 1, -1, -1):
+        out[i] -= bd[2, i] * out[i + 1]
+    for i in range(n_levels):
+        out[i] = out[i] / dt
+
+
 @njit(**_JIT)
-def _member(levels, b, s0, s1, ag, dt, op, wall, mass, story, law, par, u_all, v_all,
+def _member(levels, b, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u_all, v_all,
             f_story_all, state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every,
             h_u, h_acc, h_f, h_d):
     """Steps s0 <= step < s1 of member b: the NumPy loop's step, on scalars and the member's
@@ -144,6 +167,8 @@ def _member(levels, b, s0, s1, ag, dt, op, wall, mass, story, law, par, u_all, v
     and a member's result never depends on the batch."""
     n_levels = len(levels)
     ot = op[b]
+    bd = bands[b]
+    banded = bd.shape[1] > 0
     w = wall[b]
     m = mass[b]
     k_story, k_post, k_slip_story, f_limit_story = story[b, 0], story[b, 1], story[b, 2], \
@@ -196,19 +221,22 @@ def _member(levels, b, s0, s1, ag, dt, op, wall, mass, story, law, par, u_all, v
         for i in range(n_levels - 1):
             r[i] = (chain[i + 1] - chain[i]) - m[i] * a
         r[n_levels - 1] = (0.0 - chain[n_levels - 1]) - m[n_levels - 1] * a  # the free roof
-        # nxt = op @ [r, v], each row summed in column order (the order of the unrolled sums
-        # this loop replaced, bit for bit). Rows are independent: the inner loop over them
-        # keeps their sums in flight at once (ot is the operator transposed, (2L, L)).
-        for i in range(n_levels):
-            nxt[i] = ot[0, i] * r[0]
-        for j in range(1, n_levels):
-            rj = r[j]
+        if banded:
+            _solve_banded(bd, r, v, nxt, n_levels, dt)
+        else:
+            # nxt = op @ [r, v], each row summed in column order (the order of the unrolled
+            # sums this loop replaced, bit for bit). Rows are independent: the inner loop
+            # over them keeps their sums in flight at once (ot: the operator transposed).
             for i in range(n_levels):
-                nxt[i] += ot[j, i] * rj
-        for j in range(n_levels):
-            vj = v[j]
-            for i in range(n_levels):
-                nxt[i] += ot[n_levels + j, i] * vj
+                nxt[i] = ot[0, i] * r[0]
+            for j in range(1, n_levels):
+                rj = r[j]
+                for i in range(n_levels):
+                    nxt[i] += ot[j, i] * rj
+            for j in range(n_levels):
+                vj = v[j]
+                for i in range(n_levels):
+                    nxt[i] += ot[n_levels + j, i] * vj
 
         # Wall contact on the side the slab moves towards (clamped as in the NumPy loop).
         u0 = u[0]
@@ -276,23 +304,23 @@ def _member(levels, b, s0, s1, ag, dt, op, wall, mass, story, law, par, u_all, v
 
 
 @njit(**_JIT)
-def _run_serial(levels, s0, s1, ag, dt, op, wall, mass, story, law, par, u, v, f_story,
+def _run_serial(levels, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u, v, f_story,
                 state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u,
                 h_acc, h_f, h_d):
     # One compilation per number of levels (the length of `levels` is part of its type):
     # loops of known length, the member's arrays on the stack.
     for b in range(law.size):
-        _member(levels, b, s0, s1, ag, dt, op, wall, mass, story, law, par, u, v, f_story,
+        _member(levels, b, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u, v, f_story,
                 state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u,
                 h_acc, h_f, h_d)
 
 
 @njit(parallel=True, **_JIT)
-def _run_parallel(levels, s0, s1, ag, dt, op, wall, mass, story, law, par, u, v, f_story,
+def _run_parallel(levels, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u, v, f_story,
                   state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u,
                   h_acc, h_f, h_d):
     for b in prange(law.size):
-        _member(levels, b, s0, s1, ag, dt, op, wall, mass, story, law, par, u, v, f_story,
+        _member(levels, b, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u, v, f_story,
                 state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u,
                 h_acc, h_f, h_d)
 
@@ -358,6 +386,9 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
     levels = (0,) * n_levels  # its length, part of its type, specialises the kernel
     n_steps = ag.size
     op, wall_response, compliance = step_operators(arrays, dt)
+    bands = banded_operators(arrays, dt)
+    if bands is None:
+        bands = np.zeros((size, 5, 0))
     par = member_parameters(arrays, contact, compliance, scale)
     law = np.ascontiguousarray(contact.law, dtype=np.int64)
     u, v = np.zeros((size, n_levels)), np.zeros((size, n_levels))
@@ -386,7 +417,7 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
 
     run = _run_parallel if threads() > 1 and size > 1 else _run_serial
     # The operator transposed, (B, 2L, L): the step reads it column by column.
-    args = (ag, float(dt), np.ascontiguousarray(op.transpose(0, 2, 1)),
+    args = (ag, float(dt), np.ascontiguousarray(op.transpose(0, 2, 1)), bands,
             np.ascontiguousarray(wall_response), np.ascontiguousarray(arrays.masses), story,
             law, par, u, v, f_story, state, peak_level, peak_story, peak_scalar, n_impacts,
             hist_row, every, h_u, h_acc, h_f, h_d)

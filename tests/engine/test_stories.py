@@ -131,3 +131,26 @@ def test_story_ductility_against_steel01():
     reference = opensees("N8-yielding")["peak_story_ductility"]
     np.testing.assert_allclose(ductility, reference, rtol=1e-3)
     assert ductility.max() > 3  # the lower stories yield well past their yield drift
+
+
+def test_banded_solve_equals_the_dense_operator(monkeypatch):
+    """Above scheme.DENSE_LEVELS levels (chain damping) the kernel solves the tridiagonal
+    system instead of multiplying by the dense operator: the same numbers to round-off."""
+    from engine import scheme
+
+    masses, story_k = tower(16)
+    building = Building(masses=masses, story_stiffness=story_k, story_yield_force=(6e6,) * 16)
+    assert building.n_levels > scheme.DENSE_LEVELS
+    accel, dt = record("pacoima")
+    contact = Contact.concat([Contact.none(1), Contact.linear([0.12, 0.2]),
+                              Contact.bumper([0.15])])
+    banded = engine.simulate(accel, dt, contact, building=building, backend="numba")
+    monkeypatch.setattr(scheme, "DENSE_LEVELS", 100)
+    dense = engine.simulate(accel, dt, contact, building=building, backend="numba")
+    for peak in PEAKS:
+        np.testing.assert_allclose(getattr(banded, peak), getattr(dense, peak), rtol=1e-11,
+                                   atol=1e-11 * np.abs(getattr(dense, peak)).max(),
+                                   err_msg=peak)
+    modal = Building(masses=masses, story_stiffness=story_k, damping="modal")
+    assert scheme.banded_operators(
+        engine.building.building_arrays(modal, 1), 5e-4) is None  # not a chain: dense
