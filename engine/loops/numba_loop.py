@@ -10,18 +10,15 @@ No fastmath: the kernel agrees with the NumPy loop to round-off. Members never i
 the result of a member does not depend on its batch, its position in it, or on threads.
 Compilation is cached on disk (cache=True; 5-7 s cold, well under a second from the cache).
 The cache is keyed on the source of this file *and* of the physics modules it compiles
-(numba alone would only watch this file), see _PhysicsCacheLocator.
+(numba alone would only watch this file), see numba_support.install_cache_locator.
 """
 from __future__ import annotations
 
-import hashlib
 from pathlib import Path
 
 import numba
 import numpy as np
 from numba import carray, njit, prange
-from numba.core import cgutils, types
-from numba.extending import intrinsic
 
 from .. import scheme
 from ..impact import registry
@@ -29,39 +26,11 @@ from ..impact.contact import LAW_ARGUMENTS
 from ..isolators import hysteresis
 from ..results import PEAKS
 from ..scheme import banded_operators, step_operators
+from .numba_support import install_cache_locator, stack_doubles
 
-_HERE = Path(__file__).resolve()
-_PHYSICS_SOURCES = [_HERE, *(Path(m.__file__).resolve() for m in (
-    hysteresis, scheme, registry, *registry.LAWS.values()))]
-
-
-def _install_cache_locator() -> None:
-    """Make numba's on-disk cache of this file's kernels stale when any physics source
-    changes, not only this file. Private numba API: without it caching still works, keyed on
-    this file alone."""
-    try:
-        from numba.core.caching import CacheImpl, InTreeCacheLocator
-    except ImportError:  # pragma: no cover - other numba versions
-        return
-
-    class _PhysicsCacheLocator(InTreeCacheLocator):
-        @classmethod
-        def from_function(cls, py_func, py_file):
-            if Path(py_file).resolve() != _HERE:
-                return None
-            return super().from_function(py_func, py_file)
-
-        def get_source_stamp(self):
-            digest = hashlib.sha256()
-            for path in _PHYSICS_SOURCES:
-                digest.update(path.read_bytes())
-            return digest.hexdigest()
-
-    if not any(c.__name__ == "_PhysicsCacheLocator" for c in CacheImpl._locator_classes):
-        CacheImpl._locator_classes.insert(0, _PhysicsCacheLocator)
-
-
-_install_cache_locator()
+# Cached kernels go stale when any physics source they compile changes, not only this file.
+install_cache_locator(Path(__file__), [m.__file__ for m in (
+    hysteresis, scheme, registry, *registry.LAWS.values())])
 
 _JIT = {"cache": True, "nogil": True, "error_model": "numpy"}
 _LINK = {"nogil": True, "error_model": "numpy"}  # compiled into the cached kernels that call it
@@ -101,22 +70,6 @@ def _law_dispatch():
 
 
 _law_terms = _law_dispatch()
-
-
-@intrinsic
-def _stack_doubles(typingctx, levels):
-    """A pointer to len(levels) float64 on the stack of the calling function. `levels` is a
-    tuple with one element per level: its length is part of its type, so the size is known
-    when the kernel compiles (once per number of levels) and LLVM keeps the values in
-    registers."""
-    if not isinstance(levels, types.UniTuple):
-        return None
-    count = levels.count
-
-    def codegen(context, builder, signature, args):
-        return cgutils.alloca_once(builder, context.get_value_type(types.float64),
-                                   size=context.get_constant(types.intp, count))
-    return types.CPointer(types.float64)(levels), codegen
 
 
 # Columns of the per-member scalar parameters.
@@ -194,20 +147,20 @@ def _member(levels, b, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u
     half_dt = 0.5 * dt
 
     # The member's working arrays on the stack: of a size known when it compiles, registers.
-    u = carray(_stack_doubles(levels), (n_levels,))
-    v = carray(_stack_doubles(levels), (n_levels,))
-    pa = carray(_stack_doubles(levels), (n_levels,))
-    pd = carray(_stack_doubles(levels), (n_levels - 1,))
+    u = carray(stack_doubles(levels), (n_levels,))
+    v = carray(stack_doubles(levels), (n_levels,))
+    pa = carray(stack_doubles(levels), (n_levels,))
+    pd = carray(stack_doubles(levels), (n_levels - 1,))
     for i in range(n_levels):
         u[i], v[i], pa[i] = u_all[b, i], v_all[b, i], peak_level[b, i]
-    f_story = carray(_stack_doubles(levels), (n_levels - 1,))  # yielding stories' slip
+    f_story = carray(stack_doubles(levels), (n_levels - 1,))  # yielding stories' slip
     for i in range(n_levels - 1):
         pd[i] = peak_story[b, i]
         f_story[i] = f_story_all[b, i]
-    chain = carray(_stack_doubles(levels), (n_levels,))  # isolator, stories 1..N
-    drift = carray(_stack_doubles(levels), (n_levels - 1,))
-    r = carray(_stack_doubles(levels), (n_levels,))
-    nxt = carray(_stack_doubles(levels), (n_levels,))
+    chain = carray(stack_doubles(levels), (n_levels,))  # isolator, stories 1..N
+    drift = carray(stack_doubles(levels), (n_levels - 1,))
+    r = carray(stack_doubles(levels), (n_levels,))
+    nxt = carray(stack_doubles(levels), (n_levels,))
     for step in range(s0, s1):
         a = ag[step] * scale  # x 1.0 is exact: unscaled members are unchanged
         # Structure without wall force: p - f(u_n), then the free velocities v_{n+1/2}.
