@@ -6,8 +6,8 @@
 
 numpy_loop.py is the readable reference (vectorised over the batch, no compiler);
 numba_loop.py the compiled default (members outer, steps inner; compiled once per number of
-levels), numba_support.py what it needs of numba beyond @njit (a cache keyed on the physics,
-arrays on the stack). Both import only the scheme,
-the laws and the result schema, and call the same physics functions; engine.simulate picks one
-(engine/backends.py).
+levels), with numba_support.py, what it needs of numba beyond @njit (a cache keyed on the
+physics, arrays on the stack). The two loops import only the scheme, the laws, the isolator's
+hysteresis and the result schema, and call the same physics functions; engine.simulate picks
+one (engine/backends.py).
 """
