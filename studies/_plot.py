@@ -6,6 +6,7 @@ import json
 from pathlib import Path
 
 import matplotlib
+import numpy as np
 
 matplotlib.use("Agg")  # recipes draw files, never windows
 import matplotlib.pyplot as plt  # noqa: E402
@@ -23,6 +24,14 @@ def floor_labels(n_levels: int) -> list[str]:
     """Labels of levels 0..n_levels-1: the base (isolation level), the floors, the roof."""
     return (["Base (isolation level)"] + [f"{ordinal(i)} floor" for i in range(1, n_levels - 1)]
             + ["Roof"])
+
+
+def shown(count: int, panels: int) -> list[int]:
+    """Positions 0..count-1 a figure with `panels` panels shows: all when they fit, else the
+    first, the last and evenly spread ones between (the base and the roof always)."""
+    if count <= panels:
+        return list(range(count))
+    return sorted({int(round(x)) for x in np.linspace(0, count - 1, panels)})
 
 
 def story_labels(n_stories: int) -> list[str]:

@@ -13,7 +13,7 @@ from engine.units import CM
 
 from ._paper import N_BUMPERS, THICKNESS
 from ._peaks_vs_gap import gaps, ranges
-from ._plot import floor_labels, plt, record_label, story_labels
+from ._plot import floor_labels, plt, record_label, shown, story_labels
 from ._recipe import Recipe, Verdict, sweep_options
 
 
@@ -27,11 +27,15 @@ def compute(args):
 def plot(ds):
     fig, axes = plt.subplots(2, 5, figsize=(10, 4.4), sharex=True)
     gap_cm = ds.gap.values / CM
-    panels = [("amplification_total_accel", "floor", floor_labels(ds.sizes["floor"]), axes[0]),
+    # Five floors and four stories fit (the paper's building whole); of a taller building the
+    # base, the roof and levels spread between.
+    panels = [("amplification_total_accel", "floor", floor_labels(ds.sizes["floor"]), axes[0],
+               shown(ds.sizes["floor"], 5)),
               ("amplification_interstory_drift", "story", story_labels(ds.sizes["story"]),
-               axes[1])]
-    for name, dim, labels, row in panels:
-        for ax, index, label in zip(row, ds[dim].values, labels, strict=False):
+               axes[1], shown(ds.sizes["story"], 4))]
+    for name, dim, labels, row, which in panels:
+        for ax, position in zip(row, which, strict=False):
+            index, label = ds[dim].values[position], labels[position]
             for record in ds.record.values:
                 ax.plot(gap_cm, ds[name].sel(record=record, **{dim: index}),
                         marker="o", label=record_label(ds, str(record)))

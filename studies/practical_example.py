@@ -33,7 +33,7 @@ from ._paper import (
     THICKNESS,
     WALL_K,
 )
-from ._plot import plt, record_label
+from ._plot import floor_labels, ordinal, plt, record_label
 from ._recipe import Recipe, Verdict
 
 EVERY = 4  # integration steps per history sample: 2 ms at the default 0.5 ms step
@@ -261,8 +261,9 @@ def _plot_peaks(ax_accel, ax_drift, ds, record, fig_number):
         style = dict(CONFIG_STYLE[config], lw=1.1, marker=MARKERS.get(str(config), "o"))
         ax_accel.plot(c.peak_total_accel.values / G, ds.floor.values, **style)
         ax_drift.plot(c.peak_interstory_drift.values / CM, ds.story.values, **style)
-    ax_accel.set_yticks(ds.floor.values, ["Base", "1st", "2nd", "3rd", "Roof"])
-    ax_drift.set_yticks(ds.story.values, ["1st", "2nd", "3rd", "4th"])
+    floors = [label.split()[0] for label in floor_labels(ds.sizes["floor"])]  # "Base", "1st"
+    ax_accel.set_yticks(ds.floor.values, floors)
+    ax_drift.set_yticks(ds.story.values, [ordinal(i) for i in ds.story.values])
     ax_accel.set_xlabel("Peak floor acceleration (g)")
     ax_drift.set_xlabel("Peak interstory\ndeflection (cm)")
     ax_accel.set_ylabel("Level")
