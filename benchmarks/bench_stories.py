@@ -12,15 +12,15 @@ from __future__ import annotations
 
 import argparse
 import json
-import statistics
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # the tests package: tests.reference
+
+from vs_opensees import median_time  # noqa: E402 - this folder is the script's path
 
 DT = 5e-4
 GAP = 0.20
@@ -31,15 +31,6 @@ def building(n: int):
     import engine
 
     return engine.Building(masses=(500e3,) + (400e3,) * n, story_stiffness=(900e6,) * n)
-
-
-def median_time(fn, repeats: int) -> float:
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - start)
-    return statistics.median(times)
 
 
 def main(argv=None) -> int:
