@@ -214,10 +214,11 @@ def _member(levels, b, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u
                 nxt[i] = nxt[i] - w[i] * push
         delta_prev = delta
 
+        keep = hrow >= 0 and step % every == 0  # this step goes into the histories
         for i in range(n_levels):
             total = (nxt[i] - v[i]) / dt + a
             pa[i] = max(pa[i], abs(total))
-            if hrow >= 0 and step % every == 0:
+            if keep:
                 h_acc[hrow, step // every, i] = total
         for i in range(n_levels - 1):
             pd[i] = max(pd[i], abs(drift[i]))
@@ -226,7 +227,7 @@ def _member(levels, b, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u
         p_force = max(p_force, force)
         energy += force * side * (v[0] + nxt[0]) * half_dt
 
-        if hrow >= 0 and step % every == 0:
+        if keep:
             t = step // every
             h_u[hrow, t] = u0
             h_f[hrow, t] = force

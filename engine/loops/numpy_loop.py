@@ -55,6 +55,10 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
     f_plastic = np.zeros(size)
     f_story = np.zeros((size, n_levels - 1))  # slip forces of yielding stories
     yields = b.story_yields
+    # Decided once, not every step: whether any story yields, and whether any isolator's slip
+    # limit depends on speed (without, slip_limit is f_limit exactly: no exp needed).
+    any_yields = bool(yields.any())
+    any_speed = bool(np.any(b.slow_drop != 0))
     elastic = np.zeros(size)
     dashpot = np.zeros(size)
     v_imp = np.ones(size)
@@ -86,7 +90,7 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
         chain[:, 0] = isolator_force(u0, f_plastic, b.k_elastic)
         drift = np.diff(u, axis=1)
         np.multiply(b.story_k, drift, out=chain[:, 1:n_levels])
-        if yields.any():  # bilinear stories: post-yield spring plus slip element
+        if any_yields:  # bilinear stories: post-yield spring plus slip element
             chain[yields, 1:n_levels] = isolator_force(drift[yields], f_story[yields],
                                                        b.story_k_post[yields])
         np.subtract(chain[:, 1:], chain[:, :-1], out=rhs[:, :n_levels])
@@ -132,10 +136,10 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
 
         # Advance: the isolator's slip element sees this step's displacement increment, its
         # limit at this step's sliding speed; yielding stories their drift increments.
-        f_plastic = plastic_spring_force(f_plastic, dt * v_next[:, 0], b.k_slip,
-                                         slip_limit(b.f_limit, b.slow_drop, b.rate,
-                                                    v_next[:, 0]))
-        if yields.any():
+        limit = slip_limit(b.f_limit, b.slow_drop, b.rate, v_next[:, 0]) if any_speed \
+            else b.f_limit
+        f_plastic = plastic_spring_force(f_plastic, dt * v_next[:, 0], b.k_slip, limit)
+        if any_yields:
             f_story[yields] = plastic_spring_force(
                 f_story[yields], dt * np.diff(v_next[yields], axis=1),
                 b.story_k_slip[yields], b.story_f_limit[yields])
