@@ -8,6 +8,7 @@ Everything is SI: kg, N/m, N*s/m, s.
 """
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import lru_cache
@@ -114,6 +115,18 @@ class Building:
     def isolation(self) -> Isolator:
         """The isolator this building stands on: `isolator`, or the bilinear shorthand's."""
         return self._isolation
+
+    def with_isolator(self, **values) -> Building:
+        """This building on its isolator law with some parameters replaced (SI, the law's
+        declared names, e.g. k2=30e6): one member of a sweep over isolator parameters.
+        EngineError names a parameter the law does not take or a value out of range."""
+        law = self.isolation.law
+        try:
+            isolator = Isolator.of(law, **{**self.isolation.values, **values})
+        except EngineError as err:
+            raise EngineError(f"isolator: {err}") from None
+        defaults = {name: _FIELDS[name].default for name in ("k1", "k2", "fy_ratio")}
+        return dataclasses.replace(self, isolator=isolator, **defaults)
 
     @property
     def isolation_zeta(self) -> float:

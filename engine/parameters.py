@@ -26,13 +26,13 @@ _INTERVAL_RE = re.compile(r"^\s*([\[(])\s*(\S+?)\s*,\s*(\S+?)\s*([\])])\s*$")
 
 @dataclass(frozen=True)
 class Parameter:
-    """One numeric parameter of an impact law.
+    """One numeric parameter of an impact or isolator law.
 
-    name: keyword of the Contact constructor; units: UDUNITS-style string of the SI unit;
-    meaning: one line (the archive's long_name); default: a number, None (optional, unset) or
-    REQUIRED; valid: interval notation of the values accepted; integer: whole numbers only;
-    equation: where the paper defines it; sweep: its name among pipeline.sweep's parameters
-    (None: not swept, it stays at its default in sweeps).
+    name: keyword of the law's constructor (Contact.of, Isolator.of); units: UDUNITS-style string of
+    the SI unit; meaning: one line (the archive's long_name); default: a number, None (optional,
+    unset) or REQUIRED; valid: interval notation of the values accepted; integer: whole numbers
+    only; equation: where the paper defines it; sweep: its name among pipeline.sweep's
+    parameters (None: not swept, it stays at its default in sweeps).
     """
 
     name: str

@@ -45,6 +45,11 @@ def _sweep(records, *, impact: str = "bumper", dt: float | None = None, workers:
         fixed (scalar coordinate), a sequence is swept (a dimension). None takes the impact
         law's declared default (engine.impact.LAWS[impact].PARAMETERS, where each law states
         what wall_k means for it); thickness, cavity, strain, n_bumpers apply to bumpers only.
+    k1, k2 (N/m), fy_ratio (-) for a bilinear isolator; radius (m), mu_slow, mu_fast (-), rate
+        (s/m), yield_disp (m) for a friction pendulum: the building's isolator parameters
+        (pipeline.grid.ISOLATOR_PARAMS, declared in engine/isolators/laws/), which replace the
+        building's own, held fixed or swept the same way (None: the building's). The
+        baseline and unconstrained runs are then made once per isolator too.
     impact: "bumper" (the paper's rubber bumpers, default), "linear", "jankowski", "hertzdamp".
     dt: integration step (s), default engine.DEFAULT_DT; refused at or above the stability
         limit (engine.stable_dt).
@@ -73,23 +78,24 @@ def _sweep(records, *, impact: str = "bumper", dt: float | None = None, workers:
         sweeps). Ctrl-C raises pipeline.errors.Interrupted (a KeyboardInterrupt) saying how
         many simulations are kept there; the same call again computes only the rest.
 
-    Returns an xarray.Dataset, dims: record, the swept parameters (in the order gap,
-    thickness, cavity, strain, n_bumpers, wall_k, cor), floor (0-4) or story (1-4) for the
-    paper's building. Variables: peak_total_accel (m/s^2; floor), peak_interstory_drift (m;
-    story), peak_isolator_disp (m), max_indentation (m), max_impact_force (N), n_impacts,
-    impact_energy (J); with baseline, baseline_<same> (record, gap, ...) and
-    amplification_total_accel, amplification_interstory_drift (bumpers / no bumpers); with
-    unconstrained, unconstrained_<same> (record, ...). Raises SweepError, naming the
-    parameter, before any simulation runs.
+    Returns an xarray.Dataset, dims: record, the swept parameters (in the order gap, thickness,
+    cavity, strain, n_bumpers, wall_k, cor, then the isolator's), floor (0..N) and story (1..N):
+    0-4 and 1-4 for the paper's building. Variables: peak_total_accel (m/s^2; floor),
+    peak_interstory_drift (m; story), peak_isolator_disp (m), max_indentation (m),
+    max_impact_force (N), n_impacts, impact_energy (J); with baseline, baseline_<same> (record,
+    gap, ...) and amplification_total_accel, amplification_interstory_drift (bumpers / no
+    bumpers); with unconstrained, unconstrained_<same> (record, ...). Raises SweepError, naming
+    the parameter, before any simulation runs.
     """
-    from .errors import SweepError
+    from .errors import SweepError, check_building
     from .grid import make_grid, sweep_parameters
 
     given = sweep_parameters(parameters)
     if given["gap"] is None:
         raise SweepError("gap is required (m)")
-    grid = make_grid(impact=impact, m_eff=m_eff, baseline=baseline,
-                     unconstrained=unconstrained, **given)
+    building = check_building(building)
+    grid = make_grid(impact=impact, isolator=building.isolation.law, m_eff=m_eff,
+                     baseline=baseline, unconstrained=unconstrained, **given)
     arguments = {**given, "impact": impact, "baseline": baseline,
                  "unconstrained": unconstrained, "m_eff": grid.m_eff}
     return _execute(grid, records, dt, workers, scheduler, out, building, batch_size,
@@ -98,16 +104,16 @@ def _sweep(records, *, impact: str = "bumper", dt: float | None = None, workers:
 
 def _completed_sweep():
     """`_sweep` as `pipeline.sweep`, its signature listing the sweep parameters by name
-    (keyword-only, default None) for help() and IDEs. Deriving them imports the impact laws,
-    which `import pipeline` does not."""
+    (keyword-only, default None) for help() and IDEs. Deriving them imports the impact and
+    isolator laws, which `import pipeline` does not."""
     import inspect
 
-    from .grid import PARAMS
+    from .grid import DIMENSIONS
 
     own = [p for p in inspect.signature(_sweep).parameters.values()
            if p.kind is not inspect.Parameter.VAR_KEYWORD]
     swept = [inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=None)
-             for name in PARAMS]
+             for name in DIMENSIONS]
     _sweep.__signature__ = inspect.Signature([own[0], *swept, *own[1:]])
     _sweep.__name__ = _sweep.__qualname__ = "sweep"
     globals()["sweep"] = _sweep

@@ -20,10 +20,11 @@ import xarray as xr
 
 import engine
 from engine.impact import LAWS
+from engine.isolators import LAWS as ISOLATOR_LAWS
 from engine.results import PEAKS, Quantity, level_axes
 
 from .errors import SweepError
-from .grid import Grid, baseline_text, swept_parameter
+from .grid import ISOLATOR_PARAMS, Grid, baseline_text, swept_parameter
 from .provenance import attributes
 
 STORY_DUCTILITY = Quantity("peak_story_ductility", "1", "peak story ductility (peak "
@@ -165,10 +166,15 @@ def parameter_meta(laws, name: str) -> tuple[str, str]:
 
 
 def parameter_coords(grid: Grid) -> dict:
-    """The swept parameters as dimension coordinates, the fixed ones as scalar coordinates."""
+    """The swept parameters as dimension coordinates, the fixed ones as scalar coordinates
+    (the wall's, then the isolator's that replace the building's)."""
     coords = {}
     for name in (*grid.coords, *grid.fixed):
-        units, long_name = parameter_meta(grid.impact, name)
+        if name in ISOLATOR_PARAMS:  # replaces the building's own value (building_isolator_*)
+            param = ISOLATOR_LAWS[grid.isolator].PARAMETERS.swept()[name]
+            units, long_name = param.units, f"{param.meaning} ({param.equation})"
+        else:
+            units, long_name = parameter_meta(grid.impact, name)
         value = grid.coords[name] if name in grid.coords else grid.fixed[name]
         if name == "n_bumpers":
             value = np.asarray(value).astype(np.int64)

@@ -14,11 +14,16 @@ the sweep parameters in SI units and m_eff; NaN where the law does not use a par
 same members for every record; the engine's Contact is built from them (`contact_for`), so a
 member fully describes its wall and is what resumable runs key on.
 
+The building's isolator parameters can be swept too (ISOLATOR_PARAMS, declared by the isolator
+laws the same way: k1, k2, fy_ratio for the bilinear law; radius, mu_slow, mu_fast, rate,
+yield_disp for the friction pendulum). A member then carries the values that replace the
+building's own (NaN: the building's), and `buildings_for` makes each member's engine Building.
+
 Blocks of members, each run for every record:
 - "" (main): the chosen impact law over the full grid, C-order over the swept dimensions;
 - "baseline_": the paper's bare wall without bumpers, the linear law at its declared defaults
-  (k = 2500 kN/mm, COR 0.5, SPEC decision) at the full gap, once per gap;
-- "unconstrained_": no wall at all, once per record.
+  (k = 2500 kN/mm, COR 0.5, SPEC decision) at the full gap, once per gap and isolator;
+- "unconstrained_": no wall at all, once per record and isolator.
 """
 from __future__ import annotations
 
@@ -30,6 +35,7 @@ import numpy as np
 
 import engine
 from engine.impact import LAWS, M_EFF, NO_WALL
+from engine.isolators import LAWS as ISOLATOR_LAWS
 
 from .errors import SweepError
 
@@ -42,11 +48,24 @@ default law's first (gap, thickness, cavity, strain, n_bumpers, wall_k, cor). Al
 archive's dimension order: record first, then the swept parameters in this order."""
 
 
+ISOLATOR_PARAMS = tuple(dict.fromkeys(name for law in ISOLATOR_LAWS.values()
+                                       for name in law.PARAMETERS.swept()))
+"""The building's isolator parameters a sweep can vary: every isolator law's declared `sweep`
+names (k1, k2, fy_ratio, radius, mu_slow, mu_fast, rate, yield_disp). Each applies when the
+building's isolator is of a law that declares it, and replaces the building's own value; in
+the archive they follow the wall's parameters."""
+assert not set(ISOLATOR_PARAMS) & set(PARAMS), "isolator and wall parameters share a name"
+DIMENSIONS = (*PARAMS, *ISOLATOR_PARAMS)
+"""Every sweep parameter, in the archive's dimension order (after record)."""
+
+
 def declarations(name: str) -> dict:
-    """Law -> its declaration (engine.impact.parameters.Parameter) of sweep parameter `name`,
-    for every law that takes it, IMPACT_LAWS order."""
-    return {law: LAWS[law].PARAMETERS.swept()[name] for law in IMPACT_LAWS
-            if name in LAWS[law].PARAMETERS.swept()}
+    """Law -> its declaration (engine.parameters.Parameter) of sweep parameter `name`, for
+    every law that takes it: the impact laws (IMPACT_LAWS order) for a wall parameter, the
+    isolator laws for an isolator parameter."""
+    laws = ISOLATOR_LAWS if name in ISOLATOR_PARAMS else {law: LAWS[law] for law in IMPACT_LAWS}
+    return {law: module.PARAMETERS.swept()[name] for law, module in laws.items()
+            if name in module.PARAMETERS.swept()}
 
 
 # Lengths of the sweep (m) and the largest plausible one: seismic gaps and bumpers are tens of
@@ -56,8 +75,10 @@ LENGTHS = tuple(name for name in PARAMS
 CHECK_SLICE = 65_536  # members checked at once by check_dt
 PLAUSIBLE_LENGTH = 2.0
 
-MEMBER_DTYPE = np.dtype([("law", "U16"), *((name, "f8") for name in (*PARAMS, "m_eff"))])
-"""One member: its law's name, the sweep parameters (SI; NaN: unused by the law), m_eff kg."""
+MEMBER_DTYPE = np.dtype([("law", "U16"),
+                         *((name, "f8") for name in (*PARAMS, "m_eff", *ISOLATOR_PARAMS))])
+"""One member: its wall law's name, the wall's sweep parameters (SI; NaN: unused by the law),
+m_eff kg, the isolator parameters that replace the building's (SI; NaN: the building's own)."""
 
 # The paper's bare wall, the reference of the amplification ratios (SPEC section 2 decision).
 BASELINE_LAW = "linear"
@@ -88,9 +109,10 @@ class Block:
 class Grid:
     """A validated sweep: which parameters vary, which are fixed, and the member blocks.
 
-    impact: the law of the main block; coords: swept parameter -> (n,) values, in PARAMS
+    impact: the law of the main block; coords: swept parameter -> (n,) values, in DIMENSIONS
     order; fixed: fixed parameter -> scalar; blocks: main first, then baseline and
-    unconstrained when asked for; m_eff kg.
+    unconstrained when asked for; m_eff kg; isolator: the law of the building's isolator,
+    whose parameters in coords and fixed replace the building's.
     """
 
     impact: str
@@ -98,6 +120,7 @@ class Grid:
     fixed: dict[str, float]
     blocks: tuple[Block, ...]
     m_eff: float
+    isolator: str = "bilinear"
 
     @functools.cached_property
     def members(self) -> np.ndarray:
@@ -118,15 +141,18 @@ def swept_parameter(law: str, name: str):
     return LAWS[law].PARAMETERS.swept()[name]
 
 
-def make_grid(gap=None, *, impact: str = "bumper", m_eff: float | None = None,
-              baseline: bool = False, unconstrained: bool = False, **parameters) -> Grid:
+def make_grid(gap=None, *, impact: str = "bumper", isolator: str = "bilinear",
+              m_eff: float | None = None, baseline: bool = False, unconstrained: bool = False,
+              **parameters) -> Grid:
     """Validate the parameters and build the member blocks (see module docstring).
 
-    gap and the other sweep parameters (PARAMS: thickness, cavity, strain, n_bumpers, wall_k,
+    gap and the other wall parameters (PARAMS: thickness, cavity, strain, n_bumpers, wall_k,
     cor), by name: each a scalar (fixed) or a 1-D sequence (swept); None takes the law's
     declared default. SI units: gap, thickness, cavity m; strain, n_bumpers, cor
     dimensionless; wall_k as the module docstring says per law; m_eff kg (None: the declared
-    default). gap=None with unconstrained=True builds only the no-wall block. Raises
+    default). isolator: the law of the building's isolator; its parameters (ISOLATOR_PARAMS
+    it declares, SI) given here replace the building's, fixed or swept alike, None keeping the
+    building's. gap=None with unconstrained=True builds only the no-wall block. Raises
     SweepError naming the parameter (an unknown name too).
     """
     given = sweep_parameters({"gap": gap, **parameters})
@@ -134,11 +160,12 @@ def make_grid(gap=None, *, impact: str = "bumper", m_eff: float | None = None,
         raise SweepError(f"impact: unknown impact law {impact!r}; choose one of {IMPACT_LAWS}")
     m_eff = M_EFF.default if m_eff is None else _scalar("m_eff", m_eff)
     _checked(M_EFF, np.asarray(m_eff), "m_eff")
+    iso_values, iso_swept = _isolator_values(isolator, given)
     if gap is None:
         if not unconstrained or any(given[p] is not None for p in PARAMS) or baseline:
             raise SweepError("gap is required (m); only an unconstrained-only run may omit it")
-        blocks = (_members_block("unconstrained_", NO_WALL, {}, m_eff),)
-        return Grid(impact=NO_WALL, coords={}, fixed={}, blocks=blocks, m_eff=m_eff)
+        blocks = (_members_block("unconstrained_", NO_WALL, iso_values, iso_swept, m_eff),)
+        return Grid(NO_WALL, *_coords(iso_values, iso_swept), blocks, m_eff, isolator)
 
     declared = LAWS[impact].PARAMETERS.swept()
     values: dict[str, np.ndarray] = {}
@@ -164,31 +191,57 @@ def make_grid(gap=None, *, impact: str = "bumper", m_eff: float | None = None,
         raise SweepError(f"baseline compares bumpers with the bare wall: it needs "
                          f"impact='bumper', not {impact!r}")
 
-    dims = tuple(swept)
-    shape = tuple(values[d].size for d in dims)
-    mesh = np.meshgrid(*values.values(), indexing="ij")
-    blocks = [_members_block("", impact, dict(zip(values, (m.ravel() for m in mesh),
-                                                      strict=True)), m_eff, dims, shape)]
+    blocks = [_members_block("", impact, {**values, **iso_values}, [*swept, *iso_swept],
+                             m_eff)]
     if baseline:
-        gaps = values["gap"]
-        gap_dims = ("gap",) if "gap" in dims else ()
-        blocks.append(_members_block("baseline_", BASELINE_LAW, {"gap": gaps, **BASELINE},
-                                     m_eff, gap_dims, (gaps.size,) if gap_dims else ()))
+        bare = {"gap": values["gap"], **{k: np.array([v]) for k, v in BASELINE.items()}}
+        bare_swept = [name for name in swept if name == "gap"]  # its wall is fixed
+        blocks.append(_members_block("baseline_", BASELINE_LAW, {**bare, **iso_values},
+                                     [*bare_swept, *iso_swept], m_eff))
     if unconstrained:
-        blocks.append(_members_block("unconstrained_", NO_WALL, {}, m_eff))
-    coords = {d: values[d] for d in dims}
-    fixed = {p: values[p].item() for p in values if p not in dims}
-    return Grid(impact=impact, coords=coords, fixed=fixed, blocks=tuple(blocks), m_eff=m_eff)
+        blocks.append(_members_block("unconstrained_", NO_WALL, iso_values, iso_swept, m_eff))
+    return Grid(impact, *_coords({**values, **iso_values}, [*swept, *iso_swept]),
+                tuple(blocks), m_eff, isolator)
+
+
+def _isolator_values(isolator: str, given: dict) -> tuple[dict[str, np.ndarray], list[str]]:
+    """The isolator parameters given ((n,) values each, ISOLATOR_PARAMS order) and which of
+    them are swept; SweepError for a parameter the building's isolator law does not take."""
+    if isolator not in ISOLATOR_LAWS:
+        raise SweepError(f"isolator: unknown isolator law {isolator!r}; choose one of "
+                         f"{tuple(ISOLATOR_LAWS)}")
+    declared = ISOLATOR_LAWS[isolator].PARAMETERS.swept()
+    values, swept = {}, []
+    for name in ISOLATOR_PARAMS:
+        if given[name] is None:
+            continue
+        if name not in declared:
+            takes = " or ".join(repr(law) for law in declarations(name))
+            raise SweepError(f"{name} is a parameter of the {takes} isolator; the building "
+                             f"stands on a {isolator!r} isolator (its parameters: "
+                             f"{', '.join(declared)})")
+        array, is_swept = _values(name, given[name])
+        values[name] = _checked(declared[name], array, name)
+        if is_swept:
+            swept.append(name)
+    return values, swept
+
+
+def _coords(values: dict, swept: list[str]) -> tuple[dict, dict]:
+    """(coords, fixed) of a grid: the swept values (DIMENSIONS order), the fixed scalars."""
+    coords = {d: values[d] for d in DIMENSIONS if d in swept}
+    fixed = {p: values[p].item() for p in values if p not in swept}
+    return coords, fixed
 
 
 def sweep_parameters(given: dict) -> dict:
-    """Every sweep parameter (PARAMS order) -> its given value or None; SweepError for a name
-    that is none of them."""
-    unknown = [name for name in given if name not in PARAMS]
+    """Every sweep parameter (DIMENSIONS order) -> its given value or None; SweepError for a
+    name that is none of them."""
+    unknown = [name for name in given if name not in DIMENSIONS]
     if unknown:
-        raise SweepError(f"{unknown[0]}: no such sweep parameter; the parameters are "
-                         f"{', '.join(PARAMS)}")
-    return {name: given.get(name) for name in PARAMS}
+        raise SweepError(f"{unknown[0]}: no such sweep parameter; the wall's are "
+                         f"{', '.join(PARAMS)}, the isolator's {', '.join(ISOLATOR_PARAMS)}")
+    return {name: given.get(name) for name in DIMENSIONS}
 
 
 def baseline_text() -> str:
@@ -197,15 +250,20 @@ def baseline_text() -> str:
                      for name, value in BASELINE.items())
 
 
-def _members_block(prefix: str, law: str, columns: dict, m_eff: float, dims=(),
-                   shape=()) -> Block:
-    size = math.prod(shape)
-    members = np.zeros(size, dtype=MEMBER_DTYPE)
-    for name in PARAMS:
-        members[name] = columns.get(name, np.nan)
+def _members_block(prefix: str, law: str, values: dict, swept, m_eff: float) -> Block:
+    """Every combination of `values` (name -> (n,) array; fixed ones of length 1), C-order in
+    the order given; the `swept` names are the block's dims."""
+    mesh = np.meshgrid(*values.values(), indexing="ij")
+    dims = tuple(name for name in values if name in swept)
+    shape = tuple(values[d].size for d in dims)
+    members = np.zeros(math.prod(shape), dtype=MEMBER_DTYPE)
+    for name in (*PARAMS, *ISOLATOR_PARAMS):
+        members[name] = np.nan
+    for name, column in zip(values, mesh, strict=True):
+        members[name] = column.ravel()
     members["law"] = law
     members["m_eff"] = m_eff
-    return Block(prefix, tuple(dims), tuple(shape), members)
+    return Block(prefix, dims, shape, members)
 
 
 def _plausible(name: str, array: np.ndarray) -> np.ndarray:
@@ -271,9 +329,27 @@ def contact_for(members: np.ndarray) -> engine.Contact:
     return contact[np.argsort(np.concatenate(where), kind="stable")]
 
 
+def buildings_for(members: np.ndarray, building: engine.Building):
+    """The engine building of (B,) MEMBER_DTYPE members: `building` itself when none of them
+    replaces an isolator parameter, else a list of B Buildings (one object per distinct
+    isolator, so that the engine builds each one's operators once). EngineError for values
+    the isolator law refuses together (e.g. k2 >= k1)."""
+    names = [name for name in ISOLATOR_PARAMS if not np.all(np.isnan(members[name]))]
+    if not names:
+        return building
+    own = building.isolation.values
+    rows = np.stack([np.where(np.isnan(members[n]), own.get(n, np.nan), members[n])
+                     for n in names], axis=1)
+    distinct, which = np.unique(rows, axis=0, return_inverse=True)
+    variants = [building.with_isolator(**dict(zip(names, map(float, row), strict=True)))
+                for row in distinct]
+    return [variants[i] for i in which.ravel()]
+
+
 def check_dt(grid: Grid, dt: float, building: engine.Building) -> float:
     """Refuse a step at or above the engine's stability limit for any member (s); the
-    engine's own checks of every member's parameters run here too, before any compute."""
+    engine's own checks of every member's parameters (its isolator's too) run here, before
+    any compute."""
     dt = _scalar("dt", dt)
     if not (dt > 0 and math.isfinite(dt)):
         raise SweepError(f"dt must be positive (s), got {dt}")
@@ -283,7 +359,7 @@ def check_dt(grid: Grid, dt: float, building: engine.Building) -> float:
     for start in range(0, members.size, CHECK_SLICE):
         part = members[start:start + CHECK_SLICE]
         try:
-            limits = engine.stable_dt(contact_for(part), building)
+            limits = engine.stable_dt(contact_for(part), buildings_for(part, building))
         except engine.EngineError as err:
             raise SweepError(str(err)) from err
         i = int(np.argmin(limits))
@@ -297,6 +373,6 @@ def check_dt(grid: Grid, dt: float, building: engine.Building) -> float:
 
 def describe_member(member) -> str:
     """One member's parameters as text, e.g. 'bumper(gap=0.2, thickness=0.05, ...)'."""
-    params = ", ".join(f"{name}={member[name]:g}" for name in (*PARAMS, "m_eff")
-                       if not np.isnan(member[name]))
+    params = ", ".join(f"{name}={member[name]:g}" for name in
+                       (*PARAMS, "m_eff", *ISOLATOR_PARAMS) if not np.isnan(member[name]))
     return f"{member['law']}({params})"

@@ -29,7 +29,7 @@ import numpy as np
 import engine
 from engine.impact import LAWS
 
-from .grid import BASELINE, BASELINE_LAW, Grid, baseline_text
+from .grid import BASELINE, BASELINE_LAW, ISOLATOR_PARAMS, Grid, baseline_text
 from .records.record import samples_digest
 
 TITLE = "bumpers: peak responses of a seismically isolated building pounding on its moat wall"
@@ -157,7 +157,7 @@ def decision_attributes(m_eff: float) -> dict:
 
 def sweep_attributes(grid: Grid) -> dict:
     """A sweep's wall: its law and defaults, what is swept and fixed, baseline and
-    unconstrained runs."""
+    unconstrained runs; which isolator parameters replace the building's."""
     law = grid.impact
     attrs = {
         "impact_law": law,
@@ -169,6 +169,12 @@ def sweep_attributes(grid: Grid) -> dict:
                           if grid.block("unconstrained_") is not None else "none"),
         "impact_law_defaults": json.dumps(law_defaults(law)),
     }
+    replaced = [name for name in (*grid.coords, *grid.fixed) if name in ISOLATOR_PARAMS]
+    attrs["isolator_parameters"] = (
+        f"the coordinates {', '.join(replaced)} replace the building's {grid.isolator} "
+        "isolator values (building_isolator_*) member by member; the building_* attributes "
+        "describe everything else" if replaced else
+        "the building's for every member (building_isolator_*)")
     if law == "hertzdamp":  # its exponent is not a sweep parameter: sweeps use the default
         attrs["hertzdamp_exponent"] = LAWS[law].PARAMETERS.n.default
     return attrs

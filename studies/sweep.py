@@ -19,7 +19,7 @@ import sys
 
 from engine.impact import M_EFF
 from engine.units import CM, KN_PER_MM
-from pipeline.grid import BASELINE, IMPACT_LAWS, PARAMS, declarations
+from pipeline.grid import BASELINE, IMPACT_LAWS, ISOLATOR_PARAMS, PARAMS, declarations
 
 from ._recipe import accept_negative_numbers, outputs
 
@@ -34,7 +34,8 @@ def declared(name: str) -> str:
     (once when every law declares it alike, as the gap)."""
     texts = {}
     for law, p in declarations(name).items():
-        default = "required" if p.required else f"default {p.default:g}"
+        default = "default: the building's" if name in ISOLATOR_PARAMS else \
+            "required" if p.required else f"default {p.default:g}"
         units = "" if p.units == "1" else f", {p.units}"
         texts[law] = f"{p.meaning}{units}, in {p.valid}, {default}"
     if len(set(texts.values())) == 1:
@@ -45,9 +46,12 @@ def declared(name: str) -> str:
 def paper_unit(name: str):
     """(option suffix, metavar, SI value of one unit, unit text, laws) of the paper-unit
     variant of sweep parameter `name`, or None: the laws are those declaring it in the matching
-    SI unit."""
+    SI unit. An isolator's lengths (a pendulum's radius, its yield displacement) have none:
+    the paper gives them in no other unit."""
     params = declarations(name)
     for si, (suffix, metavar, factor, text) in PAPER_UNITS.items():
+        if name in ISOLATOR_PARAMS and si == "m":
+            continue
         laws = [law for law, p in params.items() if p.units == si]
         if laws:
             return suffix, metavar, factor, text, laws
@@ -55,12 +59,16 @@ def paper_unit(name: str):
 
 
 def add_parameters(p: argparse.ArgumentParser) -> None:
-    """One option per sweep parameter (pipeline.grid.PARAMS, from the laws' declarations),
-    with a paper-unit variant (-cm, -kn-mm) where one applies."""
-    for name in PARAMS:
+    """One option per sweep parameter (pipeline.grid.PARAMS and ISOLATOR_PARAMS, from the
+    laws' declarations), with a paper-unit variant (-cm, -kn-mm) where one applies."""
+    isolator = p.add_argument_group(
+        "the isolator's parameters", "replace the building's own values, fixed or swept alike; "
+        "each applies to the isolator law that declares it (the building's)")
+    for name in (*PARAMS, *ISOLATOR_PARAMS):
+        p = isolator if name in ISOLATOR_PARAMS else p
         params = declarations(name)
         first = next(iter(params.values()))
-        required = all(q.required for q in params.values())
+        required = name in PARAMS and all(q.required for q in params.values())
         variant = paper_unit(name)
         group = p.add_mutually_exclusive_group(required=required) if variant else p
         option = "--" + name.replace("_", "-")
@@ -145,14 +153,14 @@ def parameters(args) -> dict:
     from pipeline.errors import SweepError
 
     values = {}
-    for name in PARAMS:
+    for name in (*PARAMS, *ISOLATOR_PARAMS):
         values[name] = _one_or_many(getattr(args, name))
         variant = paper_unit(name)
         given = getattr(args, f"{name}_{variant[0].replace('-', '_')}", None) if variant \
             else None
         if given is not None:
             suffix, _, factor, _, laws = variant
-            if args.impact not in laws:
+            if name in PARAMS and args.impact not in laws:
                 unit = declarations(name)[args.impact].units
                 raise SweepError(f"{name}: --{name.replace('_', '-')}-{suffix} is for the "
                                  f"{', '.join(laws)} laws; give --{name.replace('_', '-')} "

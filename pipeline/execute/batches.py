@@ -10,7 +10,7 @@ import numpy as np
 import engine
 from engine.results import PEAKS
 
-from ..grid import contact_for
+from ..grid import buildings_for, contact_for
 
 
 @dataclass(frozen=True)
@@ -34,7 +34,8 @@ def simulate_batch(accel: np.ndarray, accel_dt: float, members: np.ndarray,
                    building: engine.Building, dt: float, progress=None,
                    report: tuple[str, str] | None = None) -> dict[str, np.ndarray]:
     """Peaks of (b,) members (grid.MEMBER_DTYPE) under one record (m/s^2 every accel_dt s):
-    peak name -> (b, ...) array (engine.results.PEAKS).
+    peak name -> (b, ...) array (engine.results.PEAKS). building: the sweep's; a member's
+    isolator parameters replace its own (grid.buildings_for).
 
     progress(step, n_steps) is called as the engine goes; on a dask worker, report =
     (topic, tag) sends [tag, step / n_steps] to the client's event topic instead.
@@ -47,7 +48,8 @@ def simulate_batch(accel: np.ndarray, accel_dt: float, members: np.ndarray,
         def progress(step, n_steps):
             worker.log_event(topic, [tag, step / n_steps])
 
-    result = engine.simulate(accel, accel_dt, contact_for(members), building=building, dt=dt,
+    result = engine.simulate(accel, accel_dt, contact_for(members),
+                             building=buildings_for(members, building), dt=dt,
                              progress=progress)
     return {q.name: np.asarray(getattr(result, q.name), dtype=q.dtype) for q in PEAKS}
 

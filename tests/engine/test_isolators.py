@@ -48,6 +48,15 @@ def test_declarations_and_their_checks():
         Building(story_yield_force=(1e6, 1e6))
     with pytest.raises(engine.EngineError, match="story_stiffness must be 2 positive"):
         Building(masses=(1e5, 1e5, 1e5), story_stiffness=(1e9,))
+    # A building with some isolator values replaced (a member of an isolator sweep).
+    fp = Building(isolator=iso, zeta_sup=0.03)
+    assert fp.with_isolator(mu_fast=0.12) == Building(
+        isolator=Isolator.friction_pendulum(**{**FP, "mu_fast": 0.12}), zeta_sup=0.03)
+    assert Building().with_isolator(k2=30e6).isolation == Isolator.bilinear(k2=30e6)
+    with pytest.raises(engine.EngineError, match="unknown parameter.*radius"):
+        Building().with_isolator(radius=2.0)
+    with pytest.raises(engine.EngineError, match="0 < k2 < k1"):
+        Building().with_isolator(k2=300e6)
     with pytest.raises(engine.EngineError, match="same number of levels"):
         engine.simulate(np.zeros(10), 0.01, Contact.none(2),
                         building=[Building(), Building(masses=(1e5, 1e5),

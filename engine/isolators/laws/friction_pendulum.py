@@ -19,16 +19,16 @@ DEFAULT_ZETA = 0.0
 
 PARAMETERS = Declaration(
     Parameter("radius", "m", "radius R of the concave sliding surface", REQUIRED, "(0, inf)",
-              equation="SPEC section 7"),
+              equation="SPEC section 7", sweep="radius"),
     Parameter("mu_slow", "1", "friction coefficient at low sliding speed", REQUIRED, "(0, 1)",
-              equation="Constantinou et al. 1990"),
+              equation="Constantinou et al. 1990", sweep="mu_slow"),
     Parameter("mu_fast", "1", "friction coefficient at high sliding speed", REQUIRED, "(0, 1)",
-              equation="Constantinou et al. 1990"),
+              equation="Constantinou et al. 1990", sweep="mu_fast"),
     Parameter("rate", "s m-1", "rate of the change from mu_slow to mu_fast with the sliding "
-              "speed", REQUIRED, "[0, inf)", equation="Constantinou et al. 1990"),
+              "speed", REQUIRED, "[0, inf)", equation="Constantinou et al. 1990", sweep="rate"),
     Parameter("yield_disp", "m", "sliding displacement at which the pre-slip spring reaches "
               "mu_fast W (sets k_0 = mu_fast W / yield_disp)", 5e-4, "(0, inf)",
-              equation="SPEC section 7"),
+              equation="SPEC section 7", sweep="yield_disp"),
 )
 
 
