@@ -32,7 +32,8 @@ __all__ = ["SweepError", "scale_to_displacement", "sweep", "unconstrained_peaks"
 def _sweep(records, *, impact: str = "bumper", dt: float | None = None, workers: int = 1,
            scheduler=None, out=None, baseline: bool = False, unconstrained: bool = False,
            building=None, m_eff: float | None = None, batch_size: int | None = None,
-           records_dir=None, quiet: bool = False, work_dir=None, **parameters):
+           records_dir=None, quiet: bool = False, work_dir=None, force: bool = False,
+           **parameters):
     """Simulate every combination of the parameters under every record; label the peaks.
 
     records: paper keys ("kobe", "sylmar_converter", "olive_view", "pacoima"), library names,
@@ -77,6 +78,10 @@ def _sweep(records, *, impact: str = "bumper", dt: float | None = None, workers:
         removed once out is written; an explicit one is kept, and may be shared by several
         sweeps). Ctrl-C raises pipeline.errors.Interrupted (a KeyboardInterrupt) saying how
         many simulations are kept there; the same call again computes only the rest.
+    force: replace an existing `out` that holds another sweep. Without it such an archive is
+        kept and SweepError raised before any compute; an archive of this very sweep (the
+        same records, dt, building, members and engine: its `configuration_key` attribute)
+        is replaced silently, since it holds the same numbers.
 
     Returns an xarray.Dataset, dims: record, the swept parameters (in the order gap, thickness,
     cavity, strain, n_bumpers, wall_k, cor, then the isolator's), floor (0..N) and story (1..N):
@@ -99,7 +104,7 @@ def _sweep(records, *, impact: str = "bumper", dt: float | None = None, workers:
     arguments = {**given, "impact": impact, "baseline": baseline,
                  "unconstrained": unconstrained, "m_eff": grid.m_eff}
     return _execute(grid, records, dt, workers, scheduler, out, building, batch_size,
-                    records_dir, quiet, arguments, work_dir)
+                    records_dir, quiet, arguments, work_dir, force)
 
 
 def _completed_sweep():
@@ -139,16 +144,16 @@ def unconstrained_peaks(records, dt: float | None = None, building=None, workers
 
 
 def _execute(grid, records, dt, workers, scheduler, out, building, batch_size, records_dir,
-             quiet, arguments, work_dir=None):
+             quiet, arguments, work_dir=None, force=False):
     """Check the rest of the input, open the store (.zarr: Zarr; else NetCDF), run, finish."""
     import engine
 
-    from .archive import check_out
     from .errors import SweepError, check_building, check_count, resolve_records
     from .execute.batches import default_batch_size
     from .execute.executor import execute
     from .grid import check_dt
     from .provenance import plain
+    from .writing import check_out, guard
 
     building = check_building(building)
     dt = check_dt(grid, engine.DEFAULT_DT if dt is None else dt, building)
@@ -166,11 +171,13 @@ def _execute(grid, records, dt, workers, scheduler, out, building, batch_size, r
     if out is not None and out.suffix == ".zarr":
         from .execute.zarr_store import ZarrStore
 
-        store = ZarrStore(grid, recs, names, dt, building, arguments, out, batch_size)
+        store = ZarrStore(grid, recs, names, dt, building, arguments, out, batch_size, force)
     else:
         from .execute.netcdf_store import NetCDFStore
 
         store = NetCDFStore(grid, recs, names, dt, building, arguments, out, work_dir)
+        if out is not None:
+            guard(out, store.key, force, "force=True (--force)")
     execute(store, workers=workers, scheduler=scheduler, batch_size=batch_size, quiet=quiet)
     return store.finish()
 

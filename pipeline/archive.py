@@ -10,9 +10,6 @@ declarations (engine.results: units, long names, trailing axis); global attribut
 """
 from __future__ import annotations
 
-import glob
-import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -23,9 +20,9 @@ from engine.impact import LAWS
 from engine.isolators import LAWS as ISOLATOR_LAWS
 from engine.results import PEAKS, Quantity, level_axes
 
-from .errors import SweepError
 from .grid import ISOLATOR_PARAMS, Grid, baseline_text, swept_parameter
 from .provenance import attributes
+from .writing import Staged
 
 STORY_DUCTILITY = Quantity("peak_story_ductility", "1", "peak story ductility (peak "
                            "interstory deflection / yield deflection F_i / k_i)", "story")
@@ -221,49 +218,23 @@ def build_dataset(grid: Grid, records, results: list[dict[str, np.ndarray]] | No
     return ds
 
 
-def check_out(out) -> Path | None:
-    """Refuse an archive path that cannot be written, before any compute."""
-    if out is None:
-        return None
-    out = Path(out)
-    if out.is_dir() and out.suffix != ".zarr":  # a Zarr store is a folder
-        raise SweepError(f"out: {out} is a directory, not a file name")
-    try:
-        out.parent.mkdir(parents=True, exist_ok=True)
-        with tempfile.TemporaryFile(dir=out.parent):
-            pass
-    except OSError as err:
-        raise SweepError(f"out: cannot write to {out.parent} ({err.strerror or err})") from None
-    return out
-
-
 def write_netcdf(ds: xr.Dataset, path) -> Path:
     """Write `ds` to `path` (netCDF4, zlib) atomically: the file is complete or absent.
 
-    The data goes to a temporary file in the same folder, then os.replace renames it, which is
-    atomic on one filesystem; a failure or a kill leaves at most a hidden .tmp file.
+    The data goes to a hidden temporary file in the same folder, then os.replace renames it,
+    which is atomic on one filesystem; a failure or a kill leaves at most that temporary file,
+    which the next write there sweeps away (pipeline.writing.Staged).
     """
     path = Path(path)
-    encoding = {name: COMPRESSION for name, var in ds.data_vars.items()
-                if var.dtype.kind in "fiu"}
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    os.close(fd)
-    try:
-        ds.to_netcdf(tmp, engine="netcdf4", format="NETCDF4", encoding=encoding)
-        with open(tmp, "rb") as f:
-            os.fsync(f.fileno())  # the bytes are on disk before the name points at them
-        os.chmod(tmp, 0o666 & ~_umask())  # mkstemp made it private; an archive is not
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    for stale in path.parent.glob(f".{glob.escape(path.name)}.*.tmp"):
-        stale.unlink(missing_ok=True)  # left by writers that were killed before the rename
+    with Staged() as stage:
+        to_netcdf(ds, stage.path(path))
+        stage.commit()
     return path
 
 
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
-
+def to_netcdf(ds: xr.Dataset, path) -> None:
+    """Write `ds` to `path` as netCDF4 with zlib on every numeric variable (not atomic: see
+    write_netcdf)."""
+    encoding = {name: COMPRESSION for name, var in ds.data_vars.items()
+                if var.dtype.kind in "fiu"}
+    ds.to_netcdf(path, engine="netcdf4", format="NETCDF4", encoding=encoding)

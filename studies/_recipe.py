@@ -92,7 +92,13 @@ class Recipe:
                             f"finished simulations wait in <archive>.work/ until it is "
                             f"written")
         p.add_argument("--quick", action="store_true",
-                       help="a coarse grid, for tests and first looks")
+                       help="a coarse grid, for tests and first looks: written into a quick/ "
+                            "folder beside the full run's outputs (never over them) and "
+                            "marked as quick in the archive and the figure")
+        p.add_argument("--force", action="store_true",
+                       help="replace an existing archive of another configuration (without "
+                            "it, such an archive is kept and the run refused before any "
+                            "compute; the same configuration is replaced silently)")
         p.add_argument("--replot", action="store_true",
                        help=f"redraw the figure from an existing {self.name}.nc, no computing")
         p.add_argument("--quiet", action="store_true", help="no progress bar")
@@ -124,13 +130,12 @@ class Recipe:
     def _run(self, args) -> int:
         import xarray as xr
 
-        from pipeline.archive import check_out, write_netcdf
+        from pipeline.archive import to_netcdf
         from pipeline.building_file import building_from
         from pipeline.errors import SweepError
+        from pipeline.writing import KEY_ATTRIBUTE, Staged, check_out, guard
 
-        from ._plot import save_figure
-
-        archive, stem = outputs(args.out, self.name)
+        archive, stem = outputs(args.out, self.name, quick=args.quick)
         figures = [Path(f"{stem}.png"), Path(f"{stem}.pdf")]
         if args.replot:
             if not archive.is_file():
@@ -142,35 +147,76 @@ class Recipe:
         else:
             for path in (archive, *figures):
                 check_out(path)  # before any compute
-            args.work_dir = archive.with_name(archive.name + ".work")
             args.building = building_from(args.building)  # a bad building: before compute
+            key = self.configuration_key(args)
+            guard(archive, key, args.force)
+            args.work_dir = archive.with_name(archive.name + ".work")
             ds = self.compute(args)
             ds.attrs.update(recipe=self.name, paper_figure=self.figure, quick=int(args.quick),
                             values_chosen=self.chosen or "none")
+            ds.attrs[KEY_ATTRIBUTE] = key
+            if args.quick:
+                ds.attrs["title"] = f"{ds.attrs.get('title', self.summary)} [{QUICK_NOTE}]"
             verdicts = self.check(ds)
             ds.attrs["paper_check"] = "\n".join(v.text() for v in verdicts)
             ds.attrs["paper_verdicts"] = json.dumps([v.as_dict() for v in verdicts])
-            write_netcdf(ds, archive)
-            shutil.rmtree(args.work_dir, ignore_errors=True)
         if args.replot:
             for line in _substitutions(ds):
                 print(line)
         print(ds.attrs["paper_check"])
-        written = save_figure(self.plot(ds), stem)
+        fig = self.plot(ds)
+        if ds.attrs.get("quick"):
+            fig.text(0.5, 1.0, f"QUICK RUN: {QUICK_NOTE}", ha="center", va="bottom",
+                     color="firebrick", fontsize=9, fontweight="bold")
+        # The archive and its figures are replaced together or not at all.
+        with Staged() as stage:
+            if not args.replot:
+                to_netcdf(ds, stage.path(archive))
+            for path in figures:
+                fig.savefig(stage.path(path), format=path.suffix[1:])
+            stage.commit()
+        import matplotlib.pyplot as plt
+
+        plt.close(fig)
         if args.replot:
-            print("redrew", *written, "from", archive)
+            print("redrew", *figures, "from", archive)
         else:
-            print("wrote", archive, *written)
+            shutil.rmtree(args.work_dir, ignore_errors=True)
+            print("wrote", archive, *figures, *([f"({QUICK_NOTE})"] if args.quick else []))
         return 0
 
+    def configuration_key(self, args) -> str:
+        """What decides this run's numbers: the recipe, every option but those that only say
+        how or where to run, the building resolved, the engine's version."""
+        from pipeline.provenance import engine_fingerprint
+        from pipeline.writing import configuration_key
 
-def outputs(out: Path, name: str, archives=(".nc",)) -> tuple[Path, Path]:
+        chosen = {name: value for name, value in sorted(vars(args).items())
+                  if name not in RUN_ONLY}
+        return configuration_key(self.name, chosen, engine_fingerprint())
+
+
+QUICK_NOTE = "coarse grid for tests and first looks, not the paper's resolution"
+RUN_ONLY = frozenset({"out", "replot", "quiet", "workers", "scheduler", "batch_size", "force",
+                      "work_dir", "tls_ca_file", "tls_cert", "tls_key"})
+"""Options that say how or where a recipe runs, not what it computes."""
+
+
+def outputs(out: Path, name: str, archives=(".nc",), quick: bool = False) -> tuple[Path, Path]:
     """(archive, figure stem) for --out: a path with an archive suffix is the archive,
-    anything else a folder receiving NAME.nc."""
+    anything else a folder receiving NAME.nc. A quick run's go into a quick/ folder beside,
+    so that they never replace a full run's. SweepError for an archive format this command
+    does not write (a .zarr store where only NetCDF is)."""
+    from pipeline.errors import SweepError
+
     out = Path(out)
-    if out.suffix in archives:
-        return out, out.with_suffix("")
-    return out / f"{name}.nc", out / name
+    if out.suffix in (".zarr", ".nc") and out.suffix not in archives:
+        raise SweepError(f"--out {out}: this command writes NetCDF archives (.nc), not "
+                         f"{out.suffix}; give a .nc path or a folder")
+    archive = out if out.suffix in archives else out / f"{name}.nc"
+    if quick:
+        archive = archive.parent / "quick" / archive.name
+    return archive, archive.with_suffix("")
 
 
 def accept_negative_numbers(parser: argparse.ArgumentParser) -> None:

@@ -134,6 +134,10 @@ def parser() -> argparse.ArgumentParser:
                         "else a folder receiving sweep.nc "
                         "(default: results/); finished simulations wait in <archive>.work/ "
                         "until it is written, so an interrupted run resumes where it stopped")
+    p.add_argument("--force", action="store_true",
+                   help="replace an existing archive of another sweep (without it, such an "
+                        "archive is kept and the run refused before any compute; the same "
+                        "sweep is replaced silently)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     accept_negative_numbers(p)
     return p
@@ -189,7 +193,8 @@ def main(argv: list[str] | None = None) -> int:
                 impact=args.impact, dt=args.dt, workers=args.workers,
                 scheduler=args.scheduler, out=archive, baseline=args.baseline,
                 unconstrained=args.unconstrained, building=building, m_eff=args.m_eff,
-                batch_size=args.batch_size, records_dir=args.records_dir, quiet=args.quiet)
+                batch_size=args.batch_size, records_dir=args.records_dir, quiet=args.quiet,
+                force=args.force)
     except (SweepError, engine.EngineError) as err:
         print("error: " + " ".join(str(err).split()), file=sys.stderr)  # one line
         return 2

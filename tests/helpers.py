@@ -65,5 +65,7 @@ def run_recipe(module, argv: list[str], out: Path):
     import xarray as xr
 
     assert module.main([*argv, "--quiet", "--out", str(out)]) == 0
+    if "--quick" in argv:  # a quick run's outputs go beside a full run's, never over them
+        out = out / "quick"
     with xr.open_dataset(out / f"{module.recipe.name}.nc") as ds:
         return ds.load()

@@ -22,16 +22,16 @@ from engine.results import PEAK_NAMES, empty_peaks
 from ..archive import build_dataset, write_netcdf
 from ..errors import SweepError
 from ..grid import MEMBER_DTYPE
+from ..writing import KEY_ATTRIBUTE, check_writable_folder
 from . import batches
-from .keys import batch_key, context_key
+from .keys import batch_key, context_key, sweep_key
 
 
 class WorkFolder:
     """Finished batches on disk: `<key>.npz` with the context, members and peaks."""
 
     def __init__(self, path: Path):
-        self.path = Path(path)
-        self.path.mkdir(parents=True, exist_ok=True)
+        self.path = Path(path)  # created with the first batch: a refused run leaves nothing
 
     def load(self) -> dict[tuple[str, bytes], dict[str, np.ndarray]]:
         """(context, member record bytes) -> that member's peaks, from every readable batch."""
@@ -53,6 +53,7 @@ class WorkFolder:
     def save(self, key: str, context: str, members: np.ndarray,
              peaks: dict[str, np.ndarray]):
         """Write atomically: a batch file is complete or absent."""
+        self.path.mkdir(parents=True, exist_ok=True)
         fd, tmp = tempfile.mkstemp(dir=self.path, prefix=f".{key}.", suffix=".tmp")
         try:
             with os.fdopen(fd, "wb") as f:
@@ -64,17 +65,14 @@ class WorkFolder:
 
 
 def check_work_dir(work_dir) -> Path | None:
-    """Create the work folder, or refuse one that cannot be written, before any compute."""
+    """Refuse a work folder that cannot be written, before any compute (it is created with
+    the first finished batch)."""
     if work_dir is None:
         return None
     work_dir = Path(work_dir)
-    try:
-        work_dir.mkdir(parents=True, exist_ok=True)
-        with tempfile.TemporaryFile(dir=work_dir):
-            pass
-    except OSError as err:
-        raise SweepError(f"work_dir: cannot write to {work_dir} "
-                         f"({err.strerror or err})") from None
+    if work_dir.exists() and not work_dir.is_dir():
+        raise SweepError(f"work_dir: {work_dir} is a file, not a folder")
+    check_writable_folder(work_dir, "work_dir")
     return work_dir
 
 
@@ -84,7 +82,8 @@ class NetCDFStore:
 
     out: the NetCDF path, or None (the Dataset is only returned); work_dir: the work folder
     (None: `<out>.work` when out is given, removed once out is written; an explicit one is
-    kept, and may be shared by several sweeps; no out and no work_dir: nothing is kept).
+    kept, and may be shared by several sweeps; no out and no work_dir: nothing is kept). key:
+    the sweep's resume key (keys.sweep_key), stored as the archive's configuration_key.
     """
 
     def __init__(self, grid, records, names, dt, building, arguments, out=None,
@@ -98,6 +97,7 @@ class NetCDFStore:
         self.work = WorkFolder(self.kept_in) if self.kept_in is not None else None
         self.contexts = [context_key(rec, dt, building) for rec in records]
         self.members = grid.members
+        self.key = sweep_key(self.members, self.contexts)
         self.total = len(records) * grid.n_members
         self.results = [empty_peaks(grid.n_members, building.n_levels) for _ in records]
 
@@ -137,6 +137,7 @@ class NetCDFStore:
         """The labelled Dataset, written to out when given (the own work folder then goes)."""
         ds = build_dataset(self.grid, self.records, self.results, self.dt, self.building,
                            self.names, self.arguments)
+        ds.attrs[KEY_ATTRIBUTE] = self.key
         if self.out is not None:
             write_netcdf(ds, self.out)
         if self.own_work_dir:

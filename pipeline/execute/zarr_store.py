@@ -27,6 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import SweepError
+from ..writing import archive_key
 from . import batches
 from .keys import context_key, region_key, sweep_key
 
@@ -106,7 +107,8 @@ def write_template(path: Path, grid, records, names, dt, building, arguments, ke
                                    {"units": "1", "long_name": "1 once the batch's chunk "
                                     "region is written (the resume record)"})
     encoding["batch_done"] = {"chunks": (1,)}
-    ds.attrs.update(sweep_key=key, complete=0, members_per_chunk=target)
+    ds.attrs.update(sweep_key=key, configuration_key=key, complete=0,
+                    members_per_chunk=target)
     # Zarr format 2: its string and attribute encodings are read by every Zarr library.
     ds.to_zarr(path, mode="w", compute=False, encoding=encoding, consolidated=False,
                zarr_format=ZARR_FORMAT)
@@ -142,7 +144,9 @@ class ZarrStore:
     """
 
     def __init__(self, grid, records, names, dt, building, arguments, out: Path,
-                 batch_size: int):
+                 batch_size: int, force: bool = False):
+        import shutil
+
         import zarr
 
         self.grid, self.records, self.dt, self.building = grid, records, dt, building
@@ -151,6 +155,11 @@ class ZarrStore:
         self.total = len(records) * grid.n_members
         self.key = sweep_key(self.members, [context_key(rec, dt, building) for rec in records])
         target = max(1, min(batch_size, TARGET_CHUNK))
+        if force and out.exists() and archive_key(out) != self.key:  # asked to replace it
+            if out.is_dir():
+                shutil.rmtree(out)
+            else:
+                out.unlink()
         resuming = out.exists()
         if resuming:
             try:
@@ -159,8 +168,8 @@ class ZarrStore:
             except Exception:  # noqa: BLE001 - anything unreadable is not this sweep's store
                 same = False
             if not same:
-                raise SweepError(f"out: {out} holds another sweep (or no store): remove it or "
-                                 "choose another path")
+                raise SweepError(f"out: {out} holds another sweep (or no store): it is kept. "
+                                 "Give --force (force=True) to replace it, or another path")
             target = int(group.attrs["members_per_chunk"])  # the store's chunks, not batch_size
         self.regions = regions_for(grid, len(records), target)
         if resuming:

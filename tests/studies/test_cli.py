@@ -51,12 +51,13 @@ def test_out_is_a_file_or_a_folder_in_every_command(tmp_path, capsys):
     strain = importlib.import_module("studies.strain")
     assert strain.main(["--quick", "--quiet", "--records", "pacoima", "--dt", "1e-3",
                         "--out", str(tmp_path / "fig18.nc")]) == 0
-    assert {p.name for p in tmp_path.glob("fig18*")} == {"fig18.nc", "fig18.png", "fig18.pdf"}
-    assert not list(tmp_path.glob("*.work"))  # work folders go once the archive is written
+    quick = tmp_path / "quick"  # beside the full run's outputs, never over them
+    assert {p.name for p in quick.glob("fig18*")} == {"fig18.nc", "fig18.png", "fig18.pdf"}
+    assert not list(quick.glob("*.work"))  # work folders go once the archive is written
     capsys.readouterr()
-    assert strain.main(["--replot", "--out", str(tmp_path / "fig18.nc")]) == 0
+    assert strain.main(["--replot", "--quick", "--out", str(tmp_path / "fig18.nc")]) == 0
     out = capsys.readouterr().out
-    assert f"redrew {tmp_path / 'fig18.png'} {tmp_path / 'fig18.pdf'} from " in out
+    assert f"redrew {quick / 'fig18.png'} {quick / 'fig18.pdf'} from " in out
     assert "wrote" not in out
 
 

@@ -1,0 +1,152 @@
+"""Writing results without ever losing one.
+
+- `check_out`: an output path is checked before any compute, and nothing is created for it
+  then (a refused run leaves no empty folder behind);
+- `guard`: an existing archive is replaced only by a run of the same configuration (the same
+  `configuration_key` attribute: the same inputs on the same engine, so the same numbers) or
+  when the caller says force;
+- `Staged`: a run's outputs (an archive and its figures) are written to hidden temporary files
+  beside their targets, then renamed over them together with Ctrl-C held back, so that they
+  are replaced all or none; a failure or an interrupt before that leaves the old ones intact.
+"""
+from __future__ import annotations
+
+import glob
+import hashlib
+import json
+import os
+import signal
+import tempfile
+import threading
+from pathlib import Path
+
+from .errors import SweepError
+
+KEY_ATTRIBUTE = "configuration_key"
+"""The archive attribute naming the configuration that wrote it."""
+
+
+def configuration_key(*parts) -> str:
+    """A configuration's key: the SHA-256 of its parts as JSON (str() for anything JSON lacks,
+    e.g. an engine.Building, whose repr lists every field)."""
+    text = json.dumps(parts, sort_keys=True, default=repr)
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def check_out(out) -> Path | None:
+    """Refuse an output path that cannot be written, before any compute; create nothing."""
+    if out is None:
+        return None
+    out = Path(out)
+    if out.is_dir() and out.suffix != ".zarr":  # a Zarr store is a folder
+        raise SweepError(f"out: {out} is a directory, not a file name")
+    check_writable_folder(out.parent, "out")
+    return out
+
+
+def check_writable_folder(folder: Path, option: str) -> None:
+    """The folder, or its nearest existing ancestor (created at write time), is a writable
+    directory; SweepError naming `option` otherwise."""
+    folder = Path(folder).absolute()
+    existing = next(p for p in (folder, *folder.parents) if p.exists())
+    if not existing.is_dir():
+        raise SweepError(f"{option}: cannot write to {folder}: {existing} is not a folder")
+    if not os.access(existing, os.W_OK | os.X_OK):
+        raise SweepError(f"{option}: cannot write to {folder}: permission denied on "
+                         f"{existing}")
+
+
+def guard(path, key: str, force: bool = False, option: str = "--force") -> None:
+    """Refuse to replace the archive at `path` unless it holds configuration `key` (the same
+    run: nothing is lost) or force is set. SweepError says what is there and how to go on."""
+    path = Path(path)
+    if force or not path.exists():
+        return
+    found = archive_key(path)
+    if found == key:
+        return
+    what = ("an archive of another configuration" if found else
+            "a file this version cannot identify (no configuration_key)")
+    raise SweepError(f"{path} exists and holds {what}: it is kept. Give {option} to replace "
+                     f"it, or another --out")
+
+
+def archive_key(path: Path) -> str | None:
+    """The configuration_key attribute of a NetCDF archive or Zarr store (None: none, or not
+    readable as one)."""
+    try:
+        if path.suffix == ".zarr":
+            import zarr
+
+            return zarr.open_group(str(path), mode="r").attrs.get(KEY_ATTRIBUTE)
+        import netCDF4
+
+        with netCDF4.Dataset(path) as nc:
+            return getattr(nc, KEY_ATTRIBUTE, None)
+    except Exception:  # noqa: BLE001 - anything unreadable is "cannot identify"
+        return None
+
+
+class Staged:
+    """Outputs written to temporary files first, then renamed over their targets together.
+
+        with Staged() as stage:
+            ds.to_netcdf(stage.path(archive)); fig.savefig(stage.path(png))
+            stage.commit()        # all renamed, Ctrl-C held back meanwhile
+    Leaving the block without commit (an error, Ctrl-C) removes the temporary files and
+    leaves every target as it was.
+    """
+
+    def __init__(self):
+        self.pending: list[tuple[Path, Path]] = []  # (temporary, target)
+
+    def __enter__(self) -> Staged:
+        return self
+
+    def path(self, target) -> Path:
+        """A fresh hidden temporary file beside `target` (its folder created if need be)."""
+        target = Path(target)
+        target.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
+        os.close(fd)
+        self.pending.append((Path(tmp), target))
+        return Path(tmp)
+
+    def commit(self) -> None:
+        """Make every temporary file durable, then rename each over its target."""
+        for tmp, _ in self.pending:
+            with open(tmp, "rb") as f:
+                os.fsync(f.fileno())  # the bytes are on disk before the names point at them
+            os.chmod(tmp, 0o666 & ~_umask())  # mkstemp made it private; an output is not
+        with _sigint_held():
+            for tmp, target in self.pending:
+                os.replace(tmp, target)
+        for _, target in self.pending:
+            for stale in target.parent.glob(f".{glob.escape(target.name)}.*.tmp"):
+                stale.unlink(missing_ok=True)  # left by writers killed before their rename
+        self.pending = []
+
+    def __exit__(self, *exc) -> None:
+        for tmp, _ in self.pending:
+            tmp.unlink(missing_ok=True)
+        self.pending = []
+
+
+class _sigint_held:
+    """Ctrl-C (SIGINT) waits until the block ends, then takes effect (main thread only; a
+    kill -9 cannot be held, but then the renames done so far are whole files each)."""
+
+    def __enter__(self):
+        self.held = threading.current_thread() is threading.main_thread()
+        if self.held:
+            signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+
+    def __exit__(self, *exc):
+        if self.held:
+            signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
