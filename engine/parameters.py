@@ -24,15 +24,25 @@ REQUIRED = object()
 _INTERVAL_RE = re.compile(r"^\s*([\[(])\s*(\S+?)\s*,\s*(\S+?)\s*([\])])\s*$")
 
 
+def _interval(name: str, text: str) -> tuple[float, bool, float, bool]:
+    """(low, low closed, high, high closed) of interval notation such as '(0, 1]'."""
+    m = _INTERVAL_RE.match(text)
+    if m is None:
+        raise ValueError(f"{name}: an interval must read like '(0, 1]', got {text!r}")
+    return float(m.group(2)), m.group(1) == "[", float(m.group(3)), m.group(4) == "]"
+
+
 @dataclass(frozen=True)
 class Parameter:
     """One numeric parameter of an impact or isolator law.
 
-    name: keyword of the law's constructor (Contact.of, Isolator.of); units: UDUNITS-style string of
-    the SI unit; meaning: one line (the archive's long_name); default: a number, None (optional,
-    unset) or REQUIRED; valid: interval notation of the values accepted; integer: whole numbers
-    only; equation: where the paper defines it; sweep: its name among pipeline.sweep's
-    parameters (None: not swept, it stays at its default in sweeps).
+    name: keyword of the law's constructor (Contact.of, Isolator.of); units: UDUNITS-style
+    string of the SI unit; meaning: one line (the archive's long_name); default: a number, None
+    (optional, unset) or REQUIRED; valid: interval notation of the values accepted; integer:
+    whole numbers only; equation: where the paper defines it; sweep: its name among
+    pipeline.sweep's parameters (None: not swept, it stays at its default in sweeps); plausible:
+    interval of the values a real structure has (None: any valid value), outside which the
+    pipeline refuses a value as a likely unit slip.
     """
 
     name: str
@@ -43,15 +53,26 @@ class Parameter:
     integer: bool = False
     equation: str = ""
     sweep: str | None = None
+    plausible: str | None = None
     bounds: tuple = field(init=False, repr=False, compare=False)
 
     def __post_init__(self):
-        m = _INTERVAL_RE.match(self.valid)
-        if m is None:
-            raise ValueError(f"{self.name}: valid must be an interval like '(0, 1]', "
-                             f"got {self.valid!r}")
-        low, high = float(m.group(2)), float(m.group(3))
-        object.__setattr__(self, "bounds", (low, m.group(1) == "[", high, m.group(4) == "]"))
+        object.__setattr__(self, "bounds", _interval(self.name, self.valid))
+        if self.plausible is not None:
+            _interval(self.name, self.plausible)
+
+    def implausible(self, values) -> np.ndarray:
+        """The values outside the `plausible` interval: valid to the engine, but what no real
+        building, bumper or wall has (most likely a value in another unit, e.g. kN/mm given
+        as N/m). Checked by the pipeline and the commands, not by the engine, so that a
+        laboratory model can still be simulated directly."""
+        array = np.atleast_1d(np.asarray(values, dtype=float))
+        if self.plausible is None:
+            return array[:0]
+        low, low_closed, high, high_closed = _interval(self.name, self.plausible)
+        above = array >= low if low_closed else array > low
+        below = array <= high if high_closed else array < high
+        return array[~(above & below)]
 
     @property
     def required(self) -> bool:

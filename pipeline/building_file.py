@@ -24,16 +24,53 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
+import numpy as np
+
 import engine
 from engine.building import FIELD_UNITS, PER_LEVEL, PER_STORY
 from engine.isolators import LAWS as ISOLATOR_LAWS
+from engine.parameters import REQUIRED, Parameter
 
-from .errors import BuildingError
+from .errors import BuildingError, SweepError
 
 if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
+
+
+# What real buildings have, per field (SI): outside it a value is most likely in another unit
+# (t for kg, kN/mm for N/m, kN for N). The engine itself takes any positive value, so that a
+# laboratory model can be simulated directly.
+PLAUSIBLE = {
+    "masses": Parameter("masses", "kg", "mass of a level", REQUIRED, "(0, inf)",
+                        plausible="[1e3, 1e9]"),
+    "story_stiffness": Parameter("story_stiffness", "N m-1", "story stiffness", REQUIRED,
+                                 "(0, inf)", plausible="[1e5, 1e13]"),
+    "story_yield_force": Parameter("story_yield_force", "N", "story yield force", REQUIRED,
+                                   "(0, inf)", plausible="[1e3, 1e10]"),
+}
+
+
+def check_plausible(building: engine.Building) -> None:
+    """BuildingError for a level mass, story stiffness or yield force no real building has,
+    with the conversion from the unit most likely meant; the isolator's parameters against
+    their law's declared plausible ranges."""
+    from .grid import plausible
+
+    for name, param in PLAUSIBLE.items():
+        value = getattr(building, name)
+        if value is not None:
+            try:
+                plausible(name, param, np.asarray(value, float), option=False)
+            except SweepError as err:
+                raise BuildingError(f"building {err}") from None
+    declared = ISOLATOR_LAWS[building.isolation.law].PARAMETERS
+    for name, value in building.isolation.parameters:
+        try:
+            plausible(name, declared[name], np.asarray(value, float), option=False)
+        except SweepError as err:
+            raise BuildingError(f"building isolator {err}") from None
 
 
 def read_building(path) -> engine.Building:

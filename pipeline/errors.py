@@ -9,6 +9,11 @@ class SweepError(ValueError):
     """Invalid sweep input; the message names the offending parameter."""
 
 
+class PlausibilityWarning(UserWarning):
+    """Valid input that may not give what was meant (e.g. a step coarser than the converged
+    one); raised before any compute, shown by the commands as one 'warning: ...' line."""
+
+
 def check_count(name: str, value, minimum: int) -> int:
     """`value` as an int >= minimum, or SweepError naming it."""
     try:
@@ -21,12 +26,16 @@ def check_count(name: str, value, minimum: int) -> int:
 
 
 def check_building(building):
-    """The paper's engine.Building for None, `building` if it is one, else SweepError."""
+    """The paper's engine.Building for None, `building` if it is one, else SweepError; a
+    building no real structure is (pipeline.building_file.check_plausible) too."""
     import engine
 
     building = engine.Building() if building is None else building
     if not isinstance(building, engine.Building):
         raise SweepError(f"building must be an engine.Building, got {type(building).__name__}")
+    from .building_file import check_plausible
+
+    check_plausible(building)
     return building
 
 

@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import functools
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -37,7 +38,7 @@ import engine
 from engine.impact import LAWS, M_EFF, NO_WALL
 from engine.isolators import LAWS as ISOLATOR_LAWS
 
-from .errors import SweepError
+from .errors import PlausibilityWarning, SweepError
 
 IMPACT_LAWS = ("bumper", *(law for law in LAWS if law != "bumper"))
 """The wall laws a sweep can run, the default (the paper's bumpers) first."""
@@ -68,12 +69,12 @@ def declarations(name: str) -> dict:
             if name in module.PARAMETERS.swept()}
 
 
-# Lengths of the sweep (m) and the largest plausible one: seismic gaps and bumpers are tens of
-# cm; a value above 2 m is almost surely centimetres given as metres.
-LENGTHS = tuple(name for name in PARAMS
-                if all(p.units == "m" for p in declarations(name).values()))
 CHECK_SLICE = 65_536  # members checked at once by check_dt
-PLAUSIBLE_LENGTH = 2.0
+
+# Units in which a value is most likely meant when it is implausible in SI: (unit, its value
+# in SI, the suffix of the command-line option taking it).
+UNIT_SLIPS = {"m": ("cm", 1e-2, "cm"), "N m-1": ("kN/mm", 1e6, "kn-mm"),
+              "kg": ("t", 1e3, "t")}
 
 MEMBER_DTYPE = np.dtype([("law", "U16"),
                          *((name, "f8") for name in (*PARAMS, "m_eff", *ISOLATOR_PARAMS))])
@@ -159,7 +160,7 @@ def make_grid(gap=None, *, impact: str = "bumper", isolator: str = "bilinear",
     if impact not in IMPACT_LAWS:
         raise SweepError(f"impact: unknown impact law {impact!r}; choose one of {IMPACT_LAWS}")
     m_eff = M_EFF.default if m_eff is None else _scalar("m_eff", m_eff)
-    _checked(M_EFF, np.asarray(m_eff), "m_eff")
+    plausible("m_eff", M_EFF, _checked(M_EFF, np.asarray(m_eff), "m_eff"))
     iso_values, iso_swept = _isolator_values(isolator, given)
     if gap is None:
         if not unconstrained or any(given[p] is not None for p in PARAMS) or baseline:
@@ -184,7 +185,7 @@ def make_grid(gap=None, *, impact: str = "bumper", isolator: str = "bilinear",
                 raise SweepError(f"{name} is required with impact={impact!r} ({param.units})")
             value = param.default
         array, is_swept = _values(name, value)
-        values[name] = _plausible(name, _checked(param, array, name))
+        values[name] = plausible(name, param, _checked(param, array, name))
         if is_swept:
             swept.append(name)
     if baseline and impact != "bumper":
@@ -221,7 +222,9 @@ def _isolator_values(isolator: str, given: dict) -> tuple[dict[str, np.ndarray],
                              f"stands on a {isolator!r} isolator (its parameters: "
                              f"{', '.join(declared)})")
         array, is_swept = _values(name, given[name])
-        values[name] = _checked(declared[name], array, name)
+        param = declared[name]
+        values[name] = plausible(name, param, _checked(param, array, name),
+                                 option=param.units == "N m-1")
         if is_swept:
             swept.append(name)
     return values, swept
@@ -266,14 +269,22 @@ def _members_block(prefix: str, law: str, values: dict, swept, m_eff: float) -> 
     return Block(prefix, dims, shape, members)
 
 
-def _plausible(name: str, array: np.ndarray) -> np.ndarray:
-    """Refuse lengths no moat or bumper has: most likely centimetres given as metres."""
-    if name in LENGTHS and np.any(array > PLAUSIBLE_LENGTH):
-        worst = float(array.max())
-        raise SweepError(f"{name} {worst:g} m is implausible (> {PLAUSIBLE_LENGTH:g} m): give "
-                         f"metres (e.g. {worst / 100:g} for {worst:g} cm), or "
-                         f"--{name.replace('_', '-')}-cm {worst:g} on the command line")
-    return array
+def plausible(name: str, param, array: np.ndarray, option: bool = True) -> np.ndarray:
+    """Refuse values outside the declaration's `plausible` range (a real moat, bumper, slab or
+    isolator has none): most likely a value in the paper's units given as SI. The message
+    gives the conversion and, when `option`, the command-line option in the paper's unit."""
+    bad = param.implausible(array)
+    if bad.size == 0:
+        return array
+    worst = float(bad[0])
+    text = f"{name} {worst:g} {param.units} is implausible (outside {param.plausible} " \
+           f"{param.units})"
+    if param.units in UNIT_SLIPS:
+        unit, factor, suffix = UNIT_SLIPS[param.units]
+        text += f": give {param.units} ({worst:g} {unit} is {worst * factor:g} {param.units})"
+        if option:
+            text += f", or --{name.replace('_', '-')}-{suffix} {worst:g} on the command line"
+    raise SweepError(text)
 
 
 def _checked(param, array: np.ndarray, name: str) -> np.ndarray:
@@ -368,6 +379,12 @@ def check_dt(grid: Grid, dt: float, building: engine.Building) -> float:
     if dt >= limit:
         raise SweepError(f"dt = {dt:g} s is unstable: the stability limit is "
                          f"{limit:.4g} s for member {describe_member(members[worst])}")
+    if dt > engine.DEFAULT_DT * (1 + 1e-9):
+        warnings.warn(PlausibilityWarning(
+            f"dt = {dt:g} s is {dt / engine.DEFAULT_DT:.3g} x the converged step "
+            f"{engine.DEFAULT_DT:g} s (halving that one moves no peak by 0.5%; "
+            "tests/engine/test_convergence.py): peaks and verdicts may not have converged"),
+            stacklevel=2)
     return dt
 
 

@@ -280,14 +280,15 @@ def sweep_options(args) -> dict:
 
 @contextmanager
 def announce_stand_ins():
-    """Print a stand-in warning as one 'warning: ...' line on stderr, when it is raised (as the
-    records are resolved, before any compute); other warnings keep their usual form."""
+    """Print a stand-in or plausibility warning as one 'warning: ...' line on stderr, when it
+    is raised (before any compute); other warnings keep their usual form."""
+    from pipeline.errors import PlausibilityWarning
     from pipeline.records import StandInWarning
 
     default = warnings.showwarning
 
     def show(message, category, filename, lineno, file=None, line=None):
-        if issubclass(category, StandInWarning):
+        if issubclass(category, (StandInWarning, PlausibilityWarning)):
             print(f"warning: {message}", file=sys.stderr)
         else:
             default(message, category, filename, lineno, file, line)

@@ -107,8 +107,11 @@ def parser() -> argparse.ArgumentParser:
                         "ratios bumpers / no bumpers (bumper law only)")
     p.add_argument("--unconstrained", action="store_true",
                    help="also run each record without moat wall")
-    p.add_argument("--m-eff", type=float, default=M_EFF.default, metavar="KG",
-                   help=f"{M_EFF.meaning}, kg (default: {M_EFF.default:g})")
+    mass = p.add_mutually_exclusive_group()
+    mass.add_argument("--m-eff", type=float, default=None, metavar="KG",
+                      help=f"{M_EFF.meaning}, kg (default: {M_EFF.default:g})")
+    mass.add_argument("--m-eff-t", type=float, default=None, metavar="T",
+                      help="m_eff in t")
     p.add_argument("--building", action="append", default=[], metavar="FILE|NAME=VALUE",
                    help="the building: a TOML or JSON file (see examples/) and/or "
                         "engine.Building fields as NAME=VALUE in SI units (repeatable; "
@@ -192,7 +195,8 @@ def main(argv: list[str] | None = None) -> int:
                 **parameters(args),
                 impact=args.impact, dt=args.dt, workers=args.workers,
                 scheduler=args.scheduler, out=archive, baseline=args.baseline,
-                unconstrained=args.unconstrained, building=building, m_eff=args.m_eff,
+                unconstrained=args.unconstrained, building=building,
+                m_eff=args.m_eff if args.m_eff_t is None else args.m_eff_t * 1e3,
                 batch_size=args.batch_size, records_dir=args.records_dir, quiet=args.quiet,
                 force=args.force)
     except (SweepError, engine.EngineError) as err:

@@ -29,8 +29,43 @@ def test_lengths_in_cm_given_as_m_are_refused(option, value, hint, tmp_path, cap
         argv += ["--gap", "0.3"]
     assert sweep_cli.main([*argv, option, value]) == 2
     err = capsys.readouterr().err
-    assert "implausible (> 2 m)" in err and hint in err and len(err.splitlines()) == 1
+    assert "implausible (outside" in err and hint in err and len(err.splitlines()) == 1
     assert not (tmp_path / "x.nc").exists() and not (tmp_path / "x.nc.work").exists()
+
+
+@pytest.mark.parametrize("argv, hint", [
+    (["--wall-k", "1500"], "1500 kN/mm is 1.5e+09 N m-1), or --wall-k-kn-mm 1500"),
+    (["--m-eff", "320"], "320 t is 320000 kg), or --m-eff-t 320"),
+    (["--k2", "25"], "25 kN/mm is 2.5e+07 N m-1), or --k2-kn-mm 25"),
+    (["--impact", "linear", "--wall-k", "2.5e15"], "outside [1e6, 1e13] N m-1"),
+])
+def test_values_in_the_paper_units_given_as_si_are_refused(argv, hint, tmp_path, capsys):
+    assert sweep_cli.main(["--records", "pacoima", "--gap", "0.3", *argv,
+                           "--out", str(tmp_path / "x")]) == 2
+    err = capsys.readouterr().err
+    assert "implausible" in err and hint in err and len(err.splitlines()) == 1
+    assert not (tmp_path / "x").exists()
+
+
+@pytest.mark.parametrize("setting, hint", [
+    ("masses=320,320,320,320,250", "masses 320 kg is implausible (outside [1e3, 1e9] kg): give "
+                                   "kg (320 t is 320000 kg)"),
+    ("story_stiffness=600,600,600,600", "600 kN/mm is 6e+08 N m-1"),
+    ("k2=25", "building isolator k2 25 N m-1 is implausible"),
+])
+def test_implausible_building_is_refused(setting, hint, tmp_path, capsys):
+    assert sweep_cli.main(["--records", "pacoima", "--gap", "0.3", "--building", setting,
+                           "--out", str(tmp_path / "x")]) == 2
+    err = capsys.readouterr().err
+    assert hint in err and len(err.splitlines()) == 1
+
+
+def test_step_coarser_than_the_converged_one_is_announced(tmp_path, capsys):
+    assert sweep_cli.main(["--records", "pacoima", "--gap", "0.3", "--dt", "0.004", "--quiet",
+                           "--out", str(tmp_path)]) == 0
+    err = capsys.readouterr().err
+    assert "warning: dt = 0.004 s is 8 x the converged step 0.0005 s" in err
+    assert len(err.splitlines()) == 1
 
 
 @pytest.mark.parametrize("value", ["-1e9", "-5", "-0.5", "-.5E+3"])

@@ -34,7 +34,8 @@ PARAMETERS = Declaration(
     # has no fractional powers: power_law_units gives a string it refuses, and long_name says it.
     Parameter("k", power_law_units(1.5), "moat wall Hertz stiffness k, N/m^n: "
               f"{power_law_units(1.5)} at the default n", REQUIRED, "(0, inf)",
-              equation="Muthukumar & DesRoches 2006", sweep="wall_k"),
+              equation="Muthukumar & DesRoches 2006", sweep="wall_k",
+              plausible="[1e6, 1e14]"),
     Parameter("n", "1", "Hertz exponent n", 1.5, "[1, inf)"),
     Parameter("cor", "1", "coefficient of restitution of the wall impacts", 0.5, "(0, 1]",
               sweep="cor"),

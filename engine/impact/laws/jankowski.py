@@ -22,7 +22,7 @@ PARAMETERS = Declaration(
     GAP,
     Parameter("beta", power_law_units(EXPONENT), "moat wall impact stiffness beta, "
               f"{power_law_units(EXPONENT)}", REQUIRED, "(0, inf)",
-              equation="Jankowski 2005", sweep="wall_k"),
+              equation="Jankowski 2005", sweep="wall_k", plausible="[1e6, 1e14]"),
     Parameter("cor", "1", "coefficient of restitution of the wall impacts", 0.5, "(0, 1]",
               equation="Jankowski 2006", sweep="cor"),
     M_EFF,

@@ -28,7 +28,7 @@ ORDER = 1
 PARAMETERS = Declaration(
     GAP,
     Parameter("k", "N m-1", "moat wall contact stiffness k", 2.5e9, "(0, inf)",
-              equation="Eq. 1", sweep="wall_k"),
+              equation="Eq. 1", sweep="wall_k", plausible="[1e6, 1e13]"),
     Parameter("cor", "1", "coefficient of restitution of the wall impacts", 0.5, "(0, 1]",
               equation="Eq. 3", sweep="cor"),
     M_EFF,

@@ -54,15 +54,15 @@ ORDER = 4
 PARAMETERS = Declaration(
     GAP,
     Parameter("thickness", "m", "bumper thickness t", 0.05, "(0, inf)", equation="Eq. 11",
-              sweep="thickness"),
+              sweep="thickness", plausible="(0, 2]"),
     Parameter("cavity", "m", "depth c_d of the wall cavity holding each bumper", 0.0,
-              "[0, inf)", equation="section 5.3", sweep="cavity"),
+              "[0, inf)", equation="section 5.3", sweep="cavity", plausible="[0, 2]"),
     Parameter("strain", "1", "ultimate compressive strain of the bumper rubber", 0.8,
               "(0, 1]", equation="Eq. 14", sweep="strain"),
     Parameter("n_bumpers", "1", "number of bumpers on each side, acting in parallel", 4,
               "[1, inf)", integer=True, equation="Eq. 12", sweep="n_bumpers"),
     Parameter("k_w", "N m-1", "moat wall stiffness k_w behind the crushed bumpers", 1.5e9,
-              "(0, inf)", equation="Eq. 14", sweep="wall_k"),
+              "(0, inf)", equation="Eq. 14", sweep="wall_k", plausible="[1e6, 1e13]"),
     # 0.45: the paper's rubber, section 3.4 (SPEC decision).
     Parameter("cor", "1", "coefficient of restitution of the bumper impacts", 0.45, "(0, 1]",
               equation="Eq. 9", sweep="cor"),

@@ -16,9 +16,9 @@ DEFAULT_ZETA = 0.05
 
 PARAMETERS = Declaration(
     Parameter("k1", "N m-1", "isolator initial stiffness K1", 200e6, "(0, inf)",
-              equation="SPEC section 1", sweep="k1"),
+              equation="SPEC section 1", sweep="k1", plausible="[1e5, 1e11]"),
     Parameter("k2", "N m-1", "isolator post-yield stiffness K2", 25e6, "(0, inf)",
-              equation="SPEC section 1", sweep="k2"),
+              equation="SPEC section 1", sweep="k2", plausible="[1e5, 1e11]"),
     Parameter("fy_ratio", "1", "isolator yield force Fy as a fraction of the building's weight",
               0.1, "(0, inf)", equation="SPEC section 1", sweep="fy_ratio"),
 )

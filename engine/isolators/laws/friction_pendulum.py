@@ -19,7 +19,7 @@ DEFAULT_ZETA = 0.0
 
 PARAMETERS = Declaration(
     Parameter("radius", "m", "radius R of the concave sliding surface", REQUIRED, "(0, inf)",
-              equation="SPEC section 7", sweep="radius"),
+              equation="SPEC section 7", sweep="radius", plausible="[0.2, 20]"),
     Parameter("mu_slow", "1", "friction coefficient at low sliding speed", REQUIRED, "(0, 1)",
               equation="Constantinou et al. 1990", sweep="mu_slow"),
     Parameter("mu_fast", "1", "friction coefficient at high sliding speed", REQUIRED, "(0, 1)",
@@ -28,7 +28,7 @@ PARAMETERS = Declaration(
               "speed", REQUIRED, "[0, inf)", equation="Constantinou et al. 1990", sweep="rate"),
     Parameter("yield_disp", "m", "sliding displacement at which the pre-slip spring reaches "
               "mu_fast W (sets k_0 = mu_fast W / yield_disp)", 5e-4, "(0, inf)",
-              equation="SPEC section 7", sweep="yield_disp"),
+              equation="SPEC section 7", sweep="yield_disp", plausible="[1e-5, 0.05]"),
 )
 
 
