@@ -79,6 +79,7 @@ class Recipe:
                            help="dask.distributed scheduler address to run on instead")
             p.add_argument("--dt", type=float, default=None, metavar="S",
                            help="integration step in s (default: the engine's, 0.5 ms)")
+            add_text_record_options(p)
             p.add_argument("--building", action="append", default=[],
                            metavar="FILE|NAME=VALUE",
                            help="the building: a TOML or JSON file (see examples/) and/or "
@@ -133,6 +134,7 @@ class Recipe:
         from pipeline.archive import to_netcdf
         from pipeline.building_file import building_from
         from pipeline.errors import SweepError
+        from pipeline.records.lookup import read_text_records
         from pipeline.writing import KEY_ATTRIBUTE, Staged, check_out, guard
 
         archive, stem = outputs(args.out, self.name, quick=args.quick)
@@ -150,6 +152,9 @@ class Recipe:
             args.building = building_from(args.building)  # a bad building: before compute
             key = self.configuration_key(args)
             guard(archive, key, args.force)
+            if self.records is not None:  # text files read now: a bad one before compute
+                args.records = read_text_records(args.records, args.record_units,
+                                                 args.record_dt, args.records_dir)
             args.work_dir = archive.with_name(archive.name + ".work")
             ds = self.compute(args)
             ds.attrs.update(recipe=self.name, paper_figure=self.figure, quick=int(args.quick),
@@ -217,6 +222,18 @@ def outputs(out: Path, name: str, archives=(".nc",), quick: bool = False) -> tup
     if quick:
         archive = archive.parent / "quick" / archive.name
     return archive, archive.with_suffix("")
+
+
+def add_text_record_options(p: argparse.ArgumentParser) -> None:
+    """--record-units and --record-dt: what a one- or two-column text record in --records does
+    not say (an AT2 file and a named record state their own)."""
+    from pipeline.records.record import UNITS_HELP
+
+    p.add_argument("--record-units", metavar="UNITS",
+                   help=f"acceleration units of the text records in --records ({UNITS_HELP})")
+    p.add_argument("--record-dt", type=float, metavar="S",
+                   help="sampling step of one-column text records, s (two columns: the "
+                        "times give it)")
 
 
 def accept_negative_numbers(parser: argparse.ArgumentParser) -> None:

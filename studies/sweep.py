@@ -21,7 +21,7 @@ from engine.impact import M_EFF
 from engine.units import CM, KN_PER_MM
 from pipeline.grid import BASELINE, IMPACT_LAWS, ISOLATOR_PARAMS, PARAMS, declarations
 
-from ._recipe import accept_negative_numbers, outputs
+from ._recipe import accept_negative_numbers, add_text_record_options, outputs
 
 # Units the command line also takes in the paper's units, by the SI unit declared: the option
 # --NAME-<suffix> takes values in that unit.
@@ -96,6 +96,7 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--records-dir", metavar="DIR",
                    help="folder of AT2 files searched for the paper's records "
                         "(default: $BUMPERS_RECORDS_DIR)")
+    add_text_record_options(p)
     add_parameters(p)
     p.add_argument("--impact", default="bumper",
                    choices=IMPACT_LAWS,
@@ -182,6 +183,8 @@ def main(argv: list[str] | None = None) -> int:
     import pipeline
     from pipeline.building_file import building_from
     from pipeline.errors import Interrupted, SweepError
+    from pipeline.records import RecordError
+    from pipeline.records.lookup import read_text_records
 
     from ._recipe import announce_stand_ins
 
@@ -191,7 +194,8 @@ def main(argv: list[str] | None = None) -> int:
         archive, _ = outputs(args.out, "sweep", archives=(".nc", ".zarr"))
         with announce_stand_ins():
             ds = pipeline.sweep(
-                records=args.records,
+                records=read_text_records(args.records, args.record_units, args.record_dt,
+                                          args.records_dir),
                 **parameters(args),
                 impact=args.impact, dt=args.dt, workers=args.workers,
                 scheduler=args.scheduler, out=archive, baseline=args.baseline,
@@ -199,7 +203,7 @@ def main(argv: list[str] | None = None) -> int:
                 m_eff=args.m_eff if args.m_eff_t is None else args.m_eff_t * 1e3,
                 batch_size=args.batch_size, records_dir=args.records_dir, quiet=args.quiet,
                 force=args.force)
-    except (SweepError, engine.EngineError) as err:
+    except (SweepError, RecordError, engine.EngineError) as err:
         print("error: " + " ".join(str(err).split()), file=sys.stderr)  # one line
         return 2
     except Interrupted as stop:

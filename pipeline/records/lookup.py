@@ -42,9 +42,7 @@ def load_record(name_or_path: str | os.PathLike,
     if scaled and not Path(text).exists():
         record = load_record(scaled["record"], records_dir, units, dt)
         return record.scaled(scale_factor(scaled["factor"], scaled["record"]))
-    is_path = isinstance(name_or_path, os.PathLike) or os.sep in text \
-        or Path(text).suffix.lower() in (".at2", *TEXT_SUFFIXES) or Path(text).is_file()
-    if is_path:
+    if _is_path(name_or_path):
         path = Path(text)
         directory = records_directory(records_dir)
         if not path.exists() and directory is not None and (directory / path).exists():
@@ -56,7 +54,8 @@ def load_record(name_or_path: str | os.PathLike,
             return read_at2(path)
         if units is None:
             raise RecordError(f"{path}: a text record needs its acceleration units "
-                              f"({UNITS_HELP}): pass units (and dt in s for one column)")
+                              f"({UNITS_HELP}): pass units (and dt in s for one column); on "
+                              "the command line --record-units (and --record-dt)")
         return read_text(path, units, dt)
     if units is not None or dt is not None:
         raise RecordError(f"{text!r}: units/dt apply to text files only, not to record names")
@@ -85,6 +84,35 @@ def load_record(name_or_path: str | os.PathLike,
     hint = f"; did you mean {', '.join(names.get(c, c) for c in close)}?" \
         if close else "; run `python -m pipeline.records` for the list"
     raise RecordError(f"{text!r}: unknown record name{hint}")
+
+
+def _is_path(name_or_path) -> bool:
+    """Whether a record is given by a file path rather than a name."""
+    text = os.fspath(name_or_path)
+    return isinstance(name_or_path, os.PathLike) or os.sep in text \
+        or Path(text).suffix.lower() in (".at2", *TEXT_SUFFIXES) or Path(text).is_file()
+
+
+def is_text_record(item) -> bool:
+    """Whether a --records item (optionally `*factor`-scaled) is a text file's path."""
+    if not isinstance(item, (str, os.PathLike)):
+        return False
+    scaled = None if isinstance(item, os.PathLike) else _SCALED_RE.match(str(item))
+    if scaled and not Path(item).exists():
+        item = scaled["record"]
+    return _is_path(item) and Path(os.fspath(item)).suffix.lower() != ".at2"
+
+
+def read_text_records(records: list, units: str | None, dt: float | None,
+                      records_dir=None) -> list:
+    """The --records items with every text file read (load_record) with the acceleration
+    `units` and step `dt` (s) the command line gives; names and AT2 files stay as they are.
+    RecordError when units or dt are given and no item is a text file."""
+    if (units is not None or dt is not None) and not any(map(is_text_record, records)):
+        raise RecordError("--record-units and --record-dt apply to text records, and "
+                          "--records names none (AT2 files and names state their own)")
+    return [load_record(item, records_dir, units, dt) if is_text_record(item) else item
+            for item in records]
 
 
 def resolve_records(records, records_dir=None) -> tuple[list[Record], list[str]]:

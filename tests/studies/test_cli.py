@@ -134,3 +134,39 @@ def test_unguarded_script_with_worker_processes(tmp_path):
 
     local = pipeline.sweep(["pacoima"], gap=[0.2, 0.3], dt=1e-3, quiet=True)
     assert lines[0] == "peaks " + repr(local.peak_isolator_disp.values.tolist())
+
+
+def _text_records(folder: Path) -> None:
+    """rec1.txt (one column, g, 0.01 s) and rec2.txt (time, g): the same 10 s pulse."""
+    t = np.arange(0.0, 10.0, 0.01)
+    accel = 0.3 * np.sin(2 * np.pi * t / 1.5) * np.sin(np.pi * t / 10) ** 2
+    folder.mkdir(exist_ok=True)
+    np.savetxt(folder / "rec1.txt", accel)
+    np.savetxt(folder / "rec2.txt", np.column_stack([t, accel]))
+
+
+def test_text_records_run_from_the_command_line(tmp_path, capsys):
+    _text_records(tmp_path / "recs")
+    common = ["--records-dir", str(tmp_path / "recs"), "--gap-cm", "10", "--quiet"]
+    assert sweep_cli.main(["--records", "rec1.txt", "rec2.txt", "--record-units", "g",
+                           "--record-dt", "0.01", *common, "--out", str(tmp_path)]) == 0
+    with xr.open_dataset(tmp_path / "sweep.nc") as ds:
+        assert list(ds.record.values) == ["rec1", "rec2"]
+        np.testing.assert_allclose(ds.record_pga, 0.3 * 9.81 * np.max(np.abs(
+            np.sin(2 * np.pi * np.arange(0, 10, 0.01) / 1.5)
+            * np.sin(np.pi * np.arange(0, 10, 0.01) / 10) ** 2)), rtol=1e-12)
+        # one column or two, the same record: the same numbers
+        np.testing.assert_array_equal(ds.peak_total_accel[0], ds.peak_total_accel[1])
+    capsys.readouterr()
+    assert sweep_cli.main(["--records", "rec1.txt", *common, "--out", str(tmp_path / "x")]) == 2
+    err = capsys.readouterr().err
+    assert "--record-units" in err and len(err.splitlines()) == 1
+    assert sweep_cli.main(["--records", "pacoima", "--record-units", "g", *common,
+                           "--out", str(tmp_path / "x")]) == 2
+    assert "apply to text records" in capsys.readouterr().err
+    strain = importlib.import_module("studies.strain")
+    assert strain.main(["--quick", "--records", str(tmp_path / "recs" / "rec2.txt"),
+                        "--record-units", "g", "--dt", "1e-3", "--quiet",
+                        "--out", str(tmp_path / "fig")]) == 0
+    with xr.open_dataset(tmp_path / "fig" / "quick" / "strain.nc") as ds:
+        assert list(ds.record.values) == ["rec2"]
