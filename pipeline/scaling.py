@@ -18,10 +18,11 @@ reach D, are listed in `excluded` with the reason, never silently kept.
 from __future__ import annotations
 
 import math
-import sys
 from dataclasses import dataclass
 
 import numpy as np
+
+from .execute.progress import Progress
 
 FIRST_PASS = 33  # geometric grid over the limits: neighbours ~10% apart for limits 0.2-5
 REFINE = 17  # trial factors per refining pass, inside the current bracket
@@ -85,11 +86,11 @@ def scale_to_displacement(records, displacement: float = DEFAULT_DISPLACEMENT,
         raise SweepError(str(err)) from err
 
     kept, kept_names, factors, reached, excluded = [], [], [], [], []
-    for i, (rec, name) in enumerate(zip(recs, names, strict=True)):
-        if not quiet:
-            print(f"\rscaling: {i + 1}/{len(recs)} records to {displacement:g} m",
-                  end="", file=sys.stderr, flush=True)
+    progress = Progress(len(recs), quiet=quiet, label="scaling",
+                        unit=f"records scaled to {displacement:g} m")
+    for rec, name in zip(recs, names, strict=True):
         factor, reason = _search(rec, displacement, low, high, dt, building)
+        progress.advance(1)
         if reason is not None:
             excluded.append((name, factor, reason))
             continue
@@ -104,8 +105,7 @@ def scale_to_displacement(records, displacement: float = DEFAULT_DISPLACEMENT,
         kept_names.append(_scaled_name(name, factor))
         factors.append(factor)
         reached.append(peak)
-    if not quiet:
-        print(file=sys.stderr)
+    progress.close()
     return ScaledSuite(kept, kept_names, np.array(factors), np.array(reached), excluded,
                        float(displacement), (low, high))
 

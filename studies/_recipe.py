@@ -110,7 +110,7 @@ class Recipe:
     def main(self, argv=None) -> int:
         args = self.parser().parse_args(argv)
         from engine import EngineError
-        from pipeline.errors import Interrupted, SweepError
+        from pipeline.errors import SweepError
         from pipeline.records import RecordError
 
         try:
@@ -120,12 +120,9 @@ class Recipe:
             # Bad input: one line. Anything else is a bug and keeps its traceback.
             print(f"{self.name}: error: {' '.join(str(err).split())}", file=sys.stderr)
             return 2
-        except Interrupted as stop:
-            print(f"{self.name}: {stop}; run the same command again to resume",
+        except KeyboardInterrupt as stop:
+            print(f"{self.name}: {interrupted(stop, getattr(args, 'work_dir', None))}",
                   file=sys.stderr)
-            return 130
-        except KeyboardInterrupt:
-            print(f"{self.name}: interrupted", file=sys.stderr)
             return 130
 
     def _run(self, args) -> int:
@@ -222,6 +219,23 @@ def outputs(out: Path, name: str, archives=(".nc",), quick: bool = False) -> tup
     if quick:
         archive = archive.parent / "quick" / archive.name
     return archive, archive.with_suffix("")
+
+
+def interrupted(stop: KeyboardInterrupt, work_dir) -> str:
+    """What a Ctrl-C leaves: the simulations kept and where, and how to go on. A stop inside a
+    sweep (pipeline.errors.Interrupted) counts its own; anywhere else (resolving records,
+    scaling, between sweeps) the work folder's content is counted."""
+    from pipeline.errors import Interrupted
+    from pipeline.execute.netcdf_store import WorkFolder
+
+    if isinstance(stop, Interrupted):
+        return f"{stop}; run the same command again to resume"
+    kept = WorkFolder(work_dir).count() if work_dir is not None else 0
+    if kept:
+        return (f"interrupted: {kept} finished simulations kept in {work_dir}; run the same "
+                "command again to resume")
+    return ("interrupted before any simulation finished: nothing to keep; run the same "
+            "command again to start over")
 
 
 def add_text_record_options(p: argparse.ArgumentParser) -> None:

@@ -21,7 +21,7 @@ from engine.impact import M_EFF
 from engine.units import CM, KN_PER_MM
 from pipeline.grid import BASELINE, IMPACT_LAWS, ISOLATOR_PARAMS, PARAMS, declarations
 
-from ._recipe import accept_negative_numbers, add_text_record_options, outputs
+from ._recipe import accept_negative_numbers, add_text_record_options, interrupted, outputs
 
 # Units the command line also takes in the paper's units, by the SI unit declared: the option
 # --NAME-<suffix> takes values in that unit.
@@ -182,12 +182,13 @@ def main(argv: list[str] | None = None) -> int:
     import engine
     import pipeline
     from pipeline.building_file import building_from
-    from pipeline.errors import Interrupted, SweepError
+    from pipeline.errors import SweepError
     from pipeline.records import RecordError
     from pipeline.records.lookup import read_text_records
 
     from ._recipe import announce_stand_ins
 
+    archive = None
     try:
         damping = [] if args.damping is None else [f"damping={args.damping}"]
         building = building_from([*args.building, *damping])
@@ -206,11 +207,10 @@ def main(argv: list[str] | None = None) -> int:
     except (SweepError, RecordError, engine.EngineError) as err:
         print("error: " + " ".join(str(err).split()), file=sys.stderr)  # one line
         return 2
-    except Interrupted as stop:
-        print(f"sweep: {stop}; run the same command again to resume", file=sys.stderr)
-        return 130
-    except KeyboardInterrupt:
-        print("sweep: interrupted", file=sys.stderr)
+    except KeyboardInterrupt as stop:
+        work = None if archive is None or archive.suffix == ".zarr" \
+            else archive.with_name(archive.name + ".work")
+        print(f"sweep: {interrupted(stop, work)}", file=sys.stderr)
         return 130
     dims = ", ".join(f"{d} {n}" for d, n in ds.sizes.items())
     print(f"wrote {archive} ({dims})")

@@ -50,6 +50,17 @@ class WorkFolder:
                                                     for name, value in peaks.items()}
         return found
 
+    def count(self) -> int:
+        """Simulations kept (members of every readable batch file)."""
+        kept = 0
+        for file in self.path.glob("*.npz"):
+            try:
+                with np.load(file, allow_pickle=False) as data:
+                    kept += len(data["members"])
+            except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
+                continue
+        return kept
+
     def save(self, key: str, context: str, members: np.ndarray,
              peaks: dict[str, np.ndarray]):
         """Write atomically: a batch file is complete or absent."""

@@ -10,11 +10,16 @@ import time
 class Progress:
     """'done/total simulations, elapsed, time left' on stderr, once a run passes `delay` s.
 
-    Thread-safe: dask reports running batches from the client's event-loop thread.
+    On a terminal one line redrawn in place; in a log file (stderr not a terminal) a whole
+    line every `every` s, never a carriage return. No time left is guessed before something
+    has finished in this run: until then the kernel may still be compiling. label: what is
+    running ("sweep", "scaling"); unit: what total counts. Thread-safe: dask reports running
+    batches from the client's event-loop thread.
     """
 
     def __init__(self, total: int, done: int = 0, quiet: bool = False, stream=None,
-                 delay: float = 2.0):
+                 delay: float = 2.0, label: str = "sweep", unit: str = "simulations"):
+        self.label, self.unit = label, unit
         self.total, self.done = total, done
         self.start_done = done
         self.partial: dict = {}  # running batch -> simulations' worth done
@@ -60,10 +65,12 @@ class Progress:
             return
         done = self.done + sum(self.partial.values())
         rate = (done - self.start_done) / elapsed
-        left = (self.total - done) / rate if rate > 0 else math.nan
-        line = (f"sweep: {100 * done / max(self.total, 1):3.0f}% ({int(self.done)} of "
-                f"{self.total} simulations finished), {_clock(elapsed)} elapsed, "
-                f"~{_clock(left)} left")
+        if self.done > self.start_done and rate > 0:
+            left = f"~{_clock((self.total - done) / rate)} left"
+        else:
+            left = "time left: once the first finishes"
+        line = (f"{self.label}: {100 * done / max(self.total, 1):3.0f}% ({int(self.done)} of "
+                f"{self.total} {self.unit} finished), {_clock(elapsed)} elapsed, {left}")
         if final and line == self.last_line and not self.tty:
             return  # already said
         self.last, self.last_line = now, line

@@ -414,6 +414,11 @@ def test_progress_bar_shows_counts_and_time_left():
     progress.running("batch", 1.4)
     progress.close()
     assert " 14% (0 of 10 simulations finished)" in partial.getvalue()
+    # no time left is guessed before anything finished (the kernel may be compiling)
+    assert "time left: once the first finishes" in partial.getvalue()
+    assert "~" not in partial.getvalue()
+    # a log file gets whole lines, never a carriage return
+    assert "\r" not in text + partial.getvalue() and text.endswith("\n")
     quiet = io.StringIO()
     progress_module.Progress(total=10, quiet=True, stream=quiet, delay=0.0).close()
     assert quiet.getvalue() == ""

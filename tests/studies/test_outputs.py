@@ -117,3 +117,23 @@ def test_sweep_archive_replaced_only_by_the_same_sweep(tmp_path):
     pipeline.sweep(RECORDS, **{**small, "gap": [0.08, 0.14]}, force=True)
     with xr.open_dataset(out) as ds:
         np.testing.assert_array_equal(ds.gap, [0.08, 0.14])
+
+
+def test_ctrl_c_anywhere_says_what_is_kept_and_how_to_resume(tmp_path, capsys):
+    def stopped_early(args):
+        raise KeyboardInterrupt
+
+    def stopped_after_a_sweep(args):
+        pipeline.sweep(RECORDS, gap=[0.08, 0.12], thickness=0.03, quiet=True,
+                       work_dir=args.work_dir)
+        raise KeyboardInterrupt
+
+    out = ["--out", str(tmp_path), "--quiet"]
+    assert dataclasses.replace(TOY, compute=stopped_early).main(out) == 130
+    assert capsys.readouterr().err == ("toy: interrupted before any simulation finished: "
+                                       "nothing to keep; run the same command again to start "
+                                       "over\n")
+    assert dataclasses.replace(TOY, compute=stopped_after_a_sweep).main(out) == 130
+    assert capsys.readouterr().err == (f"toy: interrupted: 4 finished simulations kept in "
+                                       f"{tmp_path / 'toy.nc.work'}; run the same command "
+                                       "again to resume\n")
