@@ -3,7 +3,7 @@ cm, g and kN: engine.units)."""
 from __future__ import annotations
 
 import json
-from pathlib import Path
+import re
 
 import matplotlib
 import numpy as np
@@ -11,7 +11,7 @@ import numpy as np
 matplotlib.use("Agg")  # recipes draw files, never windows
 import matplotlib.pyplot as plt  # noqa: E402
 
-from pipeline.records import paper_label  # noqa: E402
+from pipeline.records import PAPER_KEYS, paper_label  # noqa: E402
 
 
 def ordinal(n: int) -> str:
@@ -47,18 +47,86 @@ plt.rcParams.update({
 
 
 def record_label(ds, record: str) -> str:
-    """Readable name of a record coordinate value; a stand-in names the record used."""
-    label = paper_label(record)
-    if ds.attrs.get(f"record_{record}_found_in") == "stand-in":
+    """Readable name of a record coordinate value that also shows the key the command line and
+    the archive use: "San Fernando 1971 (pacoima)"; a scaled record with its factor
+    ("San Fernando 1971 (pacoima) ×1.5"); a stand-in names the record used, on a second
+    line."""
+    label = key_label(record.split("*")[0]) + scale_text(record_scale(ds, record))
+    if found_in(ds, record) == "stand-in":
         used = {r["name"]: r.get("record_name", "?") for r in json.loads(ds.attrs["records"])}
         label += f"\n[stand-in: {used.get(record, '?')}]"
     return label
 
 
-def save_figure(fig, stem: Path) -> list[Path]:
-    """Write stem.png and stem.pdf; return the paths."""
-    paths = [Path(f"{stem}.png"), Path(f"{stem}.pdf")]
-    for path in paths:
-        fig.savefig(path)
-    plt.close(fig)
-    return paths
+def key_label(key: str) -> str:
+    """A paper record's event and year with its key ("Kobe 1995 (kobe)"); any other record's
+    name (a library name, which is its key) as is."""
+    if key not in PAPER_KEYS:
+        return key
+    # paper_label reads "Event Year (station component)"; the key names the station already
+    return f"{paper_label(key).split(' (')[0]} ({key})"
+
+
+def record_scale(ds, record: str) -> float:
+    """The factor a record was scaled by: the archive's record_scale, else the ``*factor``
+    parts of its name (``pacoima*1.5``), else 1."""
+    if "record_scale" in ds:
+        return float(per_record(ds, "record_scale", record))
+    scale = 1.0
+    for factor in record.split("*")[1:]:
+        try:
+            scale *= float(factor)
+        except ValueError:  # not a factor after all: a name with a '*' in it
+            return 1.0
+    return scale
+
+
+def per_record(ds, name: str, record: str):
+    """A record's value of a record coordinate; one stored without the record dimension is
+    every record's (pipeline.histories.concat_records keeps values all records share so)."""
+    value = ds[name]
+    return value.sel(record=record) if "record" in value.dims else value
+
+
+def scale_text(scale: float) -> str:
+    """The suffix that marks a scaled record (" ×1.5"); "" for an unscaled one."""
+    return "" if scale == 1 else f" ×{scale:g}"
+
+
+def found_in(ds, record: str) -> str | None:
+    """Where a record came from (records_dir, built-in, library, stand-in, given), from the
+    archive's record_found_in coordinate or its record_<name>_found_in attribute."""
+    if "record_found_in" in ds:
+        return str(per_record(ds, "record_found_in", record).values)
+    # attribute names keep letters, digits and '_' only (pipeline.provenance)
+    return ds.attrs.get(f"record_{re.sub(r'[^A-Za-z0-9_]', '_', record)}_found_in")
+
+
+def building_text(ds) -> str:
+    """Which building an archive ran: "the paper's 4-story isolated building", or "an
+    isolated building of 8 stories (--building)" when its building_* attributes are not the
+    paper's."""
+    n = ds.sizes.get("story", len(np.atleast_1d(ds.attrs.get("building_masses", []))) - 1)
+    return (f"the paper's {n}-story isolated building" if is_paper_building(ds)
+            else f"an isolated building of {n} stories (--building)")
+
+
+def is_paper_building(ds) -> bool:
+    """Whether every building_* attribute of an archive is the paper's building's."""
+    from engine import Building
+    from pipeline.provenance import building_attributes
+
+    for name, value in building_attributes(Building()).items():
+        stored = ds.attrs.get(name)
+        if isinstance(value, str) or isinstance(stored, str):
+            same = stored == value
+        else:
+            same = stored is not None and np.array_equal(np.asarray(stored), np.asarray(value))
+        if not same:
+            return False
+    return True
+
+
+def records_text(n: int) -> str:
+    """'1 record' or '4 records'."""
+    return f"{n} record{'' if n == 1 else 's'}"

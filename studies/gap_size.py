@@ -7,13 +7,23 @@ linear viscoelastic wall at the full gap. Amplification = peak with bumpers / pe
 """
 from __future__ import annotations
 
+import textwrap
+
 import numpy as np
 
 from engine.units import CM
 
 from ._paper import N_BUMPERS, THICKNESS
 from ._peaks_vs_gap import gaps, ranges
-from ._plot import floor_labels, plt, record_label, shown, story_labels
+from ._plot import (
+    building_text,
+    floor_labels,
+    plt,
+    record_label,
+    records_text,
+    shown,
+    story_labels,
+)
 from ._recipe import Recipe, Verdict, sweep_options
 
 
@@ -48,9 +58,24 @@ def plot(ds):
     axes[1, 4].axis("off")
     handles, labels = axes[0, 0].get_legend_handles_labels()
     axes[1, 4].legend(handles, labels, loc="center", frameon=False)
-    fig.suptitle("Figs. 14-15: bumpers (4 x 5 cm, gap - 5 cm) / no bumpers (bare wall)")
+    width = int(15 * fig.get_figwidth())  # characters per line at the title's size
+    fig.suptitle("\n".join(textwrap.fill(line, width) for line in title_lines(ds)),
+                 fontsize=9)
     fig.tight_layout()
     return fig
+
+
+def title_lines(ds) -> list[str]:
+    """What the figure shows, for a reader without the paper: the ratio plotted, against what,
+    for which bumpers, building and records; last, the paper's figures."""
+    n, t = int(ds.n_bumpers), float(ds.thickness) / CM
+    return ["Amplification by rubber bumpers of the peak floor accelerations (top) and "
+            "interstory deflections (bottom), against the seismic gap",
+            f"amplification = peak with {n} bumpers of {t:g} cm per side (clear gap = gap "
+            f"\u2212 {t:g} cm) / peak against the bare moat wall; above 1, bumpers make "
+            "it worse",
+            f"{building_text(ds)}, {records_text(ds.sizes['record'])} (legend); "
+            "paper Figs. 14-15"]
 
 
 HELPED_RECORDS = ("sylmar_converter", "pacoima")  # where the paper sees bumpers help (5.1)

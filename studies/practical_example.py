@@ -270,7 +270,7 @@ def _plot_peaks(ax_accel, ax_drift, ds, record, fig_number):
     ax_drift.set_ylabel("Story")
     for ax in (ax_accel, ax_drift):
         ax.set_xlim(left=0)
-    name = record_label(ds, record).split(" (")[0].split("\n")[0]
+    name = record_label(ds, record).split("\n")[0]  # a stand-in's note: in Figs. 9-11's titles
     ax_accel.set_title(f"Fig. {fig_number}: {name}", loc="left")
 
 

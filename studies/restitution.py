@@ -119,34 +119,53 @@ def impact_sequence(ds, record, args) -> dict:
     }
 
 
+GAP_LINESTYLES = ("-", "--", ":", "-.")  # per gap, widest first: solid for the widest
+NEUTRAL = "0.35"  # legend colour of a line style that applies to every level
+
+
+def gap_styles(ds) -> dict[float, dict]:
+    """The one style table of the figure: the line style of each gap (m), widest solid, used
+    by the plotted lines and by their legend entries alike."""
+    widest_first = sorted(ds.gap.values.tolist(), reverse=True)
+    return {gap: {"ls": GAP_LINESTYLES[k % len(GAP_LINESTYLES)], "marker": "o"}
+            for k, gap in enumerate(widest_first)}
+
+
+def gap_legend_label(ds, gap: float) -> str:
+    """A gap's legend entry: "gap 29.5 cm: 0.9 × unconstrained peak"."""
+    if "gap_source" not in ds.coords:
+        return f"gap {gap / CM:.1f} cm"
+    # the archive writes "0.9 x ..."; figures write the multiplication sign
+    return f"gap {gap / CM:.1f} cm: {ds.gap_source.sel(gap=gap).item().replace(' x ', ' × ')}"
+
+
 def plot(ds):
-    fig, (left, right) = plt.subplots(1, 2, figsize=(7.5, 3.4))
+    fig, (left, right) = plt.subplots(1, 2, figsize=(7.5, 3.8))
     record = str(ds.record.values[0])
     cor = ds.cor.values
     accel = ds.peak_total_accel.sel(record=record) / G
     drift = ds.peak_interstory_drift.sel(record=record) / CM
-    for k, gap in enumerate(ds.gap.values):
-        style = {"ls": "-" if k == ds.sizes["gap"] - 1 else "--", "marker": "o"}
-        left.set_prop_cycle(None)
-        right.set_prop_cycle(None)
-        for floor, label in zip(ds.floor.values, floor_labels(ds.sizes["floor"]), strict=True):
-            left.plot(cor, accel.sel(floor=floor, gap=gap), label=label if k == 0 else None,
-                      **style)
-        for story, label in zip(ds.story.values, story_labels(ds.sizes["story"]), strict=True):
-            right.plot(cor, drift.sel(story=story, gap=gap), label=label if k == 0 else None,
-                       **style)
-    left.set_ylabel("Peak floor acceleration (g)")
-    right.set_ylabel("Peak interstory deflection (cm)")
-    for ax in (left, right):
+    styles = gap_styles(ds)
+    panels = [(left, accel, "floor", floor_labels(ds.sizes["floor"])),
+              (right, drift, "story", story_labels(ds.sizes["story"]))]
+    for ax, peaks, dim, labels in panels:
+        for i, (level, label) in enumerate(zip(ds[dim].values, labels, strict=True)):
+            for k, (gap, style) in enumerate(styles.items()):
+                # one colour per level; its legend entry is its first (widest gap's) line
+                ax.plot(cor, peaks.sel({dim: level, "gap": gap}), color=f"C{i}",
+                        label=label if k == 0 else "_nolegend_", **style)
+        ax.legend(loc="upper center", ncol=2, handlelength=3)
         ax.set_xlabel("Coefficient of restitution of the bumpers")
         ax.set_ylim(bottom=0, top=ax.get_ylim()[1] * 1.35)
-        ax.legend(loc="upper center", ncol=2)
-    gaps = " and ".join(f"{g / CM:.1f} cm ({'solid' if k == ds.sizes['gap'] - 1 else 'dashed'})"
-                        for k, g in enumerate(ds.gap.values))
+    left.set_ylabel("Peak floor acceleration (g)")
+    right.set_ylabel("Peak interstory deflection (cm)")
+    fig.legend(handles=[plt.Line2D([], [], color=NEUTRAL, label=gap_legend_label(ds, gap),
+                                   **style) for gap, style in styles.items()],
+               loc="lower center", ncol=len(styles), handlelength=4, frameon=False)
     fig.suptitle(f"Fig. 22: peak responses vs the bumpers' coefficient of restitution\n"
-                 f"{record_label(ds, record)}, seismic gaps {gaps}, "
-                 f"{float(ds.thickness) / CM:g} cm bumpers")
-    fig.tight_layout()
+                 f"{record_label(ds, record)}, {float(ds.thickness) / CM:g} cm bumpers, "
+                 f"seismic gaps {' and '.join(f'{g / CM:.1f}' for g in sorted(styles))} cm")
+    fig.tight_layout(rect=(0, 0.3 / fig.get_figheight(), 1, 1))  # the gaps' legend below
     return fig
 
 

@@ -18,6 +18,11 @@ of records whose bumpers are crushed beyond delta_u; per record, the scale facto
 the FEMA P695 pulse flag and the spectral displacement at the isolated building's period
 (pipeline.intensity). The paper's conclusions 5.1-5.6 and 6 are each answered with the
 fraction of records for which they hold.
+
+The figure's maps colour each cell by the share of records helped minus the share harmed: a
+record that touches no wall (no impact with bumpers nor without, told by n_impacts and
+baseline_n_impacts) or whose peak is exactly the same both ways counts as neither, and a cell
+where no record touches the wall is hatched grey, "no contact".
 """
 from __future__ import annotations
 
@@ -192,24 +197,27 @@ def plot(ds):
         ax.set_xlabel("gap / D")
     axes[0, 0].set_ylabel("amplification (bumpers / none)")
     axes[0, 0].legend()
-    helped = ds.fraction_helped.sel(response="floor_accel")
+    net = net_helped(ds, "floor_accel")
     k_paper = WALL_K if WALL_K in ds.wall_k else float(ds.wall_k[0])
-    maps = [(axes[1, 0], helped.sel(wall_k=k_paper).transpose("n_bumpers", "gap_ratio"),
+    maps = [(axes[1, 0], net.sel(wall_k=k_paper).transpose("n_bumpers", "gap_ratio"),
              [str(n) for n in ds.n_bumpers.values], "bumpers per side",
              f"$k_w$ {k_paper / KN_PER_MM:g} kN/mm"),
-            (axes[1, 1], helped.sel(n_bumpers=n_paper).transpose("wall_k", "gap_ratio"),
+            (axes[1, 1], net.sel(n_bumpers=n_paper).transpose("wall_k", "gap_ratio"),
              [f"{k / KN_PER_MM:g}" for k in ds.wall_k.values], "$k_w$ (kN/mm)",
              f"{n_paper} bumpers")]
     for ax, field, labels, ylabel, fixed in maps:
-        mesh = ax.imshow(field.values, origin="lower", aspect="auto", vmin=0, vmax=1,
-                         cmap="RdYlGn", extent=(ratio[0] - 0.05, ratio[-1] + 0.05, -0.5,
-                                                len(labels) - 0.5))
+        mesh = draw_map(ax, ratio, field.values)
         ax.set_yticks(range(len(labels)), labels)
         ax.set_ylabel(ylabel)
         ax.set_xlabel("gap / D")
-        ax.set_title(f"fraction of records helped\n(largest floor acceleration; {fixed})")
-        ax.grid(False)
-    fig.colorbar(mesh, ax=axes[1, :2], shrink=0.8)
+        ax.set_title(f"share of records helped minus share harmed\n(largest floor "
+                     f"acceleration; {fixed})")
+    bar = fig.colorbar(mesh, ax=axes[1, :2], shrink=0.8, ticks=[-1, -0.5, 0, 0.5, 1])
+    bar.ax.set_yticklabels(["−1 all harmed", "−0.5", "0 neither", "0.5",
+                            "1 all helped"])
+    # below the colour bar, where it covers no cell
+    bar.ax.legend(handles=[no_contact_handle()], loc="upper center",
+                  bbox_to_anchor=(0.5, -0.04), frameon=False, handlelength=1.5)
     name, rho, per_record = explaining_property(ds)
     ax = axes[1, 2]
     x = ds[name].values * (1 / G if name.endswith("pga") else 1)
@@ -223,6 +231,51 @@ def plot(ds):
                  f"{ds.attrs['design_displacement'] / CM:g} cm: bumpers ({THICKNESS / CM:g} cm)"
                  " against the bare wall")
     return fig
+
+
+def contact(ds):
+    """(record, gap_ratio, n_bumpers, wall_k): whether the building touches the wall at all,
+    with bumpers or without them (the bare wall). Told by the impact counts, not by an
+    amplification of 1, which an exact tie with contact also gives."""
+    return (ds.n_impacts > 0) | (ds.baseline_n_impacts > 0)
+
+
+def net_helped(ds, response: str):
+    """(gap_ratio, n_bumpers, wall_k) share of the records helped minus share harmed, NaN
+    where no record touches the wall. A record that does not touch, or whose response is
+    exactly the same with and without bumpers, counts as neither."""
+    touches = contact(ds)
+    amp = ds.amplification.sel(response=response)
+    helped = (touches & (amp < 1)).mean("record")
+    harmed = (touches & (amp > 1)).mean("record")
+    return (helped - harmed).where(touches.any("record"))
+
+
+NO_CONTACT = {"facecolor": "0.88", "edgecolor": "0.55", "hatch": "////", "lw": 0}
+
+
+def no_contact_handle():
+    """The legend handle of the cells where no record touches the wall."""
+    from matplotlib.patches import Patch
+
+    return Patch(**NO_CONTACT, label="no contact")
+
+
+def draw_map(ax, ratio, values):
+    """Cells of `values` (rows, gap ratios) coloured from all harmed (-1, red) through
+    neither (0, yellow) to all helped (+1, green); NaN cells (no contact) grey and hatched.
+    Returns the image, for the colour bar."""
+    from matplotlib.patches import Rectangle
+
+    step = float(np.diff(ratio).min()) if ratio.size > 1 else 0.1
+    masked = np.ma.masked_invalid(values)
+    image = ax.imshow(masked, origin="lower", aspect="auto", vmin=-1, vmax=1, cmap="RdYlGn",
+                      extent=(ratio[0] - step / 2, ratio[-1] + step / 2, -0.5,
+                              values.shape[0] - 0.5))
+    for row, col in zip(*np.nonzero(np.ma.getmaskarray(masked)), strict=True):
+        ax.add_patch(Rectangle((ratio[col] - step / 2, row - 0.5), step, 1, **NO_CONTACT))
+    ax.grid(False)
+    return image
 
 
 _PROPERTY_LABELS = {"record_unscaled_pga": "unscaled PGA (g)", "record_pga": "PGA as run (g)",

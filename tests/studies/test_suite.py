@@ -95,3 +95,43 @@ def test_member_equals_a_direct_sweep(archive):
                 "baseline_peak_total_accel"):
         np.testing.assert_array_equal(member[var].values, direct[var].sel(record=name).values)
     assert direct.record_scale.item() == float(name.split("*")[1])
+
+
+def test_maps_tell_no_contact_and_ties_from_harm(archive):
+    """The maps of records helped: cells where nothing touches the wall (told by the impact
+    counts) are their own hatched 'no contact' category, not harm; an exact tie with contact
+    (amplification 1) is neither harm nor help."""
+    from matplotlib.colors import to_rgba
+
+    ds = archive.copy(deep=True)
+    # a tie at the narrowest gap, where every record hits the bare wall (gap < D)
+    tie = {"response": "floor_accel", "gap_ratio": 0.5, "n_bumpers": 4, "wall_k": 1.5e9}
+    assert bool((ds.baseline_n_impacts.sel(gap_ratio=0.5) > 0).all())
+    ds["amplification"].loc[tie] = 1.0
+    touches = (ds.n_impacts > 0) | (ds.baseline_n_impacts > 0)
+    no_contact = ~touches.sel(wall_k=1.5e9).any("record").transpose("n_bumpers", "gap_ratio")
+    assert no_contact.any() and not no_contact.all()  # the quick grid has both kinds of cell
+    fig = suite.plot(ds)
+    try:
+        bumper_map = next(ax for ax in fig.axes if ax.images
+                          and ax.get_ylabel() == "bumpers per side")
+        (image,) = bumper_map.images
+        np.testing.assert_array_equal(np.ma.getmaskarray(image.get_array()), no_contact.values)
+        hatched = {(round(p.get_x() + p.get_width() / 2, 6), round(p.get_y() + 0.5))
+                   for p in bumper_map.patches if p.get_hatch()}
+        assert hatched == {(float(ds.gap_ratio[c]), r)
+                           for r, c in zip(*np.nonzero(no_contact.values), strict=True)}
+        rgba = image.to_rgba(image.get_array())
+        row, col = list(ds.n_bumpers.values).index(4), list(ds.gap_ratio.values).index(0.5)
+        neutral, harm = image.cmap(0.5), image.cmap(0.0)
+        assert tuple(rgba[row, col]) == pytest.approx(neutral, abs=1e-2)
+        assert tuple(rgba[row, col]) != pytest.approx(harm, abs=1e-2)
+        texts = [(t.get_text(), h) for ax in fig.axes if ax.get_legend()
+                 for t, h in zip(ax.get_legend().get_texts(),
+                                 ax.get_legend().legend_handles, strict=True)]
+        (handle,) = [h for text, h in texts if text == "no contact"]
+        assert handle.get_hatch() and to_rgba(handle.get_facecolor()) != to_rgba(harm)
+    finally:
+        import matplotlib.pyplot as plt
+
+        plt.close(fig)
