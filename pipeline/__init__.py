@@ -168,9 +168,12 @@ def _execute(grid, records, dt, workers, scheduler, out, building, batch_size, r
     batch_size = check_count("batch_size", batch_size, minimum=1)
     out = check_out(out)
     arguments = plain({**arguments, "records": names, "dt": dt})
+    new_store = None
     if out is not None and out.suffix == ".zarr":
         from .execute.zarr_store import ZarrStore
 
+        # the outermost folder this run creates, removed again if no batch runs
+        new_store = next((p for p in reversed((out, *out.parents)) if not p.exists()), None)
         store = ZarrStore(grid, recs, names, dt, building, arguments, out, batch_size, force)
     else:
         from .execute.netcdf_store import NetCDFStore
@@ -178,7 +181,15 @@ def _execute(grid, records, dt, workers, scheduler, out, building, batch_size, r
         store = NetCDFStore(grid, recs, names, dt, building, arguments, out, work_dir)
         if out is not None:
             guard(out, store.key, force, "force=True (--force)")
-    execute(store, workers=workers, scheduler=scheduler, batch_size=batch_size, quiet=quiet)
+    try:
+        execute(store, workers=workers, scheduler=scheduler, batch_size=batch_size,
+                quiet=quiet)
+    except SweepError:  # refused before any batch ran (e.g. no cluster): leave nothing
+        if new_store is not None and not store.done.any():
+            import shutil
+
+            shutil.rmtree(new_store, ignore_errors=True)
+        raise
     return store.finish()
 
 

@@ -137,3 +137,11 @@ def test_ctrl_c_anywhere_says_what_is_kept_and_how_to_resume(tmp_path, capsys):
     assert capsys.readouterr().err == (f"toy: interrupted: 4 finished simulations kept in "
                                        f"{tmp_path / 'toy.nc.work'}; run the same command "
                                        "again to resume\n")
+
+
+@pytest.mark.parametrize("name", ["x.nc", "x.zarr"])
+def test_no_cluster_leaves_nothing_behind(tmp_path, name):
+    with pytest.raises(SweepError, match="127.0.0.1:9"):
+        pipeline.sweep(RECORDS, gap=0.1, thickness=0.03, scheduler="tcp://127.0.0.1:9",
+                       out=tmp_path / "new" / name, quiet=True)
+    assert not list(tmp_path.iterdir())
