@@ -22,6 +22,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from pipeline.cluster import add_tls_options
 from pipeline.records import PAPER_KEYS
 
 
@@ -76,7 +77,10 @@ class Recipe:
                                 "core through threads; N >= 2: N local dask worker "
                                 "processes, one thread each")
             p.add_argument("--scheduler", default=None, metavar="ADDRESS",
-                           help="dask.distributed scheduler address to run on instead")
+                           help="dask.distributed scheduler address to run on instead "
+                                "(tcp://HOST:8786, or tls://HOST:8786 with the --tls-* "
+                                "options)")
+            add_tls_options(p)
             p.add_argument("--dt", type=float, default=None, metavar="S",
                            help="integration step in s (default: the engine's, 0.5 ms)")
             add_text_record_options(p)
@@ -130,6 +134,7 @@ class Recipe:
 
         from pipeline.archive import to_netcdf
         from pipeline.building_file import building_from
+        from pipeline.cluster import apply_tls_options
         from pipeline.errors import SweepError
         from pipeline.records.lookup import read_text_records
         from pipeline.writing import KEY_ATTRIBUTE, Staged, check_out, guard
@@ -147,6 +152,8 @@ class Recipe:
             for path in (archive, *figures):
                 check_out(path)  # before any compute
             args.building = building_from(args.building)  # a bad building: before compute
+            if self.records is not None:
+                apply_tls_options(args)
             key = self.configuration_key(args)
             guard(archive, key, args.force)
             if self.records is not None:  # text files read now: a bad one before compute

@@ -19,6 +19,7 @@ import sys
 
 from engine.impact import M_EFF
 from engine.units import CM, KN_PER_MM
+from pipeline.cluster import add_tls_options
 from pipeline.grid import BASELINE, IMPACT_LAWS, ISOLATOR_PARAMS, PARAMS, declarations
 
 from ._recipe import accept_negative_numbers, add_text_record_options, interrupted, outputs
@@ -129,7 +130,8 @@ def parser() -> argparse.ArgumentParser:
                         "each")
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="dask.distributed scheduler to run on, e.g. tcp://host:8786 (instead "
-                        "of a local cluster)")
+                        "of a local cluster); tls://host:8786 with the --tls-* options")
+    add_tls_options(p)
     p.add_argument("--batch-size", type=int, metavar="N",
                    help="simulations per engine call (default: up to 512)")
     p.add_argument("--out", default="results", metavar="PATH",
@@ -182,6 +184,7 @@ def main(argv: list[str] | None = None) -> int:
     import engine
     import pipeline
     from pipeline.building_file import building_from
+    from pipeline.cluster import apply_tls_options
     from pipeline.errors import SweepError
     from pipeline.records import RecordError
     from pipeline.records.lookup import read_text_records
@@ -190,6 +193,7 @@ def main(argv: list[str] | None = None) -> int:
 
     archive = None
     try:
+        apply_tls_options(args)
         damping = [] if args.damping is None else [f"damping={args.damping}"]
         building = building_from([*args.building, *damping])
         archive, _ = outputs(args.out, "sweep", archives=(".nc", ".zarr"))
