@@ -173,12 +173,15 @@ pipeline.provenance.engine_fingerprint = lambda: "0" * 64
 """
 
 
-def test_unfit_clusters_fail_in_one_line(tmp_path, record):
+def test_unfit_clusters_fail_in_one_line(tmp_path, record, monkeypatch):
     """No workers, then a worker without the project, then one at another version: each
     refused before any batch is submitted, with the cause and the fix."""
+    from pipeline import cluster
+
+    monkeypatch.setattr(cluster, "WORKERS_TIMEOUT", 2.0)  # the wait itself is not under test
     scheduler, address = _scheduler(tmp_path)
     try:
-        with pytest.raises(ClusterError, match="has no workers after 10 s: start some with "
+        with pytest.raises(ClusterError, match="has no workers after 2 s: start some with "
                                                f"`dask worker {address}"):
             pipeline.sweep([record], gap=0.2, scheduler=address, quiet=True)
         for preload, match in ((HIDE, "cannot import this project"),

@@ -12,9 +12,12 @@ from pathlib import Path
 import pytest
 
 PROJECT = Path(__file__).resolve().parents[2]
-# Three records, longest first, at a fine step so that each batch takes a second or more.
+# Three records, longest first, the quick grid (20 members a record) at a fine step so that
+# each record's batch takes about half a second: long enough to be interrupted, short enough
+# for three runs of the recipe.
 COMMAND = [sys.executable, "-m", "studies.n_bumpers", "--records", "kobe", "sylmar_converter",
-           "pacoima", "--dt", "1e-4"]
+           "pacoima", "--dt", "5e-5", "--quick"]
+MEMBERS = 4 * 4 + 4 + 1  # quick grid: 4 gaps x 4 counts, 4 gaps of bare wall, 1 without wall
 
 
 def _env():
@@ -32,7 +35,7 @@ def test_interrupted_recipe_resumes_to_the_same_bytes(tmp_path):
     assert _run(whole).returncode == 0
 
     parts = tmp_path / "parts"
-    work = parts / "n_bumpers.nc.work"
+    work = parts / "quick" / "n_bumpers.nc.work"
     proc = subprocess.Popen([*COMMAND, "--out", str(parts), "--quiet"], cwd=PROJECT,
                             env=_env(), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             text=True)
@@ -52,10 +55,11 @@ def test_interrupted_recipe_resumes_to_the_same_bytes(tmp_path):
     assert f"kept in {work}; run the same command again to resume" in line
     kept, total = (int(x) for x in line.split(": interrupted: ")[1].split(" simulations")[0]
                    .split(" of "))
-    assert 0 < kept < total and total == 3 * 156
-    assert not (parts / "n_bumpers.nc").exists()
+    assert 0 < kept < total and total == 3 * MEMBERS
+    assert not (parts / "quick" / "n_bumpers.nc").exists()
 
     resumed = _run(parts)
     assert resumed.returncode == 0, resumed.stderr
     assert not work.exists()
-    assert (parts / "n_bumpers.nc").read_bytes() == (whole / "n_bumpers.nc").read_bytes()
+    assert (parts / "quick" / "n_bumpers.nc").read_bytes() \
+        == (whole / "quick" / "n_bumpers.nc").read_bytes()
