@@ -32,6 +32,14 @@ def _interval(name: str, text: str) -> tuple[float, bool, float, bool]:
     return float(m.group(2)), m.group(1) == "[", float(m.group(3)), m.group(4) == "]"
 
 
+def _outside(array: np.ndarray, interval: tuple[float, bool, float, bool]) -> np.ndarray:
+    """Where `array` lies outside the interval (NaN included)."""
+    low, low_closed, high, high_closed = interval
+    above = array >= low if low_closed else array > low
+    below = array <= high if high_closed else array < high
+    return ~(above & below)  # NaN fails both
+
+
 @dataclass(frozen=True)
 class Parameter:
     """One numeric parameter of an impact or isolator law.
@@ -69,10 +77,7 @@ class Parameter:
         array = np.atleast_1d(np.asarray(values, dtype=float))
         if self.plausible is None:
             return array[:0]
-        low, low_closed, high, high_closed = _interval(self.name, self.plausible)
-        above = array >= low if low_closed else array > low
-        below = array <= high if high_closed else array < high
-        return array[~(above & below)]
+        return array[_outside(array, _interval(self.name, self.plausible))]
 
     @property
     def required(self) -> bool:
@@ -87,10 +92,7 @@ class Parameter:
         except (TypeError, ValueError):
             raise EngineError(f"{name} must be a number or an array of numbers, "
                               f"got {value!r}") from None
-        low, low_closed, high, high_closed = self.bounds
-        above = array >= low if low_closed else array > low
-        below = array <= high if high_closed else array < high
-        bad = ~(above & below)  # NaN fails both
+        bad = _outside(array, self.bounds)
         if self.integer:
             bad |= array != np.round(array)
         if np.any(bad):
