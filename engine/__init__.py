@@ -25,9 +25,9 @@ from .building import Building
 from .errors import EngineError, UnstableTimeStep
 from .impact import Contact
 from .isolators import Isolator
-from .results import History, Result, TwoBodyResult
+from .results import History, PlanResult, Result, TwoBodyResult
 from .scheme import DEFAULT_DT
 from .simulate import simulate, stable_dt, two_body
 
-__all__ = ["Building", "Contact", "DEFAULT_DT", "EngineError", "History", "Isolator", "Result",
-           "TwoBodyResult", "UnstableTimeStep", "simulate", "stable_dt", "two_body", "units"]
+__all__ = ["Building", "Contact", "DEFAULT_DT", "EngineError", "History", "Isolator",
+           "PlanResult", "Result", "TwoBodyResult", "UnstableTimeStep", "simulate", "stable_dt", "two_body", "units"]

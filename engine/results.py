@@ -33,12 +33,14 @@ class Quantity:
     along: str | None = None
     dtype: type = np.float64
     wall: bool = False
+    direction: bool = False
 
-    def trailing_shape(self, n_levels: int) -> tuple[int, ...]:
-        """The member's shape of this quantity for a building of n_levels levels."""
-        if self.along is None:
-            return ()
-        return (n_levels,) if self.along == "floor" else (n_levels - 1,)
+    def trailing_shape(self, n_levels: int, n_walls: int = 1) -> tuple[int, ...]:
+        """The member's shape of this quantity for a building of n_levels levels (and a moat
+        of n_walls walls, for a quantity along "wall"); a per-direction quantity adds a last
+        axis of 2 (x, y)."""
+        lengths = {None: (), "floor": (n_levels,), "story": (n_levels - 1,), "wall": (n_walls,)}
+        return lengths[self.along] + ((len(DIRECTIONS),) if self.direction else ())
 
 
 PEAKS: tuple[Quantity, ...] = (
@@ -64,6 +66,25 @@ HISTORIES: tuple[Quantity, ...] = (
              wall=True),
 )
 """The time histories kept for the members an engine.History asks for, against time."""
+
+DIRECTIONS = ("x", "y")
+"""The horizontal directions of a run in plan, the last axis of its per-direction results."""
+WALLS = {"rectangular": ("+x", "-x", "+y", "-y"), "circular": ("all",)}
+"""The walls of each moat in plan: the rectangular moat's four, each named by its outward
+normal; the circular moat's one."""
+
+PLAN_PEAKS: tuple[Quantity, ...] = (
+    Quantity("peak_total_accel_xy", "m s-2", "peak total floor acceleration in each "
+             "direction", "floor", direction=True),
+    Quantity("peak_interstory_drift_xy", "m", "peak interstory deflection in each direction",
+             "story", direction=True),
+    Quantity("peak_isolator_disp_xy", "m", "peak isolator displacement in each direction",
+             direction=True),
+    Quantity("max_impact_force_wall", "N", "maximum impact force on each wall of the moat",
+             "wall", wall=True),
+)
+"""What a run in plan returns besides PEAKS, whose quantities it gives as resultants (vector
+magnitudes: the peak of |u_0(t)|, of |a(t)| per level, of the drift vector per story)."""
 
 PEAK_NAMES = tuple(q.name for q in PEAKS)
 HISTORY_NAMES = tuple(q.name for q in HISTORIES)
@@ -125,6 +146,23 @@ class Result:
     def peaks(self) -> dict[str, np.ndarray]:
         """Peak name -> array, in PEAKS order."""
         return {name: getattr(self, name) for name in PEAK_NAMES}
+
+
+@dataclass
+class PlanResult(Result):
+    """A run in plan: PEAKS as resultants (see Result), then PLAN_PEAKS: peak_total_accel_xy
+    (B, levels, 2) m/s^2, peak_interstory_drift_xy (B, stories, 2) m, peak_isolator_disp_xy
+    (B, 2) m, max_impact_force_wall (B, walls) N (WALLS[moat] order); moat: its shape."""
+
+    peak_total_accel_xy: np.ndarray = None
+    peak_interstory_drift_xy: np.ndarray = None
+    peak_isolator_disp_xy: np.ndarray = None
+    max_impact_force_wall: np.ndarray = None
+    moat: str = "rectangular"
+
+    def plan_peaks(self) -> dict[str, np.ndarray]:
+        """PLAN_PEAKS name -> array."""
+        return {q.name: getattr(self, q.name) for q in PLAN_PEAKS}
 
 
 @dataclass

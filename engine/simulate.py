@@ -16,7 +16,7 @@ from .backends import resolve_backend, time_loop
 from .building import Building, building_arrays
 from .errors import EngineError, UnstableTimeStep
 from .impact import NONE, Contact
-from .results import History, Result, TwoBodyResult
+from .results import WALLS, History, PlanResult, Result, TwoBodyResult
 from .scheme import (
     DEFAULT_DT,
     INDENTATION_BOUND,
@@ -39,10 +39,13 @@ def simulate(accel, accel_dt: float, contact: Contact,
              building: Building | Sequence[Building] = Building(), dt: float = DEFAULT_DT,
              history: History | None = None,
              progress: Callable[[int, int], None] | None = None,
-             backend: str | None = None, scale=None) -> Result:
+             backend: str | None = None, scale=None, *, moat: str | None = None,
+             contact_y: Contact | None = None, angle=None) -> Result:
     """Integrate B isolated buildings under one ground motion, pounding on their moat walls.
 
     accel: (N,) ground acceleration in m/s^2 every accel_dt s, linearly interpolated onto dt;
+    or (N, 2), the two horizontal components (x, y) of a record pair: the run is in plan (see
+    below) and returns a PlanResult;
     contact: a Contact of B members; building: one Building or a sequence of B of them;
     dt: integration step (s), refused above the stability limit;
     history: record time histories for some members every `every` steps: the result's history
@@ -56,7 +59,23 @@ def simulate(accel, accel_dt: float, contact: Contact,
     factor that brings a record to a design displacement). None is 1 for every member, and a
     factor of 1 leaves a member's result bit for bit unchanged.
     Returns a Result: the peaks of results.PEAKS, (B, ...) in batch order.
+
+    In plan ((N, 2) accel): the building moves in x and y on coupled isolators (circular yield
+    surface, exact radial return; loops/numpy_plan.py), its stories isotropic. moat:
+    "rectangular" (default: walls normal to x at +- the clear gap of `contact`, normal to y at
+    +- that of contact_y, default the same walls; a corner loads both) or "circular" (one wall
+    at the clear gap of `contact`, pushing along the radius). angle: None or (B,) incidence
+    angles in degrees rotating each member's pair counterclockwise (one call runs a pair at
+    many angles). Returns a PlanResult: the PEAKS as resultants (vector magnitudes), the
+    per-direction peaks and the largest force on each wall. The plan loop is the NumPy one for
+    now (backend None or "numpy"); histories are not yet recorded in plan.
     """
+    if np.ndim(accel) == 2:
+        return _simulate_plan(accel, accel_dt, contact, building, dt, history, progress,
+                              backend, scale, moat, contact_y, angle)
+    if moat is not None or contact_y is not None or angle is not None:
+        raise EngineError("moat, contact_y and angle apply to a run in plan: give accel as "
+                          "(N, 2), the record pair's x and y components")
     if not isinstance(contact, Contact):
         raise EngineError("contact must be an engine.Contact")
     size = len(contact)
@@ -85,6 +104,64 @@ def simulate(accel, accel_dt: float, contact: Contact,
     ag = loop.ground_motion(accel, float(accel_dt), float(dt), n_steps)
     peaks, hist = loop.run_simulation(ag, dt, arrays, contact, history, progress, scale)
     return Result(**peaks, dt=dt, history=hist)
+
+
+def _simulate_plan(accel, accel_dt, contact, building, dt, history, progress, backend, scale,
+                   moat, contact_y, angle) -> PlanResult:
+    """simulate for a record pair (N, 2): the plan loop (see simulate)."""
+    moat = "rectangular" if moat is None else moat
+    if moat not in WALLS:
+        raise EngineError(f"moat must be one of {tuple(WALLS)}, got {moat!r}")
+    if not isinstance(contact, Contact) or (contact_y is not None
+                                            and not isinstance(contact_y, Contact)):
+        raise EngineError("contact (and contact_y) must be an engine.Contact")
+    size = len(contact)
+    if size == 0:
+        raise EngineError("contact: empty batch")
+    if contact_y is not None and (moat != "rectangular" or len(contact_y) != size):
+        raise EngineError(f"contact_y: the y walls of a rectangular moat, one per member "
+                          f"({size}), got {len(contact_y)} for a {moat} moat")
+    if history is not None:
+        raise EngineError("history: time histories in plan are not recorded yet")
+    if backend not in (None, "numpy"):
+        raise EngineError(f"backend {backend!r}: runs in plan have the NumPy loop only for now")
+    accel = np.asarray(accel, dtype=float)
+    if accel.ndim != 2 or accel.shape[1] != 2:
+        raise EngineError(f"accel in plan must be (N, 2): x and y components, got "
+                          f"{accel.shape}")
+    if not dt > 0:
+        raise EngineError(f"dt must be positive, got {dt}")
+    arrays = building_arrays(building, size)
+    contacts = (contact, contact if contact_y is None else contact_y) \
+        if moat == "rectangular" else (contact,)
+    limit = np.min([stability_limit(arrays, c) for c in contacts], axis=0)
+    worst = int(np.argmin(limit))
+    if dt >= limit[worst]:
+        raise UnstableTimeStep(f"dt = {dt:g} s is unstable: the central-difference limit is "
+                               f"{limit[worst]:.4g} s (member {worst}); use dt < "
+                               f"{limit[worst]:.4g} s")
+    _, n_steps = checked_record(accel[:, 0], accel_dt, dt)
+    checked_record(accel[:, 1], accel_dt, dt)
+    scale = checked_scale(scale, size)
+    angle = np.zeros(size) if angle is None else checked_angle(angle, size)
+    from .loops import numpy_plan
+
+    ag = numpy_plan.ground_motion(accel, float(accel_dt), float(dt), n_steps)
+    peaks = numpy_plan.run_plan(ag, dt, arrays, contacts, moat, progress, scale,
+                                np.radians(angle))
+    return PlanResult(**peaks, dt=dt, moat=moat)
+
+
+def checked_angle(angle, size: int) -> np.ndarray:
+    """(B,) incidence angles in degrees, finite."""
+    try:
+        values = np.broadcast_to(np.asarray(angle, dtype=float), (size,)).copy()
+    except (TypeError, ValueError):
+        raise EngineError(f"angle must be a number or {size} numbers in degrees, got "
+                          f"{np.shape(angle)}") from None
+    if not np.all(np.isfinite(values)):
+        raise EngineError("angle must be finite (degrees)")
+    return values
 
 
 def contact_time_scale(m_eff, v, k, n):

@@ -26,3 +26,17 @@ def plastic_spring_force(f_prev, du, k_slip, f_yield):
     (m): the elastic trial force clipped to +-f_yield, the exact return mapping for a perfectly
     plastic spring (and, with f_yield the limit at the step's speed, for friction)."""
     return np.minimum(np.maximum(f_prev + k_slip * du, -f_yield), f_yield)
+
+
+def radial_return(fx, fy, dux, duy, k_slip, f_yield):
+    """Return-mapped force (N, x and y) of the elastic-perfectly-plastic element in plan after
+    the increment (dux, duy) (m): the elastic trial force scaled back onto the circle of radius
+    f_yield when outside it, the exact return mapping of a perfectly plastic spring with a
+    circular yield surface (isotropic coupling of the two directions: an element that slips in
+    one direction is softer in the other). A motion along x only gives plastic_spring_force's
+    force to rounding (f_yield * trial / |trial|)."""
+    tx = fx + k_slip * dux
+    ty = fy + k_slip * duy
+    size = np.sqrt(tx * tx + ty * ty)
+    factor = np.minimum(1.0, f_yield / np.maximum(size, 1e-300))
+    return tx * factor, ty * factor

@@ -1,0 +1,179 @@
+"""The NumPy time loop in plan: the building moving in both horizontal directions under a pair
+of record components, on coupled isolators, against a rectangular or circular moat.
+
+The scheme is the planar one (engine/scheme.py) applied to each direction: the state carries a
+last axis of directions (x, y; room for a rotation later), and the building is isotropic (the
+same mass, stiffness and damping in x and y), so one step operator serves both directions and
+a force along x moves nothing along y. What couples the directions:
+- the isolator's and the yielding stories' slip elements, with a circular yield surface and
+  the exact radial return (isolators/hysteresis.radial_return), the friction pendulum's limit
+  at the sliding speed |v|;
+- the moat: a rectangular one is two walls per axis, at +-clear gap along x (contact) and
+  along y (contact_y), a corner loading both; a circular one pushes along the slab's radial
+  direction n = u0 / |u0| with the radial indentation |u0| - clear gap. Every impact law acts
+  along the wall's normal as in the planar loop, with the same implicit solve: the isotropic
+  operator's response along n to a force along n is the planar compliance.
+A motion along x alone gives the planar loop's numbers to rounding.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..building import BuildingArrays
+from ..impact.contact import fill_force_terms, law_blocks
+from ..isolators.hysteresis import radial_return, slip_limit
+from ..results import DIRECTIONS, PEAKS, PLAN_PEAKS, WALLS
+from ..scheme import implicit_force, onset_weight, step_operators
+
+
+def ground_motion(accel, accel_dt: float, dt: float, n_steps: int) -> np.ndarray:
+    """(n_steps, 2) m/s^2: both components linearly interpolated onto the step grid."""
+    t, t_rec = np.arange(n_steps) * dt, np.arange(accel.shape[0]) * accel_dt
+    return np.column_stack([np.interp(t, t_rec, accel[:, d]) for d in range(accel.shape[1])])
+
+
+class _Wall:
+    """The contact state of one wall direction (an axis of the rectangular moat, or the
+    circular moat's radial direction) for the sorted batch."""
+
+    def __init__(self, contact, size: int):
+        self.order, self.blocks = law_blocks(contact)
+        self.inverse = np.argsort(self.order)
+        self.gap = contact.clear_gap[self.order]
+        self.elastic, self.dashpot = np.zeros(size), np.zeros(size)
+        self.v_imp = np.ones(size)
+        self.delta_prev = np.zeros(size)
+        self.in_contact = np.zeros(size, dtype=bool)
+
+    def force(self, distance, rate_before, rate_free, compliance):
+        """Contact force (N, >= 0) for the members at `distance` from the centre (m, >= 0),
+        approaching at rate_before (the half-step velocity towards the wall, m/s) and at the
+        free central rate rate_free; also (indentation m, new contact bool). Arrays in batch
+        order."""
+        o = self.order
+        # Separations beyond 1 m never matter; the clamp keeps wall-less members finite.
+        delta = np.maximum(distance[o] - self.gap, -1.0)
+        touching = delta > 0
+        new = touching & ~self.in_contact
+        self.v_imp = np.where(new, rate_before[o], self.v_imp)
+        self.in_contact = touching
+        fill_force_terms(self.blocks, delta, rate_free[o], self.v_imp, self.elastic,
+                         self.dashpot)
+        np.multiply(self.dashpot, onset_weight(delta, self.delta_prev), out=self.dashpot,
+                    where=new)
+        self.delta_prev = delta
+        force = np.where(touching, implicit_force(self.elastic, self.dashpot, rate_free[o],
+                                                  compliance[o]), 0.0)
+        i = self.inverse
+        return force[i], delta[i], new[i]
+
+
+def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, angle):
+    """engine.simulate's loop in plan: the peaks (PEAKS as resultants, then PLAN_PEAKS).
+
+    ag (N, 2) m/s^2 on the step grid (x, y); b: B members; contacts: (x walls, y walls) for a
+    rectangular moat, (radial wall,) for a circular one; scale (B,); angle (B,) rad, rotating
+    each member's ground motion counterclockwise.
+    """
+    size, n_levels = b.masses.shape
+    mass = b.masses
+    step_op, wall_response, compliance = step_operators(b, dt)
+    cos, sin = np.cos(angle) * scale, np.sin(angle) * scale
+    walls = [_Wall(c, size) for c in contacts]
+
+    n_dir = len(DIRECTIONS)
+    u = np.zeros((size, n_levels, n_dir))
+    v_half = np.zeros((size, n_levels, n_dir))
+    rhs = np.zeros((size, 2 * n_levels, n_dir))
+    chain = np.zeros((size, n_levels + 1, n_dir))
+    f_plastic = np.zeros((size, n_dir))
+    f_story = np.zeros((size, n_levels - 1, n_dir))
+    yields = b.story_yields
+    any_yields, any_speed = bool(yields.any()), bool(np.any(b.slow_drop != 0))
+
+    peaks = {q.name: np.zeros((size, *q.trailing_shape(n_levels, len(WALLS[moat]))),
+                              dtype=q.dtype) for q in (*PEAKS, *PLAN_PEAKS)}
+    n_steps = ag.shape[0]
+    report_every = max(n_steps // 100, 1)
+    for step in range(n_steps):
+        # The member's ground motion: the pair rotated by its angle, times its scale.
+        a = np.column_stack([cos * ag[step, 0] - sin * ag[step, 1],
+                             sin * ag[step, 0] + cos * ag[step, 1]])
+        u0 = u[:, 0]
+        chain[:, 0] = b.k_elastic[:, None] * u0 + f_plastic
+        drift = np.diff(u, axis=1)
+        chain[:, 1:n_levels] = b.story_k[:, :, None] * drift
+        if any_yields:
+            chain[yields, 1:n_levels] = (b.story_k_post[yields][:, :, None] * drift[yields]
+                                         + f_story[yields])
+        rhs[:, :n_levels] = chain[:, 1:] - chain[:, :-1] - mass[:, :, None] * a[:, None, :]
+        rhs[:, n_levels:] = v_half
+        v_next = np.einsum("bij,bjd->bid", step_op, rhs)
+
+        wall_force = np.zeros((size, n_dir))  # on the slab, towards the centre
+        if moat == "rectangular":
+            for d, wall in enumerate(walls):
+                side = np.sign(u0[:, d])
+                force, delta, new = wall.force(
+                    np.abs(u0[:, d]), side * v_half[:, 0, d],
+                    side * 0.5 * (v_half[:, 0, d] + v_next[:, 0, d]), compliance)
+                wall_force[:, d] = -side * force
+                _wall_peaks(peaks, force, delta, new, np.where(side > 0, 2 * d, 2 * d + 1))
+        else:
+            radius = np.hypot(u0[:, 0], u0[:, 1])
+            normal = np.where(radius[:, None] > 0, u0 / np.maximum(radius, 1e-300)[:, None],
+                              np.array([1.0, 0.0]))
+            central = 0.5 * (v_half[:, 0] + v_next[:, 0])
+            force, delta, new = walls[0].force(
+                radius, np.sum(normal * v_half[:, 0], axis=1), np.sum(normal * central, axis=1),
+                compliance)
+            wall_force = -normal * force[:, None]
+            _wall_peaks(peaks, force, delta, new, np.zeros(size, dtype=int))
+        v_next += wall_response[:, :, None] * wall_force[:, None, :]
+        # Work on the walls over this step, with the central velocity of level 0.
+        peaks["impact_energy"] -= np.sum(wall_force * (v_half[:, 0] + v_next[:, 0]),
+                                         axis=1) * (0.5 * dt)
+
+        total_accel = (v_next - v_half) / dt + a[:, None, :]
+        _peak(peaks, "peak_total_accel", total_accel)
+        _peak(peaks, "peak_interstory_drift", drift)
+        _peak(peaks, "peak_isolator_disp", u0)
+
+        # Advance: the slip elements see this step's increments, the isolator's limit at this
+        # step's sliding speed |v|.
+        v0 = v_next[:, 0]
+        limit = slip_limit(b.f_limit, b.slow_drop, b.rate, np.hypot(v0[:, 0], v0[:, 1])) \
+            if any_speed else b.f_limit
+        f_plastic = np.column_stack(radial_return(f_plastic[:, 0], f_plastic[:, 1],
+                                                  dt * v0[:, 0], dt * v0[:, 1], b.k_slip,
+                                                  limit))
+        if any_yields:
+            inc = dt * np.diff(v_next[yields], axis=1)
+            fx, fy = radial_return(f_story[yields][..., 0], f_story[yields][..., 1],
+                                   inc[..., 0], inc[..., 1], b.story_k_slip[yields],
+                                   b.story_f_limit[yields])
+            f_story[yields] = np.stack([fx, fy], axis=-1)
+        v_half = v_next
+        u = u + dt * v_next
+        if progress is not None and step % report_every == 0:
+            progress(step, n_steps)
+    if progress is not None:
+        progress(n_steps, n_steps)
+    return peaks
+
+
+def _peak(peaks, name, vectors):
+    """Raise the resultant peak `name` and its per-direction peak `name`_xy."""
+    np.maximum(peaks[name], np.sqrt(np.sum(vectors * vectors, axis=-1)), out=peaks[name])
+    np.maximum(peaks[name + "_xy"], np.abs(vectors), out=peaks[name + "_xy"])
+
+
+def _wall_peaks(peaks, force, delta, new, wall):
+    """Raise the wall peaks with one wall direction's contact: force N, indentation m, new
+    contacts, and which wall (WALLS index) each member is against."""
+    np.maximum(peaks["max_indentation"], delta, out=peaks["max_indentation"])
+    np.maximum(peaks["max_impact_force"], force, out=peaks["max_impact_force"])
+    peaks["n_impacts"] += new
+    rows = np.arange(force.size)
+    per_wall = peaks["max_impact_force_wall"]
+    per_wall[rows, wall] = np.maximum(per_wall[rows, wall], force)
