@@ -30,4 +30,5 @@ from .scheme import DEFAULT_DT
 from .simulate import simulate, stable_dt, two_body
 
 __all__ = ["Building", "Contact", "DEFAULT_DT", "EngineError", "History", "Isolator",
-           "PlanResult", "Result", "TwoBodyResult", "UnstableTimeStep", "simulate", "stable_dt", "two_body", "units"]
+           "PlanResult", "Result", "TwoBodyResult", "UnstableTimeStep", "simulate", "stable_dt",
+           "two_body", "units"]

@@ -14,6 +14,7 @@ from .errors import EngineError
 
 BACKENDS = ("numba", "numpy")
 _LOOPS = {"numba": "numba_loop", "numpy": "numpy_loop"}
+_PLAN_LOOPS = {"numba": "numba_plan", "numpy": "numpy_plan"}
 
 
 class BackendNotice(RuntimeWarning):
@@ -27,6 +28,11 @@ def time_loop(backend: str) -> ModuleType:
     """The loop module of a backend ("numba" or "numpy"); ImportError for numba without numba.
     Imported on first use: the NumPy loop needs no compiler, and numba takes a second."""
     return importlib.import_module(f"{__package__}.loops.{_LOOPS[backend]}")
+
+
+def plan_loop(backend: str) -> ModuleType:
+    """The loop module of a run in plan (engine/loops/numba_plan.py or numpy_plan.py)."""
+    return importlib.import_module(f"{__package__}.loops.{_PLAN_LOOPS[backend]}")
 
 
 def resolve_backend(backend: str | None) -> str:

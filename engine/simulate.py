@@ -12,7 +12,7 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from .backends import resolve_backend, time_loop
+from .backends import plan_loop, resolve_backend, time_loop
 from .building import Building, building_arrays
 from .errors import EngineError, UnstableTimeStep
 from .impact import NONE, Contact
@@ -67,8 +67,8 @@ def simulate(accel, accel_dt: float, contact: Contact,
     at the clear gap of `contact`, pushing along the radius). angle: None or (B,) incidence
     angles in degrees rotating each member's pair counterclockwise (one call runs a pair at
     many angles). Returns a PlanResult: the PEAKS as resultants (vector magnitudes), the
-    per-direction peaks and the largest force on each wall. The plan loop is the NumPy one for
-    now (backend None or "numpy"); histories are not yet recorded in plan.
+    per-direction peaks and the largest force on each wall (loops/numba_plan.py compiled, or
+    loops/numpy_plan.py; histories are not yet recorded in plan).
     """
     if np.ndim(accel) == 2:
         return _simulate_plan(accel, accel_dt, contact, building, dt, history, progress,
@@ -123,8 +123,6 @@ def _simulate_plan(accel, accel_dt, contact, building, dt, history, progress, ba
                           f"({size}), got {len(contact_y)} for a {moat} moat")
     if history is not None:
         raise EngineError("history: time histories in plan are not recorded yet")
-    if backend not in (None, "numpy"):
-        raise EngineError(f"backend {backend!r}: runs in plan have the NumPy loop only for now")
     accel = np.asarray(accel, dtype=float)
     if accel.ndim != 2 or accel.shape[1] != 2:
         raise EngineError(f"accel in plan must be (N, 2): x and y components, got "
@@ -146,9 +144,9 @@ def _simulate_plan(accel, accel_dt, contact, building, dt, history, progress, ba
     angle = np.zeros(size) if angle is None else checked_angle(angle, size)
     from .loops import numpy_plan
 
+    loop = plan_loop(resolve_backend(backend))
     ag = numpy_plan.ground_motion(accel, float(accel_dt), float(dt), n_steps)
-    peaks = numpy_plan.run_plan(ag, dt, arrays, contacts, moat, progress, scale,
-                                np.radians(angle))
+    peaks = loop.run_plan(ag, dt, arrays, contacts, moat, progress, scale, np.radians(angle))
     return PlanResult(**peaks, dt=dt, moat=moat)
 
 

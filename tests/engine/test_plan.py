@@ -1,5 +1,6 @@
-"""The building in plan (loops/numpy_plan.py): the invariants that tie it to the planar model,
-and the coupled slip element's return mapping.
+"""The building in plan (loops/numpy_plan.py and numba_plan.py): the invariants that tie it to
+the planar model on both backends, the two loops against each other, and the coupled slip
+element's return mapping.
 
 - a pair whose y component is zero gives the planar run's peaks (every moat, every law);
 - with a circular moat and an isotropic building, one component applied at any angle gives
@@ -54,11 +55,14 @@ def batch(copies: int = 1) -> tuple[Contact, list]:
     return Contact.concat([contact] * len(BUILDINGS) * copies), buildings
 
 
+BACKENDS = ("numba", "numpy")
+
+
 @functools.cache
-def planar() -> dict:
+def planar(backend: str) -> dict:
     accel, dt = record()
     contact, buildings = batch()
-    result = engine.simulate(accel, dt, contact, buildings, backend="numpy")
+    result = engine.simulate(accel, dt, contact, buildings, backend=backend)
     assert (result.n_impacts[1:len(walls())] > 0).all()  # every wall is hit
     return result.peaks()
 
@@ -69,46 +73,51 @@ def assert_peaks_equal(a: dict, b: dict):
                                    err_msg=name)
 
 
+@pytest.mark.parametrize("backend", BACKENDS)
 @pytest.mark.parametrize("moat", ["rectangular", "circular"])
-def test_pair_without_y_component_is_the_planar_run(moat):
+def test_pair_without_y_component_is_the_planar_run(moat, backend):
     accel, dt = record()
     contact, buildings = batch()
     plan = engine.simulate(np.column_stack([accel, np.zeros_like(accel)]), dt, contact,
-                           buildings, moat=moat)
+                           buildings, moat=moat, backend=backend)
     assert isinstance(plan, engine.PlanResult) and plan.moat == moat
-    assert_peaks_equal(plan.peaks(), planar())
+    assert_peaks_equal(plan.peaks(), planar(backend))
     assert_peaks_equal({"x": plan.peak_isolator_disp_xy[:, 0]},
-                       {"x": planar()["peak_isolator_disp"]})
+                       {"x": planar(backend)["peak_isolator_disp"]})
     np.testing.assert_array_equal(plan.peak_isolator_disp_xy[:, 1], 0.0)
 
 
-def test_one_component_at_any_angle_in_a_circular_moat_is_the_planar_run():
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_one_component_at_any_angle_in_a_circular_moat_is_the_planar_run(backend):
     accel, dt = record()
     contact, buildings = batch(copies=2)
     size = len(contact) // 2
     # The component along 37 degrees (as the member's angle) and along 121 degrees (as a pair)
     theta = np.radians(121.0)
     first = engine.simulate(np.column_stack([accel, np.zeros_like(accel)]), dt,
-                            contact[:size], buildings[:size], moat="circular", angle=37.0)
+                            contact[:size], buildings[:size], moat="circular", angle=37.0,
+                            backend=backend)
     second = engine.simulate(np.column_stack([np.cos(theta) * accel, np.sin(theta) * accel]),
-                             dt, contact[size:], buildings[size:], moat="circular")
+                             dt, contact[size:], buildings[size:], moat="circular",
+                             backend=backend)
     for result in (first, second):
-        assert_peaks_equal(result.peaks(), planar())
+        assert_peaks_equal(result.peaks(), planar(backend))
     # ... and along 37 degrees the motion divides between x and y by cos and sin
     np.testing.assert_allclose(first.peak_isolator_disp_xy,
-                               planar()["peak_isolator_disp"][:, None]
+                               planar(backend)["peak_isolator_disp"][:, None]
                                * np.abs([np.cos(np.radians(37)), np.sin(np.radians(37))]),
                                rtol=RTOL)
 
 
-def test_rotating_the_pair_by_90_degrees_swaps_x_and_y():
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_rotating_the_pair_by_90_degrees_swaps_x_and_y(backend):
     """x' = -y, y' = x: the +x wall takes what the -y wall took, -x +y, +y +x, -y -x."""
     accel, dt = record()
     pair = np.column_stack([accel, 0.6 * accel[::-1]])
     contact, buildings = batch(copies=2)
     size = len(contact) // 2
     result = engine.simulate(pair, dt, contact, buildings, moat="rectangular",
-                             angle=np.repeat([0.0, 90.0], size))
+                             angle=np.repeat([0.0, 90.0], size), backend=backend)
     first, turned = slice(0, size), slice(size, 2 * size)
     assert_peaks_equal({k: v[turned] for k, v in result.peaks().items()},
                        {k: v[first] for k, v in result.peaks().items()})
@@ -118,6 +127,21 @@ def test_rotating_the_pair_by_90_degrees_swaps_x_and_y():
         np.testing.assert_allclose(value[turned], expected, rtol=RTOL,
                                    atol=RTOL * np.abs(value).max(), err_msg=name)
     assert (result.max_impact_force_wall[first] > 0).sum() >= 4  # walls in both directions
+
+
+@pytest.mark.parametrize("moat", ["rectangular", "circular"])
+def test_the_compiled_loop_gives_the_numpy_loops_numbers(moat):
+    """A real pair (a record and its reversal), every wall, both buildings, many angles."""
+    accel, dt = record()
+    pair = np.column_stack([accel, 0.7 * accel[::-1]])
+    contact, buildings = batch()
+    angles = np.linspace(0.0, 150.0, len(contact))
+    fast, ref = (engine.simulate(pair, dt, contact, buildings, moat=moat, angle=angles,
+                                 backend=backend) for backend in BACKENDS)
+    assert (ref.n_impacts[1:] > 0).any()
+    np.testing.assert_array_equal(fast.n_impacts, ref.n_impacts)
+    assert_peaks_equal({**fast.peaks(), **fast.plan_peaks()},
+                       {**ref.peaks(), **ref.plan_peaks()})
 
 
 def test_corner_hits_load_both_walls_and_the_circle_differs():
@@ -155,7 +179,6 @@ def test_radial_return():
 
 @pytest.mark.parametrize("kwargs, match", [
     ({"moat": "hexagonal"}, "moat must be one of"),
-    ({"backend": "numba"}, "NumPy loop only"),
     ({"history": engine.History([0])}, "not recorded yet"),
     ({"contact_y": Contact.linear([0.1, 0.2])}, "contact_y"),
     ({"angle": [1.0, 2.0]}, "angle"),
