@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numba
 import numpy as np
-from numba import njit, prange
+from numba import carray, njit, prange
 
 from .. import scheme
 from ..impact import registry
@@ -26,7 +26,7 @@ from ..isolators import hysteresis
 from ..results import DIRECTIONS, PEAKS, PLAN_PEAKS, WALLS
 from ..scheme import step_operators
 from .numba_loop import _JIT, _LINK, _implicit_force, _law_terms, _onset_weight, _slip_limit
-from .numba_support import install_cache_locator
+from .numba_support import install_cache_locator, stack_doubles
 
 install_cache_locator(Path(__file__), [m.__file__ for m in (
     hysteresis, scheme, registry, *registry.LAWS.values())])
@@ -41,39 +41,34 @@ _N_WALL_PAR = _LAW_ARGS + len(LAW_ARGUMENTS)
 # State carried between chunks: the isolator's slip force (x, y), then per wall direction its
 # impact velocity, previous indentation and contact flag.
 _FPX, _FPY, _WALL_STATE = 0, 1, 2
-# Scalar float peaks: resultant isolator displacement, indentation, force, energy.
+# Scalar float peaks: resultant isolator displacement (squared while running), indentation,
+# force, energy.
 _P_ISO, _P_INDENT, _P_FORCE, _P_ENERGY = range(4)
 
 
 @njit(**_LINK)
-def _wall_force(code, wp, distance, rate_before, rate_free, comp, st, j):
-    """One wall direction's contact for one member: (force N >= 0, indentation m, new
-    contact); st[j:j+3] its state (impact velocity, previous indentation, in contact)."""
-    delta = max(distance - wp[_GAP], -1.0)
-    touching = delta > 0.0
-    new = touching and st[j + 2] == 0.0
+def _contact(code, wp, delta, new, v_imp, delta_prev, rate_free, comp):
+    """One wall direction's contact force (N, >= 0) at indentation delta > 0 (m): the law's
+    terms along the wall's normal, the dashpot weighted at a new contact, solved exactly."""
+    q = _LAW_ARGS
+    elastic, dashpot = _law_terms(code, delta, rate_free, v_imp, wp[q], wp[q + 1], wp[q + 2],
+                                  wp[q + 3], wp[q + 4], wp[q + 5], wp[q + 6], wp[q + 7],
+                                  wp[q + 8], wp[q + 9])
     if new:
-        st[j] = rate_before
-    st[j + 2] = 1.0 if touching else 0.0
-    force = 0.0
-    if touching:
-        q = _LAW_ARGS
-        elastic, dashpot = _law_terms(code, delta, rate_free, st[j], wp[q], wp[q + 1],
-                                      wp[q + 2], wp[q + 3], wp[q + 4], wp[q + 5], wp[q + 6],
-                                      wp[q + 7], wp[q + 8], wp[q + 9])
-        if new:
-            dashpot = dashpot * _onset_weight(delta, st[j + 1])
-        force = _implicit_force(elastic, dashpot, rate_free, comp)
-    st[j + 1] = delta
-    return force, delta, new
+        dashpot = dashpot * _onset_weight(delta, delta_prev)
+    return _implicit_force(elastic, dashpot, rate_free, comp)
 
 
 @njit(**_JIT)
 def _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par, wall_par,
             u_all, v_all, f_story_all, state, peak_level, peak_level_xy, peak_story,
             peak_story_xy, peak_iso_xy, peak_scalar, n_impacts, peak_wall):
-    """Steps s0 <= step < s1 of member b (see the module docstring)."""
+    """Steps s0 <= step < s1 of member b (see the module docstring). Like the planar kernel,
+    the member's state lives in scalars and arrays on the stack (x and y apart) while it
+    runs; resultant peaks are kept squared (the square root of the largest square is the
+    largest root, bit for bit; run_plan roots them at the end)."""
     n_levels = len(levels)
+    n_st = n_levels - 1
     ot = op[b]
     w = wall[b]
     m = mass[b]
@@ -83,108 +78,200 @@ def _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par
     slow_drop, rate = p[_SLOW_DROP], p[_RATE]
     stories_yield = p[_STORIES_YIELD] != 0.0
     cs, sn = p[_COS], p[_SIN]
-    st = state[b]
-    pk = peak_scalar[b]
+    k_story, k_post, k_slip_story, f_limit_story = story[b, 0], story[b, 1], story[b, 2], \
+        story[b, 3]
+    code0, code1 = law[b, 0], law[b, law.shape[1] - 1]
+    wp0, wp1 = wall_par[b, 0], wall_par[b, law.shape[1] - 1]
+    gap0, gap1 = wp0[_GAP], wp1[_GAP]
     half_dt = 0.5 * dt
 
-    u = u_all[b]          # (L, 2), updated in place
-    v = v_all[b]
-    f_story = f_story_all[b]
-    nxt = np.empty((n_levels, 2))
-    drift = np.empty((n_levels - 1, 2))
-    chain = np.empty(n_levels)
-    r = np.empty(n_levels)
-    a = np.empty(2)
-    wf = np.empty(2)
-    for step in range(s0, s1):
-        a[0] = cs * ag[step, 0] - sn * ag[step, 1]
-        a[1] = sn * ag[step, 0] + cs * ag[step, 1]
-        for d in range(2):
-            chain[0] = k_el * u[0, d] + st[_FPX + d]
-            for i in range(n_levels - 1):
-                drift[i, d] = u[i + 1, d] - u[i, d]
-                if stories_yield:
-                    chain[i + 1] = story[b, 1, i] * drift[i, d] + f_story[i, d]
-                else:
-                    chain[i + 1] = story[b, 0, i] * drift[i, d]
-            for i in range(n_levels - 1):
-                r[i] = (chain[i + 1] - chain[i]) - m[i] * a[d]
-            r[n_levels - 1] = (0.0 - chain[n_levels - 1]) - m[n_levels - 1] * a[d]
-            for i in range(n_levels):
-                nxt[i, d] = ot[0, i] * r[0]
-            for j in range(1, n_levels):
-                for i in range(n_levels):
-                    nxt[i, d] += ot[j, i] * r[j]
-            for j in range(n_levels):
-                for i in range(n_levels):
-                    nxt[i, d] += ot[n_levels + j, i] * v[j, d]
+    st = state[b]
+    fpx, fpy = st[_FPX], st[_FPY]
+    j0, j1 = _WALL_STATE, _WALL_STATE + 3
+    v_imp0, delta_prev0, in0 = st[j0], st[j0 + 1], st[j0 + 2] != 0.0
+    v_imp1, delta_prev1, in1 = 1.0, 0.0, False
+    if not circular:
+        v_imp1, delta_prev1, in1 = st[j1], st[j1 + 1], st[j1 + 2] != 0.0
+    pk = peak_scalar[b]
+    p_iso2 = pk[_P_ISO]
+    p_indent, p_force, energy = pk[_P_INDENT], pk[_P_FORCE], pk[_P_ENERGY]
+    p_iso_x, p_iso_y = peak_iso_xy[b, 0], peak_iso_xy[b, 1]
+    n_imp = n_impacts[b]
+    pw = peak_wall[b]
 
-        if circular:
-            radius = math.hypot(u[0, 0], u[0, 1])
-            nx, ny = 1.0, 0.0
-            if radius > 0.0:
-                nx, ny = u[0, 0] / max(radius, 1e-300), u[0, 1] / max(radius, 1e-300)
-            before = nx * v[0, 0] + ny * v[0, 1]
-            free = nx * (0.5 * (v[0, 0] + nxt[0, 0])) + ny * (0.5 * (v[0, 1] + nxt[0, 1]))
-            force, delta, new = _wall_force(law[b, 0], wall_par[b, 0], radius, before, free,
-                                            comp, st, _WALL_STATE)
-            wf[0], wf[1] = -nx * force, -ny * force
-            _raise_wall(pk, n_impacts, peak_wall, b, force, delta, new, 0)
-        else:
-            for d in range(2):
-                side = np.sign(u[0, d])
-                force, delta, new = _wall_force(
-                    law[b, d], wall_par[b, d], abs(u[0, d]), side * v[0, d],
-                    side * 0.5 * (v[0, d] + nxt[0, d]), comp, st, _WALL_STATE + 3 * d)
-                wf[d] = -side * force
-                _raise_wall(pk, n_impacts, peak_wall, b, force, delta, new,
-                            2 * d if side > 0 else 2 * d + 1)
-        for d in range(2):
+    ux = carray(stack_doubles(levels), (n_levels,))
+    uy = carray(stack_doubles(levels), (n_levels,))
+    vx = carray(stack_doubles(levels), (n_levels,))
+    vy = carray(stack_doubles(levels), (n_levels,))
+    nx_ = carray(stack_doubles(levels), (n_levels,))
+    ny_ = carray(stack_doubles(levels), (n_levels,))
+    rx = carray(stack_doubles(levels), (n_levels,))
+    ry = carray(stack_doubles(levels), (n_levels,))
+    cx = carray(stack_doubles(levels), (n_levels,))
+    cy = carray(stack_doubles(levels), (n_levels,))
+    pa2 = carray(stack_doubles(levels), (n_levels,))
+    pax = carray(stack_doubles(levels), (n_levels,))
+    pay = carray(stack_doubles(levels), (n_levels,))
+    dx = carray(stack_doubles(levels), (n_st,))
+    dy = carray(stack_doubles(levels), (n_st,))
+    fsx = carray(stack_doubles(levels), (n_st,))
+    fsy = carray(stack_doubles(levels), (n_st,))
+    pd2 = carray(stack_doubles(levels), (n_st,))
+    pdx = carray(stack_doubles(levels), (n_st,))
+    pdy = carray(stack_doubles(levels), (n_st,))
+    for i in range(n_levels):
+        ux[i], uy[i], vx[i], vy[i] = u_all[b, i, 0], u_all[b, i, 1], v_all[b, i, 0], \
+            v_all[b, i, 1]
+        pa2[i] = peak_level[b, i]
+        pax[i], pay[i] = peak_level_xy[b, i, 0], peak_level_xy[b, i, 1]
+    for i in range(n_st):
+        fsx[i], fsy[i] = f_story_all[b, i, 0], f_story_all[b, i, 1]
+        pd2[i] = peak_story[b, i]
+        pdx[i], pdy[i] = peak_story_xy[b, i, 0], peak_story_xy[b, i, 1]
+
+    for step in range(s0, s1):
+        ax = cs * ag[step, 0] - sn * ag[step, 1]
+        ay = sn * ag[step, 0] + cs * ag[step, 1]
+        cx[0] = k_el * ux[0] + fpx
+        cy[0] = k_el * uy[0] + fpy
+        for i in range(n_st):
+            dx[i] = ux[i + 1] - ux[i]
+            dy[i] = uy[i + 1] - uy[i]
+            if stories_yield:
+                cx[i + 1] = k_post[i] * dx[i] + fsx[i]
+                cy[i + 1] = k_post[i] * dy[i] + fsy[i]
+            else:
+                cx[i + 1] = k_story[i] * dx[i]
+                cy[i + 1] = k_story[i] * dy[i]
+        for i in range(n_st):
+            rx[i] = (cx[i + 1] - cx[i]) - m[i] * ax
+            ry[i] = (cy[i + 1] - cy[i]) - m[i] * ay
+        rx[n_st] = (0.0 - cx[n_st]) - m[n_st] * ax
+        ry[n_st] = (0.0 - cy[n_st]) - m[n_st] * ay
+        # Both directions through the one operator, read once (ot: transposed, by column).
+        for i in range(n_levels):
+            nx_[i] = ot[0, i] * rx[0]
+            ny_[i] = ot[0, i] * ry[0]
+        for j in range(1, n_levels):
+            rxj, ryj = rx[j], ry[j]
             for i in range(n_levels):
-                nxt[i, d] += w[i] * wf[d]
-        pk[_P_ENERGY] -= (wf[0] * (v[0, 0] + nxt[0, 0]) + wf[1] * (v[0, 1] + nxt[0, 1])) \
-            * half_dt
+                nx_[i] += ot[j, i] * rxj
+                ny_[i] += ot[j, i] * ryj
+        for j in range(n_levels):
+            vxj, vyj = vx[j], vy[j]
+            for i in range(n_levels):
+                nx_[i] += ot[n_levels + j, i] * vxj
+                ny_[i] += ot[n_levels + j, i] * vyj
+
+        # The moat: the force on the slab (wfx, wfy), towards the centre.
+        wfx, wfy = 0.0, 0.0
+        if circular:
+            radius = math.hypot(ux[0], uy[0])
+            nrm_x, nrm_y = 1.0, 0.0
+            if radius > 0.0:
+                nrm_x, nrm_y = ux[0] / max(radius, 1e-300), uy[0] / max(radius, 1e-300)
+            delta = max(radius - gap0, -1.0)
+            touching = delta > 0.0
+            new = touching and not in0
+            if new:
+                n_imp += 1
+                v_imp0 = nrm_x * vx[0] + nrm_y * vy[0]
+            in0 = touching
+            if touching:
+                free = nrm_x * (0.5 * (vx[0] + nx_[0])) + nrm_y * (0.5 * (vy[0] + ny_[0]))
+                force = _contact(code0, wp0, delta, new, v_imp0, delta_prev0, free, comp)
+                wfx, wfy = -nrm_x * force, -nrm_y * force
+                p_force = max(p_force, force)
+                pw[0] = max(pw[0], force)
+            delta_prev0 = delta
+            p_indent = max(p_indent, delta)
+        else:
+            side = np.sign(ux[0])
+            delta = max(abs(ux[0]) - gap0, -1.0)
+            touching = delta > 0.0
+            new = touching and not in0
+            if new:
+                n_imp += 1
+                v_imp0 = side * vx[0]
+            in0 = touching
+            if touching:
+                force = _contact(code0, wp0, delta, new, v_imp0, delta_prev0,
+                                 side * 0.5 * (vx[0] + nx_[0]), comp)
+                wfx = -side * force
+                p_force = max(p_force, force)
+                wx = 0 if side > 0 else 1
+                pw[wx] = max(pw[wx], force)
+            delta_prev0 = delta
+            p_indent = max(p_indent, delta)
+            side = np.sign(uy[0])
+            delta = max(abs(uy[0]) - gap1, -1.0)
+            touching = delta > 0.0
+            new = touching and not in1
+            if new:
+                n_imp += 1
+                v_imp1 = side * vy[0]
+            in1 = touching
+            if touching:
+                force = _contact(code1, wp1, delta, new, v_imp1, delta_prev1,
+                                 side * 0.5 * (vy[0] + ny_[0]), comp)
+                wfy = -side * force
+                p_force = max(p_force, force)
+                wy = 2 if side > 0 else 3
+                pw[wy] = max(pw[wy], force)
+            delta_prev1 = delta
+            p_indent = max(p_indent, delta)
+        if wfx != 0.0 or wfy != 0.0:
+            for i in range(n_levels):
+                nx_[i] += w[i] * wfx
+                ny_[i] += w[i] * wfy
+            energy -= (wfx * (vx[0] + nx_[0]) + wfy * (vy[0] + ny_[0])) * half_dt
 
         for i in range(n_levels):
-            tx = (nxt[i, 0] - v[i, 0]) / dt + a[0]
-            ty = (nxt[i, 1] - v[i, 1]) / dt + a[1]
-            peak_level[b, i] = max(peak_level[b, i], math.sqrt(tx * tx + ty * ty))
-            peak_level_xy[b, i, 0] = max(peak_level_xy[b, i, 0], abs(tx))
-            peak_level_xy[b, i, 1] = max(peak_level_xy[b, i, 1], abs(ty))
-        for i in range(n_levels - 1):
-            dx, dy = drift[i, 0], drift[i, 1]
-            peak_story[b, i] = max(peak_story[b, i], math.sqrt(dx * dx + dy * dy))
-            peak_story_xy[b, i, 0] = max(peak_story_xy[b, i, 0], abs(dx))
-            peak_story_xy[b, i, 1] = max(peak_story_xy[b, i, 1], abs(dy))
-        ux, uy = u[0, 0], u[0, 1]
-        pk[_P_ISO] = max(pk[_P_ISO], math.sqrt(ux * ux + uy * uy))
-        peak_iso_xy[b, 0] = max(peak_iso_xy[b, 0], abs(ux))
-        peak_iso_xy[b, 1] = max(peak_iso_xy[b, 1], abs(uy))
+            tx = (nx_[i] - vx[i]) / dt + ax
+            ty = (ny_[i] - vy[i]) / dt + ay
+            pa2[i] = max(pa2[i], tx * tx + ty * ty)
+            pax[i] = max(pax[i], abs(tx))
+            pay[i] = max(pay[i], abs(ty))
+        for i in range(n_st):
+            pd2[i] = max(pd2[i], dx[i] * dx[i] + dy[i] * dy[i])
+            pdx[i] = max(pdx[i], abs(dx[i]))
+            pdy[i] = max(pdy[i], abs(dy[i]))
+        p_iso2 = max(p_iso2, ux[0] * ux[0] + uy[0] * uy[0])
+        p_iso_x = max(p_iso_x, abs(ux[0]))
+        p_iso_y = max(p_iso_y, abs(uy[0]))
 
         # Advance: the slip elements see this step's increments, the isolator's limit at this
         # step's sliding speed |v|.
         limit = f_limit if slow_drop == 0.0 else _slip_limit(
-            f_limit, slow_drop, rate, math.hypot(nxt[0, 0], nxt[0, 1]))
-        st[_FPX], st[_FPY] = _radial_return(st[_FPX], st[_FPY], dt * nxt[0, 0],
-                                            dt * nxt[0, 1], k_slip, limit)
+            f_limit, slow_drop, rate, math.hypot(nx_[0], ny_[0]))
+        fpx, fpy = _radial_return(fpx, fpy, dt * nx_[0], dt * ny_[0], k_slip, limit)
         if stories_yield:
-            for i in range(n_levels - 1):
-                f_story[i, 0], f_story[i, 1] = _radial_return(
-                    f_story[i, 0], f_story[i, 1], dt * (nxt[i + 1, 0] - nxt[i, 0]),
-                    dt * (nxt[i + 1, 1] - nxt[i, 1]), story[b, 2, i], story[b, 3, i])
+            for i in range(n_st):
+                fsx[i], fsy[i] = _radial_return(fsx[i], fsy[i], dt * (nx_[i + 1] - nx_[i]),
+                                                dt * (ny_[i + 1] - ny_[i]), k_slip_story[i],
+                                                f_limit_story[i])
         for i in range(n_levels):
-            for d in range(2):
-                v[i, d] = nxt[i, d]
-                u[i, d] = u[i, d] + dt * nxt[i, d]
+            vx[i], vy[i] = nx_[i], ny_[i]
+            ux[i] = ux[i] + dt * nx_[i]
+            uy[i] = uy[i] + dt * ny_[i]
 
-
-@njit(**_LINK)
-def _raise_wall(pk, n_impacts, peak_wall, b, force, delta, new, which):
-    pk[_P_INDENT] = max(pk[_P_INDENT], delta)
-    pk[_P_FORCE] = max(pk[_P_FORCE], force)
-    if new:
-        n_impacts[b] += 1
-    peak_wall[b, which] = max(peak_wall[b, which], force)
+    for i in range(n_levels):
+        u_all[b, i, 0], u_all[b, i, 1], v_all[b, i, 0], v_all[b, i, 1] = ux[i], uy[i], vx[i], \
+            vy[i]
+        peak_level[b, i] = pa2[i]
+        peak_level_xy[b, i, 0], peak_level_xy[b, i, 1] = pax[i], pay[i]
+    for i in range(n_st):
+        f_story_all[b, i, 0], f_story_all[b, i, 1] = fsx[i], fsy[i]
+        peak_story[b, i] = pd2[i]
+        peak_story_xy[b, i, 0], peak_story_xy[b, i, 1] = pdx[i], pdy[i]
+    st[_FPX], st[_FPY] = fpx, fpy
+    st[j0], st[j0 + 1], st[j0 + 2] = v_imp0, delta_prev0, 1.0 if in0 else 0.0
+    if not circular:
+        st[j1], st[j1 + 1], st[j1 + 2] = v_imp1, delta_prev1, 1.0 if in1 else 0.0
+    pk[_P_ISO] = p_iso2
+    pk[_P_INDENT], pk[_P_FORCE], pk[_P_ENERGY] = p_indent, p_force, energy
+    peak_iso_xy[b, 0], peak_iso_xy[b, 1] = p_iso_x, p_iso_y
+    n_impacts[b] = n_imp
 
 
 @njit(parallel=True, **_JIT)
@@ -251,4 +338,6 @@ def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle):
     for i, name in enumerate(("peak_isolator_disp", "max_indentation", "max_impact_force",
                               "impact_energy")):
         peaks[name] = scalar[:, i].copy()
+    for name in ("peak_total_accel", "peak_interstory_drift", "peak_isolator_disp"):
+        peaks[name] = np.sqrt(peaks[name])  # kept squared by the kernel
     return peaks
