@@ -86,6 +86,30 @@ PLAN_PEAKS: tuple[Quantity, ...] = (
 """What a run in plan returns besides PEAKS, whose quantities it gives as resultants (vector
 magnitudes: the peak of |u_0(t)|, of |a(t)| per level, of the drift vector per story)."""
 
+PLAN_HISTORIES: tuple[Quantity, ...] = (
+    Quantity("isolator_disp", "m", "isolator displacement in each direction (the orbit)",
+             direction=True),
+    Quantity("total_accel", "m s-2", "total (absolute) floor acceleration in each direction",
+             "floor", direction=True),
+    Quantity("impact_force", "N", "magnitude of the moat's force on the slab (0 out of "
+             "contact)", wall=True),
+    Quantity("indentation", "m", "deepest indentation into a wall (0 out of contact)",
+             wall=True),
+)
+"""The time histories of a run in plan: HISTORIES with a last axis of directions where a
+quantity has one."""
+
+
+def empty_plan_history(rows: int, n_steps: int, every: int, dt: float,
+                       n_levels: int) -> dict[str, np.ndarray]:
+    """Zeroed histories in plan for `rows` members, every `every`-th of n_steps steps, with
+    their time (T,) s."""
+    n_out = (n_steps - 1) // every + 1
+    return {"time": np.arange(n_out) * every * dt,
+            **{q.name: np.zeros((rows, n_out, *q.trailing_shape(n_levels)))
+               for q in PLAN_HISTORIES}}
+
+
 PEAK_NAMES = tuple(q.name for q in PEAKS)
 HISTORY_NAMES = tuple(q.name for q in HISTORIES)
 

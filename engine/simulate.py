@@ -68,7 +68,9 @@ def simulate(accel, accel_dt: float, contact: Contact,
     angles in degrees rotating each member's pair counterclockwise (one call runs a pair at
     many angles). Returns a PlanResult: the PEAKS as resultants (vector magnitudes), the
     per-direction peaks and the largest force on each wall (loops/numba_plan.py compiled, or
-    loops/numpy_plan.py; histories are not yet recorded in plan).
+    loops/numpy_plan.py); its history (results.PLAN_HISTORIES) has the isolator's orbit
+    (M, T, 2) m, the floor accelerations (M, T, levels, 2) m/s^2, the moat's force |F| (M, T)
+    N and the deepest indentation (M, T) m.
     """
     if np.ndim(accel) == 2:
         return _simulate_plan(accel, accel_dt, contact, building, dt, history, progress,
@@ -93,12 +95,7 @@ def simulate(accel, accel_dt: float, contact: Contact,
     accel, n_steps = checked_record(accel, accel_dt, dt)
     scale = checked_scale(scale, size)
     if history is not None:
-        members = np.asarray(history.members, dtype=int)
-        if members.ndim != 1 or np.any((members < -size) | (members >= size)):
-            raise EngineError(f"history.members must index the batch of {size}, got "
-                              f"{history.members!r}")
-        if not (isinstance(history.every, (int, np.integer)) and history.every >= 1):
-            raise EngineError(f"history.every must be a positive integer, got {history.every!r}")
+        _check_history(history, size)
 
     loop = time_loop(resolve_backend(backend))
     ag = loop.ground_motion(accel, float(accel_dt), float(dt), n_steps)
@@ -122,7 +119,7 @@ def _simulate_plan(accel, accel_dt, contact, building, dt, history, progress, ba
         raise EngineError(f"contact_y: the y walls of a rectangular moat, one per member "
                           f"({size}), got {len(contact_y)} for a {moat} moat")
     if history is not None:
-        raise EngineError("history: time histories in plan are not recorded yet")
+        _check_history(history, size)
     accel = np.asarray(accel, dtype=float)
     if accel.ndim != 2 or accel.shape[1] != 2:
         raise EngineError(f"accel in plan must be (N, 2): x and y components, got "
@@ -146,8 +143,18 @@ def _simulate_plan(accel, accel_dt, contact, building, dt, history, progress, ba
 
     loop = plan_loop(resolve_backend(backend))
     ag = numpy_plan.ground_motion(accel, float(accel_dt), float(dt), n_steps)
-    peaks = loop.run_plan(ag, dt, arrays, contacts, moat, progress, scale, np.radians(angle))
-    return PlanResult(**peaks, dt=dt, moat=moat)
+    peaks, hist = loop.run_plan(ag, dt, arrays, contacts, moat, progress, scale,
+                                np.radians(angle), history)
+    return PlanResult(**peaks, dt=dt, history=hist, moat=moat)
+
+
+def _check_history(history: History, size: int) -> None:
+    members = np.asarray(history.members, dtype=int)
+    if members.ndim != 1 or np.any((members < -size) | (members >= size)):
+        raise EngineError(f"history.members must index the batch of {size}, got "
+                          f"{history.members!r}")
+    if not (isinstance(history.every, (int, np.integer)) and history.every >= 1):
+        raise EngineError(f"history.every must be a positive integer, got {history.every!r}")
 
 
 def checked_angle(angle, size: int) -> np.ndarray:

@@ -23,7 +23,14 @@ from .. import scheme
 from ..impact import registry
 from ..impact.contact import LAW_ARGUMENTS
 from ..isolators import hysteresis
-from ..results import DIRECTIONS, PEAKS, PLAN_PEAKS, WALLS
+from ..results import (
+    DIRECTIONS,
+    PEAKS,
+    PLAN_HISTORIES,
+    PLAN_PEAKS,
+    WALLS,
+    empty_plan_history,
+)
 from ..scheme import step_operators
 from .numba_loop import _JIT, _LINK, _implicit_force, _law_terms, _onset_weight, _slip_limit
 from .numba_support import install_cache_locator, stack_doubles
@@ -62,7 +69,8 @@ def _contact(code, wp, delta, new, v_imp, delta_prev, rate_free, comp):
 @njit(**_JIT)
 def _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par, wall_par,
             u_all, v_all, f_story_all, state, peak_level, peak_level_xy, peak_story,
-            peak_story_xy, peak_iso_xy, peak_scalar, n_impacts, peak_wall):
+            peak_story_xy, peak_iso_xy, peak_scalar, n_impacts, peak_wall, hist_row, every,
+            h_u, h_acc, h_f, h_d):
     """Steps s0 <= step < s1 of member b (see the module docstring). Like the planar kernel,
     the member's state lives in scalars and arrays on the stack (x and y apart) while it
     runs; resultant peaks are kept squared (the square root of the largest square is the
@@ -98,6 +106,7 @@ def _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par
     p_iso_x, p_iso_y = peak_iso_xy[b, 0], peak_iso_xy[b, 1]
     n_imp = n_impacts[b]
     pw = peak_wall[b]
+    hrow = hist_row[b]
 
     ux = carray(stack_doubles(levels), (n_levels,))
     uy = carray(stack_doubles(levels), (n_levels,))
@@ -165,6 +174,7 @@ def _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par
 
         # The moat: the force on the slab (wfx, wfy), towards the centre.
         wfx, wfy = 0.0, 0.0
+        deepest = -1.0
         if circular:
             radius = math.hypot(ux[0], uy[0])
             nrm_x, nrm_y = 1.0, 0.0
@@ -185,6 +195,7 @@ def _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par
                 pw[0] = max(pw[0], force)
             delta_prev0 = delta
             p_indent = max(p_indent, delta)
+            deepest = delta
         else:
             side = np.sign(ux[0])
             delta = max(abs(ux[0]) - gap0, -1.0)
@@ -203,6 +214,7 @@ def _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par
                 pw[wx] = max(pw[wx], force)
             delta_prev0 = delta
             p_indent = max(p_indent, delta)
+            deepest = max(deepest, delta)
             side = np.sign(uy[0])
             delta = max(abs(uy[0]) - gap1, -1.0)
             touching = delta > 0.0
@@ -220,15 +232,25 @@ def _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par
                 pw[wy] = max(pw[wy], force)
             delta_prev1 = delta
             p_indent = max(p_indent, delta)
+            deepest = max(deepest, delta)
         if wfx != 0.0 or wfy != 0.0:
             for i in range(n_levels):
                 nx_[i] += w[i] * wfx
                 ny_[i] += w[i] * wfy
             energy -= (wfx * (vx[0] + nx_[0]) + wfy * (vy[0] + ny_[0])) * half_dt
 
+        keep = hrow >= 0 and step % every == 0  # this step goes into the histories
+        if keep:
+            t = step // every
+            h_u[hrow, t, 0], h_u[hrow, t, 1] = ux[0], uy[0]
+            h_f[hrow, t] = math.hypot(wfx, wfy)
+            h_d[hrow, t] = max(deepest, 0.0)
         for i in range(n_levels):
             tx = (nx_[i] - vx[i]) / dt + ax
             ty = (ny_[i] - vy[i]) / dt + ay
+            if keep:
+                h_acc[hrow, step // every, i, 0] = tx
+                h_acc[hrow, step // every, i, 1] = ty
             pa2[i] = max(pa2[i], tx * tx + ty * ty)
             pax[i] = max(pax[i], abs(tx))
             pay[i] = max(pay[i], abs(ty))
@@ -277,15 +299,16 @@ def _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par
 @njit(parallel=True, **_JIT)
 def _run(levels, circular, s0, s1, ag, dt, op, wall, mass, story, law, par, wall_par, u, v,
          f_story, state, peak_level, peak_level_xy, peak_story, peak_story_xy, peak_iso_xy,
-         peak_scalar, n_impacts, peak_wall):
+         peak_scalar, n_impacts, peak_wall, hist_row, every, h_u, h_acc, h_f, h_d):
     for b in prange(law.shape[0]):
         _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par, wall_par,
                 u, v, f_story, state, peak_level, peak_level_xy, peak_story, peak_story_xy,
-                peak_iso_xy, peak_scalar, n_impacts, peak_wall)
+                peak_iso_xy, peak_scalar, n_impacts, peak_wall, hist_row, every, h_u, h_acc,
+                h_f, h_d)
 
 
-def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle):
-    """numpy_plan.run_plan on the kernel: the same arguments, the same peaks dict."""
+def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, history=None):
+    """numpy_plan.run_plan on the kernel: the same arguments, the same (peaks, history)."""
     size, n_levels = arrays.masses.shape
     levels = (0,) * n_levels
     op, wall_response, compliance = step_operators(arrays, dt)
@@ -314,14 +337,24 @@ def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle):
     peaks = {q.name: np.zeros((size, *q.trailing_shape(n_levels, len(WALLS[moat]))),
                               dtype=q.dtype) for q in (*PEAKS, *PLAN_PEAKS)}
     scalar = np.zeros((size, 4))
+    n_steps = ag.shape[0]
+    hist_row = np.full(size, -1, dtype=np.int64)
+    every, rows, inverse = 1, 0, None
+    if history is not None:
+        unique, inverse = np.unique(np.asarray(history.members, dtype=np.int64) % size,
+                                    return_inverse=True)
+        rows = unique.size
+        hist_row[unique] = np.arange(rows)
+        every = int(history.every)
+    hist = empty_plan_history(rows, n_steps, every, dt, n_levels)
     args = (np.ascontiguousarray(ag, dtype=np.float64), float(dt),
             np.ascontiguousarray(op.transpose(0, 2, 1)), np.ascontiguousarray(wall_response),
             np.ascontiguousarray(arrays.masses), story, law, par, wall_par, u, v, f_story,
             state, peaks["peak_total_accel"], peaks["peak_total_accel_xy"],
             peaks["peak_interstory_drift"], peaks["peak_interstory_drift_xy"],
             peaks["peak_isolator_disp_xy"], scalar, peaks["n_impacts"],
-            peaks["max_impact_force_wall"])
-    n_steps = ag.shape[0]
+            peaks["max_impact_force_wall"], hist_row, every, hist["isolator_disp"],
+            hist["total_accel"], hist["impact_force"], hist["indentation"])
     circular = moat == "circular"
     previous = numba.set_parallel_chunksize(1)  # members to whichever thread is free
     try:
@@ -340,4 +373,8 @@ def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle):
         peaks[name] = scalar[:, i].copy()
     for name in ("peak_total_accel", "peak_interstory_drift", "peak_isolator_disp"):
         peaks[name] = np.sqrt(peaks[name])  # kept squared by the kernel
-    return peaks
+    if history is None:
+        return peaks, None
+    hist = {"time": hist["time"], **{q.name: hist[q.name][inverse] for q in PLAN_HISTORIES},
+            "members": np.asarray(history.members, dtype=int)}
+    return peaks, hist

@@ -22,7 +22,7 @@ import numpy as np
 from ..building import BuildingArrays
 from ..impact.contact import fill_force_terms, law_blocks
 from ..isolators.hysteresis import radial_return, slip_limit
-from ..results import DIRECTIONS, PEAKS, PLAN_PEAKS, WALLS
+from ..results import DIRECTIONS, PEAKS, PLAN_PEAKS, WALLS, empty_plan_history
 from ..scheme import implicit_force, onset_weight, step_operators
 
 
@@ -68,12 +68,15 @@ class _Wall:
         return force[i], delta[i], new[i]
 
 
-def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, angle):
-    """engine.simulate's loop in plan: the peaks (PEAKS as resultants, then PLAN_PEAKS).
+def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, angle,
+             history=None):
+    """engine.simulate's loop in plan: (peaks: PEAKS as resultants, then PLAN_PEAKS; history
+    dict or None).
 
     ag (N, 2) m/s^2 on the step grid (x, y); b: B members; contacts: (x walls, y walls) for a
     rectangular moat, (radial wall,) for a circular one; scale (B,); angle (B,) rad, rotating
-    each member's ground motion counterclockwise.
+    each member's ground motion counterclockwise; history: engine.History or None (the
+    histories in plan: results.plan_history).
     """
     size, n_levels = b.masses.shape
     mass = b.masses
@@ -94,6 +97,10 @@ def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, an
     peaks = {q.name: np.zeros((size, *q.trailing_shape(n_levels, len(WALLS[moat]))),
                               dtype=q.dtype) for q in (*PEAKS, *PLAN_PEAKS)}
     n_steps = ag.shape[0]
+    hist, rows = None, None
+    if history is not None:
+        rows = np.asarray(history.members, dtype=int) % size
+        hist = empty_plan_history(rows.size, n_steps, history.every, dt, n_levels)
     report_every = max(n_steps // 100, 1)
     for step in range(n_steps):
         # The member's ground motion: the pair rotated by its angle, times its scale.
@@ -111,6 +118,7 @@ def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, an
         v_next = np.einsum("bij,bjd->bid", step_op, rhs)
 
         wall_force = np.zeros((size, n_dir))  # on the slab, towards the centre
+        step_delta = np.full(size, -1.0)  # the deepest indentation this step
         if moat == "rectangular":
             for d, wall in enumerate(walls):
                 side = np.sign(u0[:, d])
@@ -118,6 +126,7 @@ def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, an
                     np.abs(u0[:, d]), side * v_half[:, 0, d],
                     side * 0.5 * (v_half[:, 0, d] + v_next[:, 0, d]), compliance)
                 wall_force[:, d] = -side * force
+                step_delta = np.maximum(step_delta, delta)
                 _wall_peaks(peaks, force, delta, new, np.where(side > 0, 2 * d, 2 * d + 1))
         else:
             radius = np.hypot(u0[:, 0], u0[:, 1])
@@ -128,6 +137,7 @@ def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, an
                 radius, np.sum(normal * v_half[:, 0], axis=1), np.sum(normal * central, axis=1),
                 compliance)
             wall_force = -normal * force[:, None]
+            step_delta = delta
             _wall_peaks(peaks, force, delta, new, np.zeros(size, dtype=int))
         v_next += wall_response[:, :, None] * wall_force[:, None, :]
         # Work on the walls over this step, with the central velocity of level 0.
@@ -135,6 +145,12 @@ def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, an
                                          axis=1) * (0.5 * dt)
 
         total_accel = (v_next - v_half) / dt + a[:, None, :]
+        if hist is not None and step % history.every == 0:
+            k = step // history.every
+            hist["isolator_disp"][:, k] = u0[rows]
+            hist["total_accel"][:, k] = total_accel[rows]
+            hist["impact_force"][:, k] = np.hypot(wall_force[rows, 0], wall_force[rows, 1])
+            hist["indentation"][:, k] = np.maximum(step_delta[rows], 0.0)
         _peak(peaks, "peak_total_accel", total_accel)
         _peak(peaks, "peak_interstory_drift", drift)
         _peak(peaks, "peak_isolator_disp", u0)
@@ -159,7 +175,9 @@ def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, an
             progress(step, n_steps)
     if progress is not None:
         progress(n_steps, n_steps)
-    return peaks
+    if hist is not None:
+        hist["members"] = np.asarray(history.members, dtype=int)
+    return peaks, hist
 
 
 def _peak(peaks, name, vectors):

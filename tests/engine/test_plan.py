@@ -144,6 +144,34 @@ def test_the_compiled_loop_gives_the_numpy_loops_numbers(moat):
                        {**ref.peaks(), **ref.plan_peaks()})
 
 
+@pytest.mark.parametrize("moat", ["rectangular", "circular"])
+def test_orbits_on_both_backends(moat):
+    """The histories in plan: the orbit's largest radius is the resultant peak, the loops
+    agree, and a pair without y component records the planar history along x."""
+    accel, dt = record()
+    pair = np.column_stack([accel, 0.7 * accel[::-1]])
+    contact, buildings = batch()
+    wanted = engine.History(members=[1, 4, 1], every=1)
+    fast, ref = (engine.simulate(pair, dt, contact, buildings, moat=moat, history=wanted,
+                                 backend=backend) for backend in BACKENDS)
+    for name in ("isolator_disp", "total_accel", "impact_force", "indentation"):
+        np.testing.assert_allclose(fast.history[name], ref.history[name], rtol=RTOL,
+                                   atol=RTOL * np.abs(ref.history[name]).max(), err_msg=name)
+    orbit = fast.history["isolator_disp"]  # (3, T, 2)
+    assert orbit.shape == (3, fast.history["time"].size, 2)
+    np.testing.assert_allclose(np.hypot(orbit[..., 0], orbit[..., 1]).max(axis=1),
+                               fast.peak_isolator_disp[[1, 4, 1]], rtol=1e-12)
+    np.testing.assert_allclose(fast.history["impact_force"].max(axis=1),
+                               fast.max_impact_force[[1, 4, 1]], rtol=1e-12)
+    x_only = engine.simulate(np.column_stack([accel, np.zeros_like(accel)]), dt, contact,
+                             buildings, moat=moat, history=wanted)
+    flat = engine.simulate(accel, dt, contact, buildings, history=wanted)
+    np.testing.assert_allclose(x_only.history["isolator_disp"][..., 0],
+                               flat.history["isolator_disp"], rtol=RTOL, atol=1e-15)
+    np.testing.assert_allclose(x_only.history["impact_force"], flat.history["impact_force"],
+                               rtol=RTOL, atol=RTOL * flat.history["impact_force"].max())
+
+
 def test_corner_hits_load_both_walls_and_the_circle_differs():
     """The same pair in a square moat and in the circle inscribed in it: at a corner both
     walls push; the circle, closer to the slab along the diagonals, is hit at least as hard."""
@@ -179,7 +207,7 @@ def test_radial_return():
 
 @pytest.mark.parametrize("kwargs, match", [
     ({"moat": "hexagonal"}, "moat must be one of"),
-    ({"history": engine.History([0])}, "not recorded yet"),
+    ({"history": engine.History([5])}, "history.members"),
     ({"contact_y": Contact.linear([0.1, 0.2])}, "contact_y"),
     ({"angle": [1.0, 2.0]}, "angle"),
 ])
