@@ -18,6 +18,7 @@ Modules
   :func:`paper_records`).
 * ``lookup``: records by name, selector, paper key or path (:func:`load_record`,
   :func:`resolve_records`, the ``name*factor`` scaling syntax).
+* ``pair``: record pairs, x then y (:func:`load_pair`, :func:`pair_accel`, :func:`pair_names`).
 * ``cli``: the command line (:func:`main`), run by ``python -m pipeline.records``.
 
 The names listed in ``__all__`` are imported here: ``from pipeline.records import X``.
@@ -63,6 +64,15 @@ from .at2 import At2File, parse_at2, read_at2
 from .cli import main
 from .library import SETS, RecordInfo, library_index, list_records
 from .lookup import TEXT_SUFFIXES, load_record, resolve_records
+from .pair import (
+    MissingComponentWarning,
+    PairInfo,
+    align_pair,
+    library_pairs,
+    load_pair,
+    pair_accel,
+    pair_names,
+)
 from .paper import (
                     BUILTIN_DATA,
                     BUILTIN_KEYS,
@@ -87,4 +97,6 @@ __all__ = [
     "builtin_records", "library_index", "list_records", "load_record", "main", "paper_label",
     "paper_record", "paper_records", "parse_at2", "read_at2", "read_builtin", "read_text",
     "resolve_records", "values_sha256",
+    "MissingComponentWarning", "PairInfo", "align_pair", "library_pairs", "load_pair",
+    "pair_accel", "pair_names",
 ]

