@@ -132,10 +132,13 @@ def level_axes(n_levels: int) -> dict[str, tuple[np.ndarray, str, str]]:
                       "story (story i joins level i-1 to level i)")}
 
 
-def empty_peaks(size: int, n_levels: int) -> dict[str, np.ndarray]:
-    """Zeroed (size, ...) arrays of every peak, for a building of n_levels levels."""
-    return {q.name: np.zeros((size, *q.trailing_shape(n_levels)), dtype=q.dtype)
-            for q in PEAKS}
+def empty_peaks(size: int, n_levels: int, moat: str | None = None) -> dict[str, np.ndarray]:
+    """Zeroed (size, ...) arrays of every peak, for a building of n_levels levels; of a run in
+    plan with a `moat` (WALLS), PLAN_PEAKS too."""
+    quantities = PEAKS if moat is None else (*PEAKS, *PLAN_PEAKS)
+    walls = 1 if moat is None else len(WALLS[moat])
+    return {q.name: np.zeros((size, *q.trailing_shape(n_levels, walls)), dtype=q.dtype)
+            for q in quantities}
 
 
 @dataclass(frozen=True)

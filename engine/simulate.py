@@ -16,7 +16,8 @@ from .backends import plan_loop, resolve_backend, time_loop
 from .building import Building, building_arrays
 from .errors import EngineError, UnstableTimeStep
 from .impact import NONE, Contact
-from .results import WALLS, History, PlanResult, Result, TwoBodyResult
+from .plan import ANGLE, MOATS
+from .results import History, PlanResult, Result, TwoBodyResult
 from .scheme import (
     DEFAULT_DT,
     INDENTATION_BOUND,
@@ -107,8 +108,8 @@ def _simulate_plan(accel, accel_dt, contact, building, dt, history, progress, ba
                    moat, contact_y, angle) -> PlanResult:
     """simulate for a record pair (N, 2): the plan loop (see simulate)."""
     moat = "rectangular" if moat is None else moat
-    if moat not in WALLS:
-        raise EngineError(f"moat must be one of {tuple(WALLS)}, got {moat!r}")
+    if moat not in MOATS:
+        raise EngineError(f"moat must be one of {MOATS}, got {moat!r}")
     if not isinstance(contact, Contact) or (contact_y is not None
                                             and not isinstance(contact_y, Contact)):
         raise EngineError("contact (and contact_y) must be an engine.Contact")
@@ -158,15 +159,13 @@ def _check_history(history: History, size: int) -> None:
 
 
 def checked_angle(angle, size: int) -> np.ndarray:
-    """(B,) incidence angles in degrees, finite."""
+    """(B,) incidence angles in degrees, in the declared range (plan.ANGLE)."""
     try:
         values = np.broadcast_to(np.asarray(angle, dtype=float), (size,)).copy()
     except (TypeError, ValueError):
         raise EngineError(f"angle must be a number or {size} numbers in degrees, got "
                           f"{np.shape(angle)}") from None
-    if not np.all(np.isfinite(values)):
-        raise EngineError("angle must be finite (degrees)")
-    return values
+    return ANGLE.check(values)
 
 
 def contact_time_scale(m_eff, v, k, n):

@@ -33,7 +33,7 @@ def _sweep(records, *, impact: str = "bumper", dt: float | None = None, workers:
            scheduler=None, out=None, baseline: bool = False, unconstrained: bool = False,
            building=None, m_eff: float | None = None, batch_size: int | None = None,
            records_dir=None, quiet: bool = False, work_dir=None, force: bool = False,
-           **parameters):
+           moat: str | None = None, **parameters):
     """Simulate every combination of the parameters under every record; label the peaks.
 
     records: paper keys ("kobe", "sylmar_converter", "olive_view", "pacoima"), library names,
@@ -78,6 +78,14 @@ def _sweep(records, *, impact: str = "bumper", dt: float | None = None, workers:
         removed once out is written; an explicit one is kept, and may be shared by several
         sweeps). Ctrl-C raises pipeline.errors.Interrupted (a KeyboardInterrupt) saying how
         many simulations are kept there; the same call again computes only the rest.
+    moat: None (default) for the paper's planar model, one record component each; or
+        "rectangular" / "circular" for runs in plan: records are then record PAIRS (anything
+        pipeline.records.load_pair takes: "RSN953", a paper key, "A.AT2+B.AT2", an (x, y)
+        tuple of Records; see pipeline.records.pair), the building moves in x and y on coupled
+        isolators, and `angle` (degrees, default 0; swept like any parameter) rotates each
+        pair counterclockwise. The archive then also holds the per-direction peaks (*_xy,
+        dimension `direction`) and the largest force per wall (`wall`); peak_* are
+        resultants. The same walls on every side (a square or circular moat).
     force: replace an existing `out` that holds another sweep. Without it such an archive is
         kept and SweepError raised before any compute; an archive of this very sweep (the
         same records, dt, building, members and engine: its `configuration_key` attribute)
@@ -99,12 +107,18 @@ def _sweep(records, *, impact: str = "bumper", dt: float | None = None, workers:
     if given["gap"] is None:
         raise SweepError("gap is required (m)")
     building = check_building(building)
+    if moat is not None:
+        from engine.plan import MOATS
+
+        if moat not in MOATS:
+            raise SweepError(f"moat must be one of {MOATS} (or None: planar), got {moat!r}")
     grid = make_grid(impact=impact, isolator=building.isolation.law, m_eff=m_eff,
-                     baseline=baseline, unconstrained=unconstrained, **given)
+                     baseline=baseline, unconstrained=unconstrained, plan=moat is not None,
+                     **given)
     arguments = {**given, "impact": impact, "baseline": baseline,
-                 "unconstrained": unconstrained, "m_eff": grid.m_eff}
+                 "unconstrained": unconstrained, "m_eff": grid.m_eff, "moat": moat}
     return _execute(grid, records, dt, workers, scheduler, out, building, batch_size,
-                    records_dir, quiet, arguments, work_dir, force)
+                    records_dir, quiet, arguments, work_dir, force, moat)
 
 
 def _completed_sweep():
@@ -144,11 +158,11 @@ def unconstrained_peaks(records, dt: float | None = None, building=None, workers
 
 
 def _execute(grid, records, dt, workers, scheduler, out, building, batch_size, records_dir,
-             quiet, arguments, work_dir=None, force=False):
+             quiet, arguments, work_dir=None, force=False, moat=None):
     """Check the rest of the input, open the store (.zarr: Zarr; else NetCDF), run, finish."""
     import engine
 
-    from .errors import SweepError, check_building, check_count, resolve_records
+    from .errors import SweepError, check_building, check_count, resolve_pairs, resolve_records
     from .execute.batches import default_batch_size
     from .execute.executor import execute
     from .grid import check_dt
@@ -162,7 +176,10 @@ def _execute(grid, records, dt, workers, scheduler, out, building, batch_size, r
             and not hasattr(scheduler, "submit"):
         raise SweepError(f"scheduler must be an address such as 'tcp://host:8786' or a "
                          f"dask.distributed Client, got {scheduler!r}")
-    recs, names = resolve_records(records, records_dir)
+    if moat is None:
+        recs, names = resolve_records(records, records_dir)
+    else:
+        recs, names = resolve_pairs(records, records_dir)
     if batch_size is None:
         batch_size = default_batch_size(grid.n_members, len(recs), workers)
     batch_size = check_count("batch_size", batch_size, minimum=1)
@@ -172,13 +189,16 @@ def _execute(grid, records, dt, workers, scheduler, out, building, batch_size, r
     if out is not None and out.suffix == ".zarr":
         from .execute.zarr_store import ZarrStore
 
+        if moat is not None:
+            raise SweepError(f"out: {out}: a sweep in plan writes NetCDF (.nc); Zarr stores "
+                             "hold planar sweeps only, for now")
         # the outermost folder this run creates, removed again if no batch runs
         new_store = next((p for p in reversed((out, *out.parents)) if not p.exists()), None)
         store = ZarrStore(grid, recs, names, dt, building, arguments, out, batch_size, force)
     else:
         from .execute.netcdf_store import NetCDFStore
 
-        store = NetCDFStore(grid, recs, names, dt, building, arguments, out, work_dir)
+        store = NetCDFStore(grid, recs, names, dt, building, arguments, out, work_dir, moat)
         if out is not None:
             guard(out, store.key, force, "force=True (--force)")
     try:

@@ -18,10 +18,11 @@ import xarray as xr
 import engine
 from engine.impact import LAWS
 from engine.isolators import LAWS as ISOLATOR_LAWS
-from engine.results import PEAKS, Quantity, level_axes
+from engine.plan import ANGLE
+from engine.results import DIRECTIONS, PEAKS, PLAN_PEAKS, WALLS, Quantity, level_axes
 
 from .grid import ISOLATOR_PARAMS, Grid, baseline_text, swept_parameter
-from .provenance import attributes
+from .provenance import attributes, plan_attributes
 from .writing import Staged
 
 STORY_DUCTILITY = Quantity("peak_story_ductility", "1", "peak story ductility (peak "
@@ -59,8 +60,10 @@ def labelled_dataset(data_vars: dict, coords: dict, attrs: dict | None = None) -
 def quantity_variable(q: Quantity, lead_dims: tuple[str, ...], values,
                       long_name: str | None = None) -> xr.Variable:
     """One of the engine's results (engine.results), its values shaped lead_dims + the
-    quantity's own trailing axis (floor or story), labelled with its declaration."""
-    dims = tuple(lead_dims) + ((q.along,) if q.along else ())
+    quantity's own trailing axes (floor, story or wall; then direction for a per-direction
+    quantity of a run in plan), labelled with its declaration."""
+    dims = tuple(lead_dims) + ((q.along,) if q.along else ()) \
+        + (("direction",) if q.direction else ())
     return variable(dims, values, q.units, q.long_name if long_name is None else long_name)
 
 
@@ -76,12 +79,26 @@ def block_long_name(q: Quantity, prefix: str) -> str:
 
 
 def peak_variables(peaks: dict, lead_dims: tuple[str, ...],
-                   prefix: str = "") -> dict[str, xr.Variable]:
-    """The engine's peaks (name -> array shaped lead_dims + the peak's own trailing axis),
-    labelled with their declarations (engine.results.PEAKS) as the block `prefix`'s."""
+                   prefix: str = "", quantities=PEAKS) -> dict[str, xr.Variable]:
+    """The engine's peaks (name -> array shaped lead_dims + the peak's own trailing axes),
+    labelled with their declarations (engine.results.PEAKS, and PLAN_PEAKS in plan) as the
+    block `prefix`'s."""
     return {prefix + q.name: quantity_variable(q, lead_dims, peaks[q.name],
                                                block_long_name(q, prefix))
-            for q in PEAKS}
+            for q in quantities}
+
+
+def plan_coords(moat: str) -> dict:
+    """The direction and wall coordinates of a run in plan."""
+    return {
+        "direction": variable("direction", np.array(DIRECTIONS), "1",
+                              "horizontal direction: x, the pair's first component, and y, "
+                              "its second, 90 degrees counterclockwise from x"),
+        "wall": variable("wall", np.array(WALLS[moat]), "1",
+                         "wall of the moat, named by its outward normal (+x: the wall the slab "
+                         "hits moving towards +x)" if moat == "rectangular" else
+                         "the circular moat's one wall"),
+    }
 
 
 def level_coords(n_levels: int) -> dict:
@@ -170,6 +187,8 @@ def parameter_coords(grid: Grid) -> dict:
         if name in ISOLATOR_PARAMS:  # replaces the building's own value (building_isolator_*)
             param = ISOLATOR_LAWS[grid.isolator].PARAMETERS.swept()[name]
             units, long_name = param.units, f"{param.meaning} ({param.equation})"
+        elif name == ANGLE.sweep:
+            units, long_name = ANGLE.units, ANGLE.meaning
         else:
             units, long_name = parameter_meta(grid.impact, name)
         value = grid.coords[name] if name in grid.coords else grid.fixed[name]
@@ -181,22 +200,25 @@ def parameter_coords(grid: Grid) -> dict:
 
 def build_dataset(grid: Grid, records, results: list[dict[str, np.ndarray]] | None, dt: float,
                   building: engine.Building, names: list[str],
-                  arguments: dict | None = None, chunks=None) -> xr.Dataset:
+                  arguments: dict | None = None, chunks=None,
+                  moat: str | None = None) -> xr.Dataset:
     """Label the per-record peak arrays of a sweep (each (M, ...), the grid's member order)
     as its Dataset.
 
     records: the Record objects run, named `names` in the record coordinate. results=None
     builds a template instead (pipeline.execute.zarr_store): every peak a lazy dask array of
     fill values (NaN, -1 for counts), chunks(block) giving the chunk sizes over its swept
-    dims, and no amplification ratios.
+    dims, and no amplification ratios. moat: the moat of a run in plan (records are then
+    pipeline.records.RecordPair): PLAN_PEAKS too, with direction and wall coordinates.
     """
+    quantities = PEAKS if moat is None else (*PEAKS, *PLAN_PEAKS)
     data_vars = {}
     start = 0
     for block in grid.blocks:
         part = slice(start, start + block.size)
         start += block.size
         peaks = {}
-        for q in PEAKS:
+        for q in quantities:
             if results is None:
                 import dask.array as da
 
@@ -207,11 +229,14 @@ def build_dataset(grid: Grid, records, results: list[dict[str, np.ndarray]] | No
                 continue
             values = np.stack([res[q.name][part] for res in results])
             peaks[q.name] = values.reshape(len(records), *block.shape, *values.shape[2:])
-        data_vars.update(peak_variables(peaks, ("record", *block.dims), block.prefix))
+        data_vars.update(peak_variables(peaks, ("record", *block.dims), block.prefix,
+                                        quantities))
     coords = {**record_coords(records, names), **level_coords(building.n_levels),
-              **parameter_coords(grid)}
-    ds = labelled_dataset(data_vars, coords,
-                          attributes(grid, records, names, dt, building, arguments))
+              **parameter_coords(grid), **({} if moat is None else plan_coords(moat))}
+    attrs = attributes(grid, records, names, dt, building, arguments)
+    if moat is not None:
+        attrs.update(plan_attributes(moat))
+    ds = labelled_dataset(data_vars, coords, attrs)
     if results is not None:
         ds = ds.assign({name: value for name, (value, _) in
                         derived_variables(ds, building).items()})

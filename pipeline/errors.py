@@ -39,6 +39,17 @@ def check_building(building):
     return building
 
 
+def resolve_pairs(pairs, records_dir=None) -> tuple[list, list[str]]:
+    """pipeline.records.resolve_pairs, its RecordError raised as SweepError."""
+    from .records import RecordError
+    from .records import resolve_pairs as resolve
+
+    try:
+        return resolve(pairs, records_dir)
+    except RecordError as err:
+        raise SweepError(str(err)) from err
+
+
 def resolve_records(records, records_dir=None) -> tuple[list, list[str]]:
     """pipeline.records.resolve_records, its RecordError raised as SweepError."""
     from .records import RecordError

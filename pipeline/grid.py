@@ -37,6 +37,7 @@ import numpy as np
 import engine
 from engine.impact import LAWS, M_EFF, NO_WALL
 from engine.isolators import LAWS as ISOLATOR_LAWS
+from engine.plan import ANGLE
 
 from .errors import PlausibilityWarning, SweepError
 
@@ -56,8 +57,11 @@ names (k1, k2, fy_ratio, radius, mu_slow, mu_fast, rate, yield_disp). Each appli
 building's isolator is of a law that declares it, and replaces the building's own value; in
 the archive they follow the wall's parameters."""
 assert not set(ISOLATOR_PARAMS) & set(PARAMS), "isolator and wall parameters share a name"
-DIMENSIONS = (*PARAMS, *ISOLATOR_PARAMS)
-"""Every sweep parameter, in the archive's dimension order (after record)."""
+PLAN_PARAMS = (ANGLE.sweep,)
+"""The parameters of runs in plan only: the record pair's incidence angle (degrees)."""
+DIMENSIONS = (*PLAN_PARAMS, *PARAMS, *ISOLATOR_PARAMS)
+"""Every sweep parameter, in the archive's dimension order (after record): the excitation's,
+the wall's, the isolator's."""
 
 
 def declarations(name: str) -> dict:
@@ -77,9 +81,11 @@ UNIT_SLIPS = {"m": ("cm", 1e-2, "cm"), "N m-1": ("kN/mm", 1e6, "kn-mm"),
               "kg": ("t", 1e3, "t")}
 
 MEMBER_DTYPE = np.dtype([("law", "U16"),
-                         *((name, "f8") for name in (*PARAMS, "m_eff", *ISOLATOR_PARAMS))])
+                         *((name, "f8") for name in (*PARAMS, "m_eff", *ISOLATOR_PARAMS,
+                                                     *PLAN_PARAMS))])
 """One member: its wall law's name, the wall's sweep parameters (SI; NaN: unused by the law),
-m_eff kg, the isolator parameters that replace the building's (SI; NaN: the building's own)."""
+m_eff kg, the isolator parameters that replace the building's (SI; NaN: the building's own),
+the incidence angle of a run in plan (degrees; NaN: a planar run)."""
 
 # The paper's bare wall, the reference of the amplification ratios (SPEC section 2 decision).
 BASELINE_LAW = "linear"
@@ -122,6 +128,7 @@ class Grid:
     blocks: tuple[Block, ...]
     m_eff: float
     isolator: str = "bilinear"
+    plan: bool = False
 
     @functools.cached_property
     def members(self) -> np.ndarray:
@@ -144,7 +151,7 @@ def swept_parameter(law: str, name: str):
 
 def make_grid(gap=None, *, impact: str = "bumper", isolator: str = "bilinear",
               m_eff: float | None = None, baseline: bool = False, unconstrained: bool = False,
-              **parameters) -> Grid:
+              plan: bool = False, **parameters) -> Grid:
     """Validate the parameters and build the member blocks (see module docstring).
 
     gap and the other wall parameters (PARAMS: thickness, cavity, strain, n_bumpers, wall_k,
@@ -153,7 +160,9 @@ def make_grid(gap=None, *, impact: str = "bumper", isolator: str = "bilinear",
     dimensionless; wall_k as the module docstring says per law; m_eff kg (None: the declared
     default). isolator: the law of the building's isolator; its parameters (ISOLATOR_PARAMS
     it declares, SI) given here replace the building's, fixed or swept alike, None keeping the
-    building's. gap=None with unconstrained=True builds only the no-wall block. Raises
+    building's. plan: the members run in plan, under record pairs; angle (degrees, default 0)
+    is then their incidence angle, fixed or swept, and the baseline and unconstrained blocks
+    repeat per angle. gap=None with unconstrained=True builds only the no-wall block. Raises
     SweepError naming the parameter (an unknown name too).
     """
     given = sweep_parameters({"gap": gap, **parameters})
@@ -162,11 +171,19 @@ def make_grid(gap=None, *, impact: str = "bumper", isolator: str = "bilinear",
     m_eff = M_EFF.default if m_eff is None else _scalar("m_eff", m_eff)
     plausible("m_eff", M_EFF, _checked(M_EFF, np.asarray(m_eff), "m_eff"))
     iso_values, iso_swept = _isolator_values(isolator, given)
+    if plan:  # the excitation's parameters lead the isolator's
+        angles, angle_swept = _values("angle", ANGLE.default if given["angle"] is None
+                                      else given["angle"])
+        iso_values = {"angle": _checked(ANGLE, angles, "angle"), **iso_values}
+        iso_swept = ["angle"] * angle_swept + iso_swept
+    elif given["angle"] is not None:
+        raise SweepError("angle applies to runs in plan, under record pairs (moat="
+                         "'rectangular' or 'circular')")
     if gap is None:
         if not unconstrained or any(given[p] is not None for p in PARAMS) or baseline:
             raise SweepError("gap is required (m); only an unconstrained-only run may omit it")
         blocks = (_members_block("unconstrained_", NO_WALL, iso_values, iso_swept, m_eff),)
-        return Grid(NO_WALL, *_coords(iso_values, iso_swept), blocks, m_eff, isolator)
+        return Grid(NO_WALL, *_coords(iso_values, iso_swept), blocks, m_eff, isolator, plan)
 
     declared = LAWS[impact].PARAMETERS.swept()
     values: dict[str, np.ndarray] = {}
@@ -192,17 +209,24 @@ def make_grid(gap=None, *, impact: str = "bumper", isolator: str = "bilinear",
         raise SweepError(f"baseline compares bumpers with the bare wall: it needs "
                          f"impact='bumper', not {impact!r}")
 
-    blocks = [_members_block("", impact, {**values, **iso_values}, [*swept, *iso_swept],
-                             m_eff)]
+    blocks = [_members_block("", impact, _excitation_first(values, iso_values),
+                             [*swept, *iso_swept], m_eff)]
     if baseline:
         bare = {"gap": values["gap"], **{k: np.array([v]) for k, v in BASELINE.items()}}
         bare_swept = [name for name in swept if name == "gap"]  # its wall is fixed
-        blocks.append(_members_block("baseline_", BASELINE_LAW, {**bare, **iso_values},
+        blocks.append(_members_block("baseline_", BASELINE_LAW,
+                                     _excitation_first(bare, iso_values),
                                      [*bare_swept, *iso_swept], m_eff))
     if unconstrained:
         blocks.append(_members_block("unconstrained_", NO_WALL, iso_values, iso_swept, m_eff))
     return Grid(impact, *_coords({**values, **iso_values}, [*swept, *iso_swept]),
-                tuple(blocks), m_eff, isolator)
+                tuple(blocks), m_eff, isolator, plan)
+
+
+def _excitation_first(values: dict, extra: dict) -> dict:
+    """A block's columns in DIMENSIONS order: the angle, the wall's, the isolator's."""
+    return {**{k: v for k, v in extra.items() if k in PLAN_PARAMS}, **values,
+            **{k: v for k, v in extra.items() if k not in PLAN_PARAMS}}
 
 
 def _isolator_values(isolator: str, given: dict) -> tuple[dict[str, np.ndarray], list[str]]:
@@ -260,7 +284,7 @@ def _members_block(prefix: str, law: str, values: dict, swept, m_eff: float) -> 
     dims = tuple(name for name in values if name in swept)
     shape = tuple(values[d].size for d in dims)
     members = np.zeros(math.prod(shape), dtype=MEMBER_DTYPE)
-    for name in (*PARAMS, *ISOLATOR_PARAMS):
+    for name in (*PARAMS, *ISOLATOR_PARAMS, *PLAN_PARAMS):
         members[name] = np.nan
     for name, column in zip(values, mesh, strict=True):
         members[name] = column.ravel()
@@ -391,5 +415,6 @@ def check_dt(grid: Grid, dt: float, building: engine.Building) -> float:
 def describe_member(member) -> str:
     """One member's parameters as text, e.g. 'bumper(gap=0.2, thickness=0.05, ...)'."""
     params = ", ".join(f"{name}={member[name]:g}" for name in
-                       (*PARAMS, "m_eff", *ISOLATOR_PARAMS) if not np.isnan(member[name]))
+                       (*PLAN_PARAMS, *PARAMS, "m_eff", *ISOLATOR_PARAMS)
+                       if not np.isnan(member[name]))
     return f"{member['law']}({params})"

@@ -140,6 +140,26 @@ def run_attributes(dt: float, building: engine.Building) -> dict:
             **building_attributes(building)}
 
 
+def plan_attributes(moat: str) -> dict:
+    """A run in plan: its moat and the conventions of its directions, angles and walls."""
+    return {
+        "moat": moat,
+        "plan_conventions": (
+            "x and y: the record pair's first and second components as loaded "
+            "(pipeline.records.load_pair: a library pair's lower azimuth is x), y 90 degrees "
+            "counterclockwise from x; angle: the pair rotated counterclockwise, x towards y; "
+            "peak_* without _xy: resultants (the peak of the vector's magnitude |u0|, |a| per "
+            "level, |drift| per story); *_xy: per direction, along `direction`; "
+            "max_impact_force_wall: per wall, along `wall`, each named by its outward normal"),
+        "plan_model": (
+            "isotropic stories; coupled isolator and yielding stories (circular yield surface, "
+            "exact radial return); rectangular moat: walls normal to x and y at +- the clear "
+            "gap, a corner loads both; circular moat: the radial indentation |u0| - gap, the "
+            "force along the radius; every impact law along its wall's normal; no friction "
+            "between slab and wall"),
+    }
+
+
 def decision_attributes(m_eff: float) -> dict:
     """The effective impact mass, and the decisions on m_eff, the COR and the gap."""
     return {

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 import engine
-from engine.results import PEAKS
+from engine.results import PEAKS, PLAN_PEAKS
 
 from ..grid import buildings_for, contact_for
 
@@ -31,11 +31,14 @@ class Batch:
 
 
 def simulate_batch(accel: np.ndarray, accel_dt: float, members: np.ndarray,
-                   building: engine.Building, dt: float, progress=None,
-                   report: tuple[str, str] | None = None) -> dict[str, np.ndarray]:
+                   building: engine.Building, dt: float, moat: str | None = None,
+                   progress=None, report: tuple[str, str] | None = None
+                   ) -> dict[str, np.ndarray]:
     """Peaks of (b,) members (grid.MEMBER_DTYPE) under one record (m/s^2 every accel_dt s):
     peak name -> (b, ...) array (engine.results.PEAKS). building: the sweep's; a member's
-    isolator parameters replace its own (grid.buildings_for).
+    isolator parameters replace its own (grid.buildings_for). moat: None for a planar run
+    (accel (N,)), else the moat of a run in plan under a record pair (accel (N, 2), each
+    member at its angle): PEAKS as resultants, then PLAN_PEAKS.
 
     progress(step, n_steps) is called as the engine goes; on a dask worker, report =
     (topic, tag) sends [tag, step / n_steps] to the client's event topic instead.
@@ -48,10 +51,12 @@ def simulate_batch(accel: np.ndarray, accel_dt: float, members: np.ndarray,
         def progress(step, n_steps):
             worker.log_event(topic, [tag, step / n_steps])
 
+    plan = {} if moat is None else {"moat": moat, "angle": members["angle"]}
     result = engine.simulate(accel, accel_dt, contact_for(members),
                              building=buildings_for(members, building), dt=dt,
-                             progress=progress)
-    return {q.name: np.asarray(getattr(result, q.name), dtype=q.dtype) for q in PEAKS}
+                             progress=progress, **plan)
+    return {q.name: np.asarray(getattr(result, q.name), dtype=q.dtype)
+            for q in (PEAKS if moat is None else (*PEAKS, *PLAN_PEAKS))}
 
 
 def default_batch_size(n_members: int, n_records: int, workers: int,

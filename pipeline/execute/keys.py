@@ -1,7 +1,8 @@
 """Every key of a resumable run, made here and nowhere else.
 
 - context_key: what besides a member's own record (grid.MEMBER_DTYPE) decides its result: the
-  record's content, dt, the building, the engine (its fingerprint) and CACHE_FORMAT;
+  record's content, dt, the building, the moat in plan, the engine (its fingerprint) and
+  CACHE_FORMAT;
 - batch_key: one batch of members under one context (a work folder's file name; NetCDF);
 - sweep_key: a whole sweep, every context and every member (a Zarr store's identity);
 - region_key: one chunk region of a Zarr store.
@@ -18,14 +19,15 @@ import numpy as np
 
 from ..provenance import engine_fingerprint, record_hash
 
-CACHE_FORMAT = 4  # bump when the work-folder layout, the member record or the peak set change
+CACHE_FORMAT = 5  # bump when the work-folder layout, the member record or the peak set change
 
 
-def context_key(record, dt: float, building) -> str:
-    """Everything besides the member record that determines a member's result."""
+def context_key(record, dt: float, building, moat: str | None = None) -> str:
+    """Everything besides the member record that determines a member's result (the moat of a
+    run in plan, whose record is a pair)."""
     text = json.dumps({"format": CACHE_FORMAT, "engine": engine_fingerprint(),
                        "record": record_hash(record.accel, record.dt), "dt": float(dt).hex(),
-                       "building": repr(building)}, sort_keys=True)
+                       "building": repr(building), "moat": moat}, sort_keys=True)
     return hashlib.sha256(text.encode()).hexdigest()
 
 

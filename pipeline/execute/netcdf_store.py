@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from engine.results import PEAK_NAMES, empty_peaks
+from engine.results import empty_peaks
 
 from ..archive import build_dataset, write_netcdf
 from ..errors import SweepError
@@ -40,7 +40,8 @@ class WorkFolder:
             try:
                 with np.load(file, allow_pickle=False) as data:
                     context, members = str(data["context"]), data["members"]
-                    peaks = {name: data[name] for name in PEAK_NAMES}
+                    peaks = {name: data[name] for name in data.files
+                             if name not in ("context", "members")}
             except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
                 continue  # a damaged file (killed mid-write elsewhere) is simply recomputed
             if members.dtype != MEMBER_DTYPE:
@@ -98,7 +99,7 @@ class NetCDFStore:
     """
 
     def __init__(self, grid, records, names, dt, building, arguments, out=None,
-                 work_dir=None):
+                 work_dir=None, moat=None):
         self.grid, self.records, self.names = grid, records, names
         self.dt, self.building, self.arguments, self.out = dt, building, arguments, out
         self.own_work_dir = work_dir is None and out is not None
@@ -106,11 +107,12 @@ class NetCDFStore:
             work_dir = out.with_name(out.name + ".work")
         self.kept_in = check_work_dir(work_dir)
         self.work = WorkFolder(self.kept_in) if self.kept_in is not None else None
-        self.contexts = [context_key(rec, dt, building) for rec in records]
+        self.moat = moat
+        self.contexts = [context_key(rec, dt, building, moat) for rec in records]
         self.members = grid.members
         self.key = sweep_key(self.members, self.contexts)
         self.total = len(records) * grid.n_members
-        self.results = [empty_peaks(grid.n_members, building.n_levels) for _ in records]
+        self.results = [empty_peaks(grid.n_members, building.n_levels, moat) for _ in records]
 
     def pending(self, sizes: list[int]) -> list[batches.Batch]:
         """Fill in the members the work folder holds; the rest in batches of sizes[r]."""
@@ -134,7 +136,8 @@ class NetCDFStore:
     def task(self, batch: batches.Batch) -> tuple:
         """The peaks of the batch: batches.simulate_batch."""
         return batches.simulate_batch, (self.records[batch.record].dt,
-                                        self.members[batch.members], self.building, self.dt)
+                                        self.members[batch.members], self.building, self.dt,
+                                        self.moat)
 
     def accept(self, batch: batches.Batch, peaks: dict[str, np.ndarray]) -> None:
         """Keep the batch in the work folder, and its peaks here."""
@@ -147,7 +150,7 @@ class NetCDFStore:
     def finish(self):
         """The labelled Dataset, written to out when given (the own work folder then goes)."""
         ds = build_dataset(self.grid, self.records, self.results, self.dt, self.building,
-                           self.names, self.arguments)
+                           self.names, self.arguments, moat=self.moat)
         ds.attrs[KEY_ATTRIBUTE] = self.key
         if self.out is not None:
             write_netcdf(ds, self.out)

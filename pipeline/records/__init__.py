@@ -67,11 +67,13 @@ from .lookup import TEXT_SUFFIXES, load_record, resolve_records
 from .pair import (
     MissingComponentWarning,
     PairInfo,
+    RecordPair,
     align_pair,
     library_pairs,
     load_pair,
     pair_accel,
     pair_names,
+    resolve_pairs,
 )
 from .paper import (
                     BUILTIN_DATA,
@@ -98,5 +100,5 @@ __all__ = [
     "paper_record", "paper_records", "parse_at2", "read_at2", "read_builtin", "read_text",
     "resolve_records", "values_sha256",
     "MissingComponentWarning", "PairInfo", "align_pair", "library_pairs", "load_pair",
-    "pair_accel", "pair_names",
+    "pair_accel", "pair_names", "RecordPair", "resolve_pairs",
 ]

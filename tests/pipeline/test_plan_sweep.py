@@ -1,0 +1,81 @@
+"""Sweeps in plan: record pairs, the incidence angle as a dimension, the per-direction and
+per-wall peaks labelled; every member equals the engine's run of its pair at its angle."""
+import warnings
+
+import numpy as np
+import pytest
+
+import engine
+import pipeline
+from pipeline.errors import SweepError
+from pipeline.records import load_pair, pair_accel
+from tests.helpers import assert_udunits
+
+PAIRS = ["RSN953", "pacoima"]  # a FEMA P695 pair; the paper's Pacoima Dam with its 254
+GAPS = [0.15, 0.30]  # m
+ANGLES = [0.0, 45.0, 90.0]  # degrees
+
+
+@pytest.fixture(scope="module")
+def plan_sweep(tmp_path_factory):
+    out = tmp_path_factory.mktemp("plan") / "plan.nc"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return pipeline.sweep(PAIRS, gap=GAPS, angle=ANGLES, moat="rectangular",
+                              baseline=True, unconstrained=True, quiet=True, out=out)
+
+
+def test_every_member_is_the_engine_run_of_its_pair_at_its_angle(plan_sweep):
+    ds = plan_sweep
+    for name in PAIRS:
+        acc, dt = pair_accel(*load_pair(name))
+        bumpers = engine.Contact.bumper(np.repeat(GAPS, len(ANGLES)))
+        angles = np.tile(ANGLES, len(GAPS))
+        alone = engine.simulate(acc, dt, bumpers, moat="rectangular", angle=angles)
+        bare = engine.simulate(acc, dt, engine.Contact.linear(np.repeat(GAPS, len(ANGLES))),
+                               moat="rectangular", angle=angles)
+        for result, prefix in ((alone, ""), (bare, "baseline_")):
+            for peak, value in {**result.peaks(), **result.plan_peaks()}.items():
+                got = ds[prefix + peak].sel(record=name).transpose("gap", "angle", ...)
+                np.testing.assert_array_equal(got.values.reshape(value.shape), value,
+                                              err_msg=prefix + peak)
+    assert (ds.n_impacts.sel(gap=0.15) > 0).all()
+
+
+def test_labels_units_and_conventions(plan_sweep):
+    ds = plan_sweep
+    assert ds.peak_isolator_disp.dims == ("record", "angle", "gap")
+    assert ds.peak_total_accel_xy.dims == ("record", "angle", "gap", "floor", "direction")
+    assert ds.max_impact_force_wall.dims == ("record", "angle", "gap", "wall")
+    assert ds.unconstrained_peak_isolator_disp.dims == ("record", "angle")
+    assert list(ds.direction.values) == ["x", "y"]
+    assert list(ds.wall.values) == ["+x", "-x", "+y", "-y"]
+    assert ds.angle.attrs["units"] == "degree" and "counterclockwise" in ds.angle.attrs[
+        "long_name"]
+    assert ds.attrs["moat"] == "rectangular" and "resultants" in ds.attrs["plan_conventions"]
+    assert_udunits(ds)
+    # 90 degrees swaps the directions: x' = -y, y' = x
+    turned = ds.peak_isolator_disp_xy.sel(angle=90.0).values
+    np.testing.assert_allclose(turned, ds.peak_isolator_disp_xy.sel(angle=0.0).values[..., ::-1],
+                               rtol=1e-9)
+    # resultant at least each direction's peak
+    assert (ds.peak_isolator_disp >= ds.peak_isolator_disp_xy.max("direction") - 1e-15).all()
+    ratio = ds.amplification_total_accel
+    np.testing.assert_allclose(ratio, ds.peak_total_accel / ds.baseline_peak_total_accel)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"angle": [0, 30]}, "angle applies to runs in plan"),
+    ({"moat": "hexagonal"}, "moat must be one of"),
+    ({"moat": "circular", "out": "x.zarr"}, "Zarr stores hold planar sweeps only"),
+    ({"moat": "circular", "records": ["RSN953", "RSN953"]}, "each pair must appear once"),
+])
+def test_bad_plan_sweeps_fail_before_compute(kwargs, match, tmp_path, monkeypatch):
+    from pipeline.execute import executor
+
+    monkeypatch.setattr(executor, "execute", lambda *a, **k: pytest.fail("computed"))
+    if "out" in kwargs:
+        kwargs = {**kwargs, "out": tmp_path / kwargs["out"]}
+    records = kwargs.pop("records", ["RSN953"])
+    with pytest.raises(SweepError, match=match):
+        pipeline.sweep(records, gap=0.2, quiet=True, **kwargs)
