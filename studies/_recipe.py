@@ -160,15 +160,8 @@ class Recipe:
                 args.records = read_text_records(args.records, args.record_units,
                                                  args.record_dt, args.records_dir)
             args.work_dir = archive.with_name(archive.name + ".work")
-            ds = self.compute(args)
-            ds.attrs.update(recipe=self.name, paper_figure=self.figure, quick=int(args.quick),
-                            values_chosen=self.chosen or "none")
+            ds = self._checked(args)
             ds.attrs[KEY_ATTRIBUTE] = key
-            if args.quick:
-                ds.attrs["title"] = f"{ds.attrs.get('title', self.summary)} [{QUICK_NOTE}]"
-            verdicts = self.check(ds)
-            ds.attrs["paper_check"] = "\n".join(v.text() for v in verdicts)
-            ds.attrs["paper_verdicts"] = json.dumps([v.as_dict() for v in verdicts])
         if args.replot:
             for line in _substitutions(ds):
                 print(line)
@@ -193,6 +186,36 @@ class Recipe:
             shutil.rmtree(args.work_dir, ignore_errors=True)
             print("wrote", archive, *figures, *([f"({QUICK_NOTE})"] if args.quick else []))
         return 0
+
+    def dataset(self, argv=None):
+        """The recipe's archive as a Dataset, with its verdicts (attributes paper_check and
+        paper_verdicts), computed in this process from command-line arguments (argv, as for
+        main) and written nowhere: no archive, no figure, no work folder.
+
+            ds = studies.gap_size.recipe.dataset(["--quick"])
+        """
+        from pipeline.building_file import building_from
+        from pipeline.records.lookup import read_text_records
+
+        args = self.parser().parse_args([] if argv is None else list(argv))
+        args.building = building_from(args.building)
+        if self.records is not None:
+            args.records = read_text_records(args.records, args.record_units,
+                                             args.record_dt, args.records_dir)
+        args.work_dir = None
+        return self._checked(args)
+
+    def _checked(self, args):
+        """compute, then the verdicts of check, into the Dataset's attributes."""
+        ds = self.compute(args)
+        ds.attrs.update(recipe=self.name, paper_figure=self.figure, quick=int(args.quick),
+                        values_chosen=self.chosen or "none")
+        if args.quick:
+            ds.attrs["title"] = f"{ds.attrs.get('title', self.summary)} [{QUICK_NOTE}]"
+        verdicts = self.check(ds)
+        ds.attrs["paper_check"] = "\n".join(v.text() for v in verdicts)
+        ds.attrs["paper_verdicts"] = json.dumps([v.as_dict() for v in verdicts])
+        return ds
 
     def configuration_key(self, args) -> str:
         """What decides this run's numbers: the recipe, every option but those that only say

@@ -88,18 +88,22 @@ def _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par
     cs, sn = p[_COS], p[_SIN]
     k_story, k_post, k_slip_story, f_limit_story = story[b, 0], story[b, 1], story[b, 2], \
         story[b, 3]
-    code0, code1 = law[b, 0], law[b, law.shape[1] - 1]
-    wp0, wp1 = wall_par[b, 0], wall_par[b, law.shape[1] - 1]
-    gap0, gap1 = wp0[_GAP], wp1[_GAP]
+    n_walls = law.shape[1]
+    codes = law[b]
     half_dt = 0.5 * dt
 
     st = state[b]
     fpx, fpy = st[_FPX], st[_FPY]
-    j0, j1 = _WALL_STATE, _WALL_STATE + 3
-    v_imp0, delta_prev0, in0 = st[j0], st[j0 + 1], st[j0 + 2] != 0.0
-    v_imp1, delta_prev1, in1 = 1.0, 0.0, False
-    if not circular:
-        v_imp1, delta_prev1, in1 = st[j1], st[j1 + 1], st[j1 + 2] != 0.0
+    # per wall direction: impact velocity, previous indentation, in contact (1.0 or 0.0),
+    # and the clear gap
+    v_imp = carray(stack_doubles(levels), (2,))
+    delta_prev = carray(stack_doubles(levels), (2,))
+    inside = carray(stack_doubles(levels), (2,))
+    gaps = carray(stack_doubles(levels), (2,))
+    for d in range(n_walls):
+        j = _WALL_STATE + 3 * d
+        v_imp[d], delta_prev[d], inside[d] = st[j], st[j + 1], st[j + 2]
+        gaps[d] = wall_par[b, d, _GAP]
     pk = peak_scalar[b]
     p_iso2 = pk[_P_ISO]
     p_indent, p_force, energy = pk[_P_INDENT], pk[_P_FORCE], pk[_P_ENERGY]
@@ -172,65 +176,43 @@ def _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par
                 nx_[i] += ot[n_levels + j, i] * vxj
                 ny_[i] += ot[n_levels + j, i] * vyj
 
-        # The moat: the force on the slab (wfx, wfy), towards the centre.
+        # The moat: the force on the slab (wfx, wfy), towards the centre; one wall direction
+        # (the circle's radius) or two (x, then y), each the same code, the law's once.
         wfx, wfy = 0.0, 0.0
         deepest = -1.0
-        if circular:
-            radius = math.hypot(ux[0], uy[0])
-            nrm_x, nrm_y = 1.0, 0.0
-            if radius > 0.0:
-                nrm_x, nrm_y = ux[0] / max(radius, 1e-300), uy[0] / max(radius, 1e-300)
-            delta = max(radius - gap0, -1.0)
-            touching = delta > 0.0
-            new = touching and not in0
-            if new:
-                n_imp += 1
-                v_imp0 = nrm_x * vx[0] + nrm_y * vy[0]
-            in0 = touching
-            if touching:
+        radius = math.hypot(ux[0], uy[0]) if circular else 0.0
+        for d in range(n_walls):
+            if circular:
+                nrm_x, nrm_y = 1.0, 0.0
+                if radius > 0.0:
+                    nrm_x, nrm_y = ux[0] / max(radius, 1e-300), uy[0] / max(radius, 1e-300)
+                distance = radius
+                before = nrm_x * vx[0] + nrm_y * vy[0]
                 free = nrm_x * (0.5 * (vx[0] + nx_[0])) + nrm_y * (0.5 * (vy[0] + ny_[0]))
-                force = _contact(code0, wp0, delta, new, v_imp0, delta_prev0, free, comp)
-                wfx, wfy = -nrm_x * force, -nrm_y * force
-                p_force = max(p_force, force)
-                pw[0] = max(pw[0], force)
-            delta_prev0 = delta
-            p_indent = max(p_indent, delta)
-            deepest = delta
-        else:
-            side = np.sign(ux[0])
-            delta = max(abs(ux[0]) - gap0, -1.0)
+                which = 0
+            else:
+                u0d, v0d, n0d = (ux[0], vx[0], nx_[0]) if d == 0 else (uy[0], vy[0], ny_[0])
+                side = np.sign(u0d)
+                nrm_x, nrm_y = (side, 0.0) if d == 0 else (0.0, side)
+                distance = abs(u0d)
+                before = side * v0d
+                free = side * 0.5 * (v0d + n0d)
+                which = 2 * d if side > 0 else 2 * d + 1
+            delta = max(distance - gaps[d], -1.0)
             touching = delta > 0.0
-            new = touching and not in0
+            new = touching and inside[d] == 0.0
             if new:
                 n_imp += 1
-                v_imp0 = side * vx[0]
-            in0 = touching
+                v_imp[d] = before
+            inside[d] = 1.0 if touching else 0.0
             if touching:
-                force = _contact(code0, wp0, delta, new, v_imp0, delta_prev0,
-                                 side * 0.5 * (vx[0] + nx_[0]), comp)
-                wfx = -side * force
+                force = _contact(codes[d], wall_par[b, d], delta, new, v_imp[d],
+                                 delta_prev[d], free, comp)
+                wfx -= nrm_x * force
+                wfy -= nrm_y * force
                 p_force = max(p_force, force)
-                wx = 0 if side > 0 else 1
-                pw[wx] = max(pw[wx], force)
-            delta_prev0 = delta
-            p_indent = max(p_indent, delta)
-            deepest = max(deepest, delta)
-            side = np.sign(uy[0])
-            delta = max(abs(uy[0]) - gap1, -1.0)
-            touching = delta > 0.0
-            new = touching and not in1
-            if new:
-                n_imp += 1
-                v_imp1 = side * vy[0]
-            in1 = touching
-            if touching:
-                force = _contact(code1, wp1, delta, new, v_imp1, delta_prev1,
-                                 side * 0.5 * (vy[0] + ny_[0]), comp)
-                wfy = -side * force
-                p_force = max(p_force, force)
-                wy = 2 if side > 0 else 3
-                pw[wy] = max(pw[wy], force)
-            delta_prev1 = delta
+                pw[which] = max(pw[which], force)
+            delta_prev[d] = delta
             p_indent = max(p_indent, delta)
             deepest = max(deepest, delta)
         if wfx != 0.0 or wfy != 0.0:
@@ -287,9 +269,9 @@ def _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par
         peak_story[b, i] = pd2[i]
         peak_story_xy[b, i, 0], peak_story_xy[b, i, 1] = pdx[i], pdy[i]
     st[_FPX], st[_FPY] = fpx, fpy
-    st[j0], st[j0 + 1], st[j0 + 2] = v_imp0, delta_prev0, 1.0 if in0 else 0.0
-    if not circular:
-        st[j1], st[j1 + 1], st[j1 + 2] = v_imp1, delta_prev1, 1.0 if in1 else 0.0
+    for d in range(n_walls):
+        j = _WALL_STATE + 3 * d
+        st[j], st[j + 1], st[j + 2] = v_imp[d], delta_prev[d], inside[d]
     pk[_P_ISO] = p_iso2
     pk[_P_INDENT], pk[_P_FORCE], pk[_P_ENERGY] = p_indent, p_force, energy
     peak_iso_xy[b, 0], peak_iso_xy[b, 1] = p_iso_x, p_iso_y
