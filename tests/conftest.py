@@ -72,6 +72,7 @@ KERNEL_GROUPS = {
 _GROUP_OF = {path: group for group, paths in KERNEL_GROUPS.items() for path in paths}
 
 
+@pytest.hookimpl(tryfirst=True)  # before pytest-xdist reads the groups off the items
 def pytest_collection_modifyitems(config, items):
     root = Path(__file__).resolve().parents[1]
     for item in items:
