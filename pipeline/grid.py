@@ -67,7 +67,9 @@ the wall's, the isolator's."""
 def declarations(name: str) -> dict:
     """Law -> its declaration (engine.parameters.Parameter) of sweep parameter `name`, for
     every law that takes it: the impact laws (IMPACT_LAWS order) for a wall parameter, the
-    isolator laws for an isolator parameter."""
+    isolator laws for an isolator parameter; {"plan": ANGLE} for the angle of runs in plan."""
+    if name in PLAN_PARAMS:
+        return {"plan": ANGLE}
     laws = ISOLATOR_LAWS if name in ISOLATOR_PARAMS else {law: LAWS[law] for law in IMPACT_LAWS}
     return {law: module.PARAMETERS.swept()[name] for law, module in laws.items()
             if name in module.PARAMETERS.swept()}

@@ -20,14 +20,14 @@ import sys
 from engine.impact import M_EFF
 from engine.units import CM, KN_PER_MM
 from pipeline.cluster import add_tls_options
-from pipeline.grid import BASELINE, IMPACT_LAWS, ISOLATOR_PARAMS, PARAMS, declarations
+from pipeline.grid import BASELINE, IMPACT_LAWS, ISOLATOR_PARAMS, PARAMS, PLAN_PARAMS, declarations
 
 from ._recipe import accept_negative_numbers, add_text_record_options, interrupted, outputs
 
 # Units the command line also takes in the paper's units, by the SI unit declared: the option
 # --NAME-<suffix> takes values in that unit.
 PAPER_UNITS = {"m": ("cm", "CM", CM, "cm"), "N m-1": ("kn-mm", "K", KN_PER_MM, "kN/mm")}
-METAVARS = {"m": "M", "1": "X"}
+METAVARS = {"m": "M", "1": "X", "degree": "DEG"}
 
 
 def declared(name: str) -> str:
@@ -37,6 +37,8 @@ def declared(name: str) -> str:
     for law, p in declarations(name).items():
         default = "default: the building's" if name in ISOLATOR_PARAMS else \
             "required" if p.required else f"default {p.default:g}"
+        if name in PLAN_PARAMS:
+            default += "; runs in plan only (--moat)"
         units = "" if p.units == "1" else f", {p.units}"
         texts[law] = f"{p.meaning}{units}, in {p.valid}, {default}"
     if len(set(texts.values())) == 1:
@@ -65,7 +67,7 @@ def add_parameters(p: argparse.ArgumentParser) -> None:
     isolator = p.add_argument_group(
         "the isolator's parameters", "replace the building's own values, fixed or swept alike; "
         "each applies to the isolator law that declares it (the building's)")
-    for name in (*PARAMS, *ISOLATOR_PARAMS):
+    for name in (*PARAMS, *ISOLATOR_PARAMS, *PLAN_PARAMS):
         p = isolator if name in ISOLATOR_PARAMS else p
         params = declarations(name)
         first = next(iter(params.values()))
@@ -99,6 +101,12 @@ def parser() -> argparse.ArgumentParser:
                         "(default: $BUMPERS_RECORDS_DIR)")
     add_text_record_options(p)
     add_parameters(p)
+    p.add_argument("--moat", choices=("rectangular", "circular"), default=None,
+                   help="run in plan: --records are then record PAIRS (RSN<n>, a paper key, "
+                        "or A.AT2+B.AT2; see pipeline.records.load_pair), the building moves "
+                        "in x and y against a square (rectangular) or circular moat with the "
+                        "same walls on every side, --angle rotates the pairs (default: the "
+                        "paper's planar model)")
     p.add_argument("--impact", default="bumper",
                    choices=IMPACT_LAWS,
                    help="impact law at the moat wall (default: bumper)")
@@ -163,7 +171,7 @@ def parameters(args) -> dict:
     from pipeline.errors import SweepError
 
     values = {}
-    for name in (*PARAMS, *ISOLATOR_PARAMS):
+    for name in (*PARAMS, *ISOLATOR_PARAMS, *PLAN_PARAMS):
         values[name] = _one_or_many(getattr(args, name))
         variant = paper_unit(name)
         given = getattr(args, f"{name}_{variant[0].replace('-', '_')}", None) if variant \
@@ -198,9 +206,15 @@ def main(argv: list[str] | None = None) -> int:
         building = building_from([*args.building, *damping])
         archive, _ = outputs(args.out, "sweep", archives=(".nc", ".zarr"))
         with announce_stand_ins():
+            records = args.records
+            if args.moat is None:
+                records = read_text_records(records, args.record_units, args.record_dt,
+                                            args.records_dir)
+            elif args.record_units is not None or args.record_dt is not None:
+                raise SweepError("--record-units and --record-dt: text records in plan are "
+                                 "not supported yet; give AT2 pairs or library pairs")
             ds = pipeline.sweep(
-                records=read_text_records(args.records, args.record_units, args.record_dt,
-                                          args.records_dir),
+                records=records, moat=args.moat,
                 **parameters(args),
                 impact=args.impact, dt=args.dt, workers=args.workers,
                 scheduler=args.scheduler, out=archive, baseline=args.baseline,

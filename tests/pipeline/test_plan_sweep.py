@@ -79,3 +79,21 @@ def test_bad_plan_sweeps_fail_before_compute(kwargs, match, tmp_path, monkeypatc
     records = kwargs.pop("records", ["RSN953"])
     with pytest.raises(SweepError, match=match):
         pipeline.sweep(records, gap=0.2, quiet=True, **kwargs)
+
+
+def test_command_line_runs_in_plan(plan_sweep, tmp_path, capsys):
+    from studies import sweep
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        assert sweep.main(["--records", *PAIRS, "--gap-cm", "15", "30", "--angle", "0", "45",
+                           "90", "--moat", "rectangular", "--quiet",
+                           "--out", str(tmp_path)]) == 0
+    import xarray as xr
+
+    with xr.open_dataset(tmp_path / "sweep.nc") as ds:
+        np.testing.assert_array_equal(ds.peak_isolator_disp_xy,
+                                      plan_sweep.peak_isolator_disp_xy)
+    assert sweep.main(["--records", "kobe", "--gap-cm", "15", "--angle", "30",
+                       "--out", str(tmp_path / "x")]) == 2
+    assert "angle applies to runs in plan" in capsys.readouterr().err
