@@ -57,24 +57,3 @@ def backend(request) -> str:
     Session scope: the kernel compiles (or loads from its cache) once per test session."""
     return request.param
 
-
-# Test files that compile the same rarely used kernels (numba, cached on disk once compiled)
-# run in one process of the parallel suite (pytest-xdist, --dist loadgroup), so that the
-# kernels compile once rather than once per process: the plan kernel, and the kernels of
-# buildings other than the paper's (1, 8 and 20 stories). Every other file is a group of its
-# own, as --dist loadfile would make it (its module fixtures run once).
-KERNEL_GROUPS = {
-    "plan": ("tests/engine/test_plan.py", "tests/engine/test_plan_references.py",
-             "tests/pipeline/test_plan_sweep.py", "tests/studies/test_plan_recipe.py"),
-    "heights": ("tests/engine/test_stories.py", "tests/engine/test_isolators.py",
-                "tests/reference/test_references.py"),
-}
-_GROUP_OF = {path: group for group, paths in KERNEL_GROUPS.items() for path in paths}
-
-
-@pytest.hookimpl(tryfirst=True)  # before pytest-xdist reads the groups off the items
-def pytest_collection_modifyitems(config, items):
-    root = Path(__file__).resolve().parents[1]
-    for item in items:
-        path = Path(str(item.fspath)).resolve().relative_to(root).as_posix()
-        item.add_marker(pytest.mark.xdist_group(_GROUP_OF.get(path, path)))
