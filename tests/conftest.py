@@ -1,7 +1,5 @@
 """Shared fixtures: the paper's records as the record layer resolves them, and the backend
 every engine test runs on. Helpers that are not fixtures are in tests/helpers.py."""
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -59,22 +57,3 @@ def backend(request) -> str:
     Session scope: the kernel compiles (or loads from its cache) once per test session."""
     return request.param
 
-
-
-def pytest_configure(config):
-    """With several test processes (pytest-xdist), compile the engine's common kernels once,
-    before the processes start: otherwise each compiles every kernel it needs, about 45 s of a
-    fresh clone's run. Two processes, one per loop module (each writes its own cache files);
-    from a warm cache they only load it. A failure here is not a test's: the tests then
-    compile what they need themselves."""
-    if hasattr(config, "workerinput") or not getattr(config.option, "numprocesses", None):
-        return
-    root = Path(__file__).resolve().parents[1]
-    warm = [subprocess.Popen([sys.executable, "-m", "tests.warm_kernels", part], cwd=root,
-                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-            for part in ("planar", "plan")]
-    for proc in warm:
-        try:
-            proc.wait(timeout=300)
-        except subprocess.TimeoutExpired:
-            proc.kill()
