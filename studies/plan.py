@@ -65,11 +65,11 @@ def compute(args):
     impacts = np.zeros(shape, dtype=np.int64)
     gaps = np.zeros(shape[:2])
     orbit_t, orbits = [], []
+    rad = np.radians(thetas)
     for p, pair in enumerate(pairs):
         if not args.quiet:
             print(f"plan: {p + 1}/{len(pairs)} {names[p]}", flush=True)
         accel, acc_dt = pair.accel, pair.dt
-        rad = np.radians(thetas)
         for a, theta in enumerate(rad):
             along = np.cos(theta) * accel[:, 0] - np.sin(theta) * accel[:, 1]
             free = engine.simulate(along, acc_dt, engine.Contact.none(1), args.building, dt)
@@ -126,18 +126,24 @@ def _store(out, impacts, result, p, a, model, fit, rows=slice(0, 3)):
 
 
 def _dataset(out, impacts, gaps, names, pairs, thetas, orbit_t, orbits, args):
+    from engine.results import quantity
     from pipeline.archive import labelled_dataset, variable
 
     dims = ("record", "angle", "model", "barrier")
+
+    def peak(name, values, what):  # the engine's declaration, as this archive holds it
+        q = quantity(name)
+        return variable(dims, values, q.units, f"{q.long_name} ({what})")
+
     data = {
-        "peak_isolator_disp": variable(dims, out["peak_isolator_disp"], "m",
-                                       "peak isolator displacement (plan: resultant)"),
-        "peak_floor_accel": variable(dims, out["peak_floor_accel"], "m s-2",
-                                     "largest peak total floor acceleration (plan: resultant)"),
-        "max_impact_force": variable(dims, out["max_impact_force"], "N",
-                                     "largest impact force on the moat"),
-        "n_impacts": variable(dims, impacts, "1", "number of impacts on the moat (-1: the "
-                              "bumpers do not fit in the gap, not run)"),
+        "peak_isolator_disp": peak("peak_isolator_disp", out["peak_isolator_disp"],
+                                   "plan: resultant"),
+        "peak_floor_accel": peak("peak_total_accel", out["peak_floor_accel"],
+                                 "the largest over the floors; plan: resultant"),
+        "max_impact_force": peak("max_impact_force", out["max_impact_force"],
+                                 "the largest over the walls"),
+        "n_impacts": peak("n_impacts", impacts, "-1: the bumpers do not fit in the gap, "
+                          "not run"),
         "gap": variable(("record", "angle"), gaps, "m",
                         f"seismic gap: {GAP_FRACTION} x the planar model's peak isolator "
                         "displacement without wall, for the component along the angle"),

@@ -20,56 +20,26 @@ import numba
 import numpy as np
 from numba import carray, njit, prange
 
-from .. import scheme
-from ..impact import registry
 from ..impact.contact import LAW_ARGUMENTS
-from ..isolators import hysteresis
 from ..results import PEAKS
 from ..scheme import banded_operators, step_operators
+from . import compiled
+from .compiled import (
+    JIT,
+    LINK,
+    PHYSICS_FILES,
+    implicit_force,
+    isolator_force,
+    law_terms,
+    onset_weight,
+    plastic_spring,
+    slip_limit,
+)
 from .numba_support import install_cache_locator, stack_doubles
 
 # Cached kernels go stale when any physics source they compile changes, not only this file.
-install_cache_locator(Path(__file__), [m.__file__ for m in (
-    hysteresis, scheme, registry, *registry.LAWS.values())])
+install_cache_locator(Path(__file__), [compiled.__file__, *PHYSICS_FILES])
 
-_JIT = {"cache": True, "nogil": True, "error_model": "numpy"}
-_LINK = {"nogil": True, "error_model": "numpy"}  # compiled into the cached kernels that call it
-
-# The physics, written once in its own modules, compiled for scalars.
-_isolator_force = njit(hysteresis.isolator_force)
-_plastic_spring = njit(hysteresis.plastic_spring_force)
-_slip_limit = njit(hysteresis.slip_limit)
-_implicit_force = njit(scheme.implicit_force)
-_onset_weight = njit(scheme.onset_weight)
-
-
-def _no_wall(code, delta, rate, v_imp, k, n, m_eff, delta_u, k_w, dashpot, damping_ratio, chi,
-             c_imp_coef, c_imp_exponent):
-    return 0.0, 0.0
-
-
-def _link(code, force_terms, otherwise):
-    """A dispatch that runs force_terms for members of law `code`, else `otherwise`."""
-    def dispatch(law, delta, rate, v_imp, k, n, m_eff, delta_u, k_w, dashpot, damping_ratio,
-                 chi, c_imp_coef, c_imp_exponent):
-        if law == code:
-            return force_terms(delta, rate, v_imp, k, n, m_eff, delta_u, k_w, dashpot,
-                               damping_ratio, chi, c_imp_coef, c_imp_exponent)
-        return otherwise(law, delta, rate, v_imp, k, n, m_eff, delta_u, k_w, dashpot,
-                         damping_ratio, chi, c_imp_coef, c_imp_exponent)
-    return njit(**_LINK)(dispatch)
-
-
-def _law_dispatch():
-    """(elastic, dashpot) of the member's law, dispatched on its code: every law of the
-    registry, chained; (0, 0) for a member without wall."""
-    dispatch = njit(**_LINK)(_no_wall)
-    for code, module in registry.LAW_MODULES.items():
-        dispatch = _link(code, njit(**_LINK)(module.force_terms), dispatch)
-    return dispatch
-
-
-_law_terms = _law_dispatch()
 
 
 # Columns of the per-member scalar parameters.
@@ -87,7 +57,7 @@ _P_ISO, _P_INDENT, _P_FORCE, _P_ENERGY = (_SCALAR_PEAKS.index(name) for name in 
     "peak_isolator_disp", "max_indentation", "max_impact_force", "impact_energy"))
 
 
-@njit(**_LINK)
+@njit(**LINK)
 def _solve_banded(bd, r, v, out, n_levels, dt):
     """out = A^-1 (r + C v) / dt for tridiagonal A = M/dt^2 + C/(2dt) and C = M/dt - C/2 (the
     scheme's operators when the damping is a chain, as the paper's rule makes it): a product
@@ -110,7 +80,7 @@ def _solve_banded(bd, r, v, out, n_levels, dt):
         out[i] = out[i] / dt
 
 
-@njit(**_JIT)
+@njit(**JIT)
 def _member(levels, b, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u_all, v_all,
             f_story_all, state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every,
             h_u, h_acc, h_f, h_d):
@@ -164,11 +134,11 @@ def _member(levels, b, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u
     for step in range(s0, s1):
         a = ag[step] * scale  # x 1.0 is exact: unscaled members are unchanged
         # Structure without wall force: p - f(u_n), then the free velocities v_{n+1/2}.
-        chain[0] = _isolator_force(u[0], fp, k_el)
+        chain[0] = isolator_force(u[0], fp, k_el)
         for i in range(n_levels - 1):
             drift[i] = u[i + 1] - u[i]
             if stories_yield:  # post-yield spring plus slip element
-                chain[i + 1] = _isolator_force(drift[i], f_story[i], k_post[i])
+                chain[i + 1] = isolator_force(drift[i], f_story[i], k_post[i])
             else:
                 chain[i + 1] = k_story[i] * drift[i]
         for i in range(n_levels - 1):
@@ -204,11 +174,11 @@ def _member(levels, b, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u
         force = 0.0
         if touching:
             rate_free = side * 0.5 * (v[0] + nxt[0])
-            elastic, dashpot_now = _law_terms(code, delta, rate_free, v_imp, k, n, m_eff,
+            elastic, dashpot_now = law_terms(code, delta, rate_free, v_imp, k, n, m_eff,
                                               delta_u, k_w, dashpot, xi, chi, c_coef, c_exp)
             if new:
-                dashpot_now = dashpot_now * _onset_weight(delta, delta_prev)
-            force = _implicit_force(elastic, dashpot_now, rate_free, comp)
+                dashpot_now = dashpot_now * onset_weight(delta, delta_prev)
+            force = implicit_force(elastic, dashpot_now, rate_free, comp)
             push = side * force
             for i in range(n_levels):
                 nxt[i] = nxt[i] - w[i] * push
@@ -236,11 +206,11 @@ def _member(levels, b, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u
         # Advance: the isolator's slip element sees this step's displacement increment, its
         # limit at this step's sliding speed (exactly f_limit without speed dependence: the
         # branch only spares the bilinear law an exp); yielding stories their drift increments.
-        limit = f_limit if slow_drop == 0.0 else _slip_limit(f_limit, slow_drop, rate, nxt[0])
-        fp = _plastic_spring(fp, dt * nxt[0], k_slip, limit)
+        limit = f_limit if slow_drop == 0.0 else slip_limit(f_limit, slow_drop, rate, nxt[0])
+        fp = plastic_spring(fp, dt * nxt[0], k_slip, limit)
         if stories_yield:
             for i in range(n_levels - 1):
-                f_story[i] = _plastic_spring(f_story[i], dt * (nxt[i + 1] - nxt[i]),
+                f_story[i] = plastic_spring(f_story[i], dt * (nxt[i + 1] - nxt[i]),
                                              k_slip_story[i], f_limit_story[i])
         for i in range(n_levels):
             v[i] = nxt[i]
@@ -257,7 +227,7 @@ def _member(levels, b, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u
     n_impacts[b] = n_imp
 
 
-@njit(**_JIT)
+@njit(**JIT)
 def _run_serial(levels, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u, v, f_story,
                 state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u,
                 h_acc, h_f, h_d):
@@ -269,7 +239,7 @@ def _run_serial(levels, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, 
                 h_acc, h_f, h_d)
 
 
-@njit(parallel=True, **_JIT)
+@njit(parallel=True, **JIT)
 def _run_parallel(levels, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u, v, f_story,
                   state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u,
                   h_acc, h_f, h_d):
@@ -279,7 +249,7 @@ def _run_parallel(levels, s0, s1, ag, dt, op, bands, wall, mass, story, law, par
                 h_acc, h_f, h_d)
 
 
-@njit(**_JIT)
+@njit(**JIT)
 def ground_motion(accel, accel_dt, dt, n_steps):
     """np.interp(arange(n_steps) * dt, arange(accel.size) * accel_dt, accel), bit for bit
     (the same formula and edge rules), without searching: the record's grid is uniform."""
@@ -406,7 +376,7 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
 
 # --- two free bodies (engine.two_body) ---------------------------------------------------
 
-@njit(**_JIT)
+@njit(**JIT)
 def _two_body(law, par, v, dt, m_eff, n_iter, deltas, forces, out, stops):
     """Each member from first touch: n_iter steps (n_iter < 0: until it separates, at most
     -n_iter steps). Records indentation and force per step when deltas has columns; out[b] =
@@ -432,9 +402,9 @@ def _two_body(law, par, v, dt, m_eff, n_iter, deltas, forces, out, stops):
             force = 0.0
             if delta > 0.0:
                 # No other force acts, so the free central rate is v_{n-1/2} itself.
-                elastic, dashpot = _law_terms(code, delta, v_half, v_imp, p[0], p[1], p[2],
+                elastic, dashpot = law_terms(code, delta, v_half, v_imp, p[0], p[1], p[2],
                                               p[3], p[4], p[5], p[6], p[7], p[8], p[9])
-                force = _implicit_force(elastic, dashpot, v_half, compliance)
+                force = implicit_force(elastic, dashpot, v_half, compliance)
             if record:
                 deltas[b, i] = delta
                 forces[b, i] = force

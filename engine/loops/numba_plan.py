@@ -22,10 +22,7 @@ import numba
 import numpy as np
 from numba import carray, njit
 
-from .. import scheme
-from ..impact import registry
 from ..impact.contact import LAW_ARGUMENTS
-from ..isolators import hysteresis
 from ..results import (
     DIRECTIONS,
     PEAKS,
@@ -35,13 +32,20 @@ from ..results import (
     empty_plan_history,
 )
 from ..scheme import step_operators
-from .numba_loop import _JIT, _LINK, _implicit_force, _law_terms, _onset_weight, _slip_limit
+from . import compiled
+from .compiled import (
+    JIT,
+    LINK,
+    PHYSICS_FILES,
+    implicit_force,
+    law_terms,
+    onset_weight,
+    radial_return,
+    slip_limit,
+)
 from .numba_support import install_cache_locator, stack_doubles
 
-install_cache_locator(Path(__file__), [m.__file__ for m in (
-    hysteresis, scheme, registry, *registry.LAWS.values())])
-
-_radial_return = njit(**_LINK)(hysteresis.radial_return)
+install_cache_locator(Path(__file__), [compiled.__file__, *PHYSICS_FILES])
 
 # Per-member scalars, and per wall direction: the clear gap, then the law's arguments.
 (_COMPLIANCE, _K_ELASTIC, _K_SLIP, _F_LIMIT, _SLOW_DROP, _RATE, _STORIES_YIELD, _COS, _SIN,
@@ -56,20 +60,20 @@ _FPX, _FPY, _WALL_STATE = 0, 1, 2
 _P_ISO, _P_INDENT, _P_FORCE, _P_ENERGY = range(4)
 
 
-@njit(**_LINK)
+@njit(**LINK)
 def _contact(code, wp, delta, new, v_imp, delta_prev, rate_free, comp):
     """One wall direction's contact force (N, >= 0) at indentation delta > 0 (m): the law's
     terms along the wall's normal, the dashpot weighted at a new contact, solved exactly."""
     q = _LAW_ARGS
-    elastic, dashpot = _law_terms(code, delta, rate_free, v_imp, wp[q], wp[q + 1], wp[q + 2],
+    elastic, dashpot = law_terms(code, delta, rate_free, v_imp, wp[q], wp[q + 1], wp[q + 2],
                                   wp[q + 3], wp[q + 4], wp[q + 5], wp[q + 6], wp[q + 7],
                                   wp[q + 8], wp[q + 9])
     if new:
-        dashpot = dashpot * _onset_weight(delta, delta_prev)
-    return _implicit_force(elastic, dashpot, rate_free, comp)
+        dashpot = dashpot * onset_weight(delta, delta_prev)
+    return implicit_force(elastic, dashpot, rate_free, comp)
 
 
-@njit(**_JIT)
+@njit(**JIT)
 def _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par, wall_par,
             u_all, v_all, f_story_all, state, peak_level, peak_level_xy, peak_story,
             peak_story_xy, peak_iso_xy, peak_scalar, n_impacts, peak_wall, hist_row, every,
@@ -249,12 +253,12 @@ def _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par
 
         # Advance: the slip elements see this step's increments, the isolator's limit at this
         # step's sliding speed |v|.
-        limit = f_limit if slow_drop == 0.0 else _slip_limit(
+        limit = f_limit if slow_drop == 0.0 else slip_limit(
             f_limit, slow_drop, rate, math.hypot(nx_[0], ny_[0]))
-        fpx, fpy = _radial_return(fpx, fpy, dt * nx_[0], dt * ny_[0], k_slip, limit)
+        fpx, fpy = radial_return(fpx, fpy, dt * nx_[0], dt * ny_[0], k_slip, limit)
         if stories_yield:
             for i in range(n_st):
-                fsx[i], fsy[i] = _radial_return(fsx[i], fsy[i], dt * (nx_[i + 1] - nx_[i]),
+                fsx[i], fsy[i] = radial_return(fsx[i], fsy[i], dt * (nx_[i + 1] - nx_[i]),
                                                 dt * (ny_[i + 1] - ny_[i]), k_slip_story[i],
                                                 f_limit_story[i])
         for i in range(n_levels):
@@ -281,7 +285,7 @@ def _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par
     n_impacts[b] = n_imp
 
 
-@njit(**_JIT)
+@njit(**JIT)
 def _run(levels, circular, members, s0, s1, ag, dt, op, wall, mass, story, law, par, wall_par,
          u, v, f_story, state, peak_level, peak_level_xy, peak_story, peak_story_xy,
          peak_iso_xy, peak_scalar, n_impacts, peak_wall, hist_row, every, h_u, h_acc, h_f, h_d):

@@ -19,6 +19,8 @@ Modules
 * ``lookup``: records by name, selector, paper key or path (:func:`load_record`,
   :func:`resolve_records`, the ``name*factor`` scaling syntax).
 * ``pair``: record pairs, x then y (:func:`load_pair`, :func:`pair_accel`, :func:`pair_names`).
+* ``record_pair``: a pair as one excitation of a sweep in plan (:class:`RecordPair`,
+  :func:`resolve_pairs`).
 * ``cli``: the command line (:func:`main`), run by ``python -m pipeline.records``.
 
 The names listed in ``__all__`` are imported here: ``from pipeline.records import X``.
@@ -67,29 +69,28 @@ from .lookup import TEXT_SUFFIXES, load_record, resolve_records
 from .pair import (
     MissingComponentWarning,
     PairInfo,
-    RecordPair,
     align_pair,
     library_pairs,
     load_pair,
     pair_accel,
     pair_names,
-    resolve_pairs,
 )
 from .paper import (
-                    BUILTIN_DATA,
-                    BUILTIN_KEYS,
-                    BUILTIN_UNITS,
-                    PAPER_KEYS,
-                    PAPER_RECORDS,
-                    PaperSpec,
-                    builtin_records,
-                    paper_label,
-                    paper_record,
-                    paper_records,
-                    read_builtin,
-                    values_sha256,
+    BUILTIN_DATA,
+    BUILTIN_KEYS,
+    BUILTIN_UNITS,
+    PAPER_KEYS,
+    PAPER_RECORDS,
+    PaperSpec,
+    builtin_records,
+    paper_label,
+    paper_record,
+    paper_records,
+    read_builtin,
+    values_sha256,
 )
 from .record import ACCEL_UNITS, FOUND_IN, RECORDS_DIR_ENV, G, Record, RecordError, StandInWarning
+from .record_pair import RecordPair, resolve_pairs
 from .text import TIME_STEP_RTOL, read_text
 
 __all__ = [
