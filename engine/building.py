@@ -24,11 +24,12 @@ PAPER_MASSES = (320e3, 320e3, 320e3, 320e3, 250e3)
 """kg, levels 0 (isolation slab) .. 4 (roof): the paper's Fig. 7c."""
 FIELD_UNITS = {"masses": "kg", "story_stiffness": "N m-1", "k1": "N m-1", "k2": "N m-1",
                "fy_ratio": "1", "zeta_iso": "1", "zeta_sup": "1", "damping": None, "g": "m s-2",
-               "isolator": None, "story_yield_force": "N", "story_post_yield_ratio": "1"}
+               "isolator": None, "story_yield_force": "N", "story_post_yield_ratio": "1",
+               "story_stiffness_y": "N m-1"}
 """Every Building field and its SI unit (None: text or an Isolator), for files and archives."""
 PER_LEVEL = ("masses",)
 """Fields with one value per level, the isolation slab first."""
-PER_STORY = ("story_stiffness", "story_yield_force")
+PER_STORY = ("story_stiffness", "story_yield_force", "story_stiffness_y")
 """Fields with one value per story, the first story first."""
 
 
@@ -54,6 +55,10 @@ class Building:
     story_yield_force : None (linear stories) or N yield forces F_i (N): each story then
         follows bilinear kinematic hardening, elastic k_i up to the yield drift F_i / k_i, then
         story_post_yield_ratio * k_i (exact return mapping, like the isolator's).
+    story_stiffness_y : None (isotropic stories: the default) or N story stiffnesses (N/m)
+        along y for runs in plan, story_stiffness then being along x; the y direction's
+        damping follows the same `damping` rule with them. Linear stories only: a circular
+        yield surface needs the same stiffness both ways. A planar run is along x.
     """
 
     masses: tuple[float, ...] = PAPER_MASSES
@@ -68,6 +73,7 @@ class Building:
     isolator: Isolator | None = None
     story_yield_force: tuple[float, ...] | None = None
     story_post_yield_ratio: float = 0.02
+    story_stiffness_y: tuple[float, ...] | None = None
 
     def __post_init__(self):
         masses = np.asarray(self.masses, dtype=float)
@@ -110,6 +116,31 @@ class Building:
             if yields.shape != stiff.shape or not np.all(yields > 0):
                 raise EngineError(f"story_yield_force must be {stiff.size} positive forces in N "
                                   f"(one per story), got {self.story_yield_force!r}")
+        if self.story_stiffness_y is not None:
+            stiff_y = np.asarray(self.story_stiffness_y, dtype=float)
+            if stiff_y.shape != stiff.shape or not np.all(stiff_y > 0):
+                raise EngineError(f"story_stiffness_y must be {stiff.size} positive values in "
+                                  f"N/m (one per story, along y), got "
+                                  f"{self.story_stiffness_y!r}")
+            if self.story_yield_force is not None:
+                raise EngineError("story_stiffness_y applies to linear stories: yielding "
+                                  "stories (story_yield_force) have a circular yield surface, "
+                                  "the same stiffness both ways")
+
+    @property
+    def isotropic(self) -> bool:
+        """Whether the stories are as stiff along y as along x (story_stiffness_y None or
+        equal)."""
+        return self.story_stiffness_y is None or tuple(map(float, self.story_stiffness_y)) \
+            == tuple(map(float, self.story_stiffness))
+
+    def along_y(self) -> Building:
+        """This building as the y direction sees it: story_stiffness_y as its stiffnesses
+        (itself when isotropic)."""
+        if self.isotropic:
+            return self
+        return dataclasses.replace(self, story_stiffness=tuple(self.story_stiffness_y),
+                                   story_stiffness_y=None)
 
     @property
     def isolation(self) -> Isolator:

@@ -16,7 +16,7 @@ from .backends import plan_loop, resolve_backend, time_loop
 from .building import Building, building_arrays
 from .errors import EngineError, UnstableTimeStep
 from .impact import NONE, Contact
-from .plan import ANGLE, MOATS
+from .plan import ANGLE, MOATS, MU_WALL
 from .results import History, PlanResult, Result, TwoBodyResult
 from .scheme import (
     DEFAULT_DT,
@@ -41,7 +41,7 @@ def simulate(accel, accel_dt: float, contact: Contact,
              history: History | None = None,
              progress: Callable[[int, int], None] | None = None,
              backend: str | None = None, scale=None, *, moat: str | None = None,
-             contact_y: Contact | None = None, angle=None) -> Result:
+             contact_y: Contact | None = None, angle=None, mu_wall=None) -> Result:
     """Integrate B isolated buildings under one ground motion, pounding on their moat walls.
 
     accel: (N,) ground acceleration in m/s^2 every accel_dt s, linearly interpolated onto dt;
@@ -67,7 +67,10 @@ def simulate(accel, accel_dt: float, contact: Contact,
     +- that of contact_y, default the same walls; a corner loads both) or "circular" (one wall
     at the clear gap of `contact`, pushing along the radius). angle: None or (B,) incidence
     angles in degrees rotating each member's pair counterclockwise (one call runs a pair at
-    many angles). Returns a PlanResult: the PEAKS as resultants (vector magnitudes), the
+    many angles). mu_wall: None (0) or (B,) Coulomb friction coefficients between slab and
+    wall (-): a slab pressing on a wall with normal force N slides along it against mu_wall N
+    or sticks. The building's story_stiffness_y (if any) sets its stories along y.
+    Returns a PlanResult: the PEAKS as resultants (vector magnitudes), the
     per-direction peaks and the largest force on each wall (loops/numba_plan.py compiled, or
     loops/numpy_plan.py); its history (results.PLAN_HISTORIES) has the isolator's orbit
     (M, T, 2) m, the floor accelerations (M, T, levels, 2) m/s^2, the moat's force |F| (M, T)
@@ -75,10 +78,10 @@ def simulate(accel, accel_dt: float, contact: Contact,
     """
     if np.ndim(accel) == 2:
         return _simulate_plan(accel, accel_dt, contact, building, dt, history, progress,
-                              backend, scale, moat, contact_y, angle)
-    if moat is not None or contact_y is not None or angle is not None:
-        raise EngineError("moat, contact_y and angle apply to a run in plan: give accel as "
-                          "(N, 2), the record pair's x and y components")
+                              backend, scale, moat, contact_y, angle, mu_wall)
+    if moat is not None or contact_y is not None or angle is not None or mu_wall is not None:
+        raise EngineError("moat, contact_y, angle and mu_wall apply to a run in plan: give "
+                          "accel as (N, 2), the record pair's x and y components")
     if not isinstance(contact, Contact):
         raise EngineError("contact must be an engine.Contact")
     size = len(contact)
@@ -105,7 +108,7 @@ def simulate(accel, accel_dt: float, contact: Contact,
 
 
 def _simulate_plan(accel, accel_dt, contact, building, dt, history, progress, backend, scale,
-                   moat, contact_y, angle) -> PlanResult:
+                   moat, contact_y, angle, mu_wall) -> PlanResult:
     """simulate for a record pair (N, 2): the plan loop (see simulate)."""
     moat = "rectangular" if moat is None else moat
     if moat not in MOATS:
@@ -128,9 +131,11 @@ def _simulate_plan(accel, accel_dt, contact, building, dt, history, progress, ba
     if not dt > 0:
         raise EngineError(f"dt must be positive, got {dt}")
     arrays = building_arrays(building, size)
+    arrays_y = _arrays_along_y(building, size)
     contacts = (contact, contact if contact_y is None else contact_y) \
         if moat == "rectangular" else (contact,)
-    limit = np.min([stability_limit(arrays, c) for c in contacts], axis=0)
+    limit = np.min([stability_limit(a, c) for c in contacts
+                    for a in (arrays, *([arrays_y] if arrays_y is not None else []))], axis=0)
     worst = int(np.argmin(limit))
     if dt >= limit[worst]:
         raise UnstableTimeStep(f"dt = {dt:g} s is unstable: the central-difference limit is "
@@ -140,12 +145,15 @@ def _simulate_plan(accel, accel_dt, contact, building, dt, history, progress, ba
     checked_record(accel[:, 1], accel_dt, dt)
     scale = checked_scale(scale, size)
     angle = np.zeros(size) if angle is None else checked_angle(angle, size)
+    friction = None if mu_wall is None else _checked_member_values(MU_WALL, mu_wall, size)
+    if friction is not None and not np.any(friction > 0):
+        friction = None  # frictionless walls: the loops skip the tangential solve
     from .loops import numpy_plan
 
     loop = plan_loop(resolve_backend(backend))
     ag = numpy_plan.ground_motion(accel, float(accel_dt), float(dt), n_steps)
     peaks, hist = loop.run_plan(ag, dt, arrays, contacts, moat, progress, scale,
-                                np.radians(angle), history)
+                                np.radians(angle), history, arrays_y, friction)
     return PlanResult(**peaks, dt=dt, history=hist, moat=moat)
 
 
@@ -158,14 +166,29 @@ def _check_history(history: History, size: int) -> None:
         raise EngineError(f"history.every must be a positive integer, got {history.every!r}")
 
 
+def _arrays_along_y(building, size: int):
+    """The batch's arrays along y when a member's stories differ along y, else None (the
+    loops then use the x arrays both ways, bit for bit as an isotropic building)."""
+    members = [building] if isinstance(building, Building) else list(building)
+    if all(b.isotropic for b in members):
+        return None
+    along_y = members[0].along_y() if len(members) == 1 else [b.along_y() for b in members]
+    return building_arrays(along_y, size)
+
+
 def checked_angle(angle, size: int) -> np.ndarray:
     """(B,) incidence angles in degrees, in the declared range (plan.ANGLE)."""
+    return _checked_member_values(ANGLE, angle, size)
+
+
+def _checked_member_values(param, values, size: int) -> np.ndarray:
+    """(B,) values of a per-member parameter of runs in plan, in its declared range."""
     try:
-        values = np.broadcast_to(np.asarray(angle, dtype=float), (size,)).copy()
+        out = np.broadcast_to(np.asarray(values, dtype=float), (size,)).copy()
     except (TypeError, ValueError):
-        raise EngineError(f"angle must be a number or {size} numbers in degrees, got "
-                          f"{np.shape(angle)}") from None
-    return ANGLE.check(values)
+        raise EngineError(f"{param.name} must be a number or {size} numbers ({param.units}), "
+                          f"got {np.shape(values)}") from None
+    return param.check(out)
 
 
 def contact_time_scale(m_eff, v, k, n):

@@ -83,7 +83,8 @@ def _sweep(records, *, impact: str = "bumper", dt: float | None = None, workers:
         pipeline.records.load_pair takes: "RSN953", a paper key, "A.AT2+B.AT2", an (x, y)
         tuple of Records; see pipeline.records.pair), the building moves in x and y on coupled
         isolators, and `angle` (degrees, default 0; swept like any parameter) rotates each
-        pair counterclockwise. The archive then also holds the per-direction peaks (*_xy,
+        pair counterclockwise; `mu_wall` (default 0; swept alike) is the Coulomb friction
+        between slab and wall. The archive then also holds the per-direction peaks (*_xy,
         dimension `direction`) and the largest force per wall (`wall`); peak_* are
         resultants. The same walls on every side (a square or circular moat).
     force: replace an existing `out` that holds another sweep. Without it such an archive is

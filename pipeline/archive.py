@@ -18,7 +18,7 @@ import xarray as xr
 import engine
 from engine.impact import LAWS
 from engine.isolators import LAWS as ISOLATOR_LAWS
-from engine.plan import ANGLE
+from engine.plan import PLAN_PARAMETERS
 from engine.results import DIRECTIONS, PEAKS, PLAN_PEAKS, WALLS, Quantity, level_axes
 
 from .grid import ISOLATOR_PARAMS, Grid, baseline_text, swept_parameter
@@ -187,8 +187,9 @@ def parameter_coords(grid: Grid) -> dict:
         if name in ISOLATOR_PARAMS:  # replaces the building's own value (building_isolator_*)
             param = ISOLATOR_LAWS[grid.isolator].PARAMETERS.swept()[name]
             units, long_name = param.units, f"{param.meaning} ({param.equation})"
-        elif name == ANGLE.sweep:
-            units, long_name = ANGLE.units, ANGLE.meaning
+        elif name in PLAN_PARAMETERS:
+            param = PLAN_PARAMETERS[name]
+            units, long_name = param.units, param.meaning
         else:
             units, long_name = parameter_meta(grid.impact, name)
         value = grid.coords[name] if name in grid.coords else grid.fixed[name]

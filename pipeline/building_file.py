@@ -6,6 +6,7 @@ type or unit is one BuildingError naming the key and what it expects.
     masses = [600e3, 450e3, 450e3, 450e3, 450e3, 450e3, 450e3, 450e3, 400e3]  # kg, slab first
     story_stiffness = [1.2e9, 1.1e9, 1.0e9, 0.9e9, 0.8e9, 0.7e9, 0.6e9, 0.5e9]  # N/m
     story_yield_force = [8e6, 7.5e6, 7e6, 6.2e6, 5.4e6, 4.4e6, 3.3e6, 2e6]  # N (optional)
+    # story_stiffness_y = [...]  # N/m along y in plan (optional, linear stories only)
     [isolator]              # optional: the bilinear k1, k2, fy_ratio keys otherwise
     law = "friction_pendulum"
     radius = 2.2            # m
@@ -49,6 +50,8 @@ PLAUSIBLE = {
                                  "(0, inf)", plausible="[1e5, 1e13]"),
     "story_yield_force": Parameter("story_yield_force", "N", "story yield force", REQUIRED,
                                    "(0, inf)", plausible="[1e3, 1e10]"),
+    "story_stiffness_y": Parameter("story_stiffness_y", "N m-1", "story stiffness along y",
+                                   REQUIRED, "(0, inf)", plausible="[1e5, 1e13]"),
 }
 
 

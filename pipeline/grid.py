@@ -37,7 +37,7 @@ import numpy as np
 import engine
 from engine.impact import LAWS, M_EFF, NO_WALL
 from engine.isolators import LAWS as ISOLATOR_LAWS
-from engine.plan import ANGLE
+from engine.plan import PLAN_PARAMETERS
 
 from .errors import PlausibilityWarning, SweepError
 
@@ -57,8 +57,9 @@ names (k1, k2, fy_ratio, radius, mu_slow, mu_fast, rate, yield_disp). Each appli
 building's isolator is of a law that declares it, and replaces the building's own value; in
 the archive they follow the wall's parameters."""
 assert not set(ISOLATOR_PARAMS) & set(PARAMS), "isolator and wall parameters share a name"
-PLAN_PARAMS = (ANGLE.sweep,)
-"""The parameters of runs in plan only: the record pair's incidence angle (degrees)."""
+PLAN_PARAMS = tuple(PLAN_PARAMETERS)
+"""The parameters of runs in plan only: the record pair's incidence angle (degrees) and the
+slab-wall friction coefficient mu_wall (engine.plan.PLAN_PARAMETERS)."""
 DIMENSIONS = (*PLAN_PARAMS, *PARAMS, *ISOLATOR_PARAMS)
 """Every sweep parameter, in the archive's dimension order (after record): the excitation's,
 the wall's, the isolator's."""
@@ -67,9 +68,10 @@ the wall's, the isolator's."""
 def declarations(name: str) -> dict:
     """Law -> its declaration (engine.parameters.Parameter) of sweep parameter `name`, for
     every law that takes it: the impact laws (IMPACT_LAWS order) for a wall parameter, the
-    isolator laws for an isolator parameter; {"plan": ANGLE} for the angle of runs in plan."""
+    isolator laws for an isolator parameter; {"plan": its declaration} for a parameter of runs
+    in plan (angle, mu_wall)."""
     if name in PLAN_PARAMS:
-        return {"plan": ANGLE}
+        return {"plan": PLAN_PARAMETERS[name]}
     laws = ISOLATOR_LAWS if name in ISOLATOR_PARAMS else {law: LAWS[law] for law in IMPACT_LAWS}
     return {law: module.PARAMETERS.swept()[name] for law, module in laws.items()
             if name in module.PARAMETERS.swept()}
@@ -87,7 +89,7 @@ MEMBER_DTYPE = np.dtype([("law", "U16"),
                                                      *PLAN_PARAMS))])
 """One member: its wall law's name, the wall's sweep parameters (SI; NaN: unused by the law),
 m_eff kg, the isolator parameters that replace the building's (SI; NaN: the building's own),
-the incidence angle of a run in plan (degrees; NaN: a planar run)."""
+the parameters of a run in plan (angle degrees, mu_wall; NaN: a planar run)."""
 
 # The paper's bare wall, the reference of the amplification ratios (SPEC section 2 decision).
 BASELINE_LAW = "linear"
@@ -163,9 +165,10 @@ def make_grid(gap=None, *, impact: str = "bumper", isolator: str = "bilinear",
     default). isolator: the law of the building's isolator; its parameters (ISOLATOR_PARAMS
     it declares, SI) given here replace the building's, fixed or swept alike, None keeping the
     building's. plan: the members run in plan, under record pairs; angle (degrees, default 0)
-    is then their incidence angle, fixed or swept, and the baseline and unconstrained blocks
-    repeat per angle. gap=None with unconstrained=True builds only the no-wall block. Raises
-    SweepError naming the parameter (an unknown name too).
+    is then their incidence angle and mu_wall (default 0) the slab-wall friction, each fixed
+    or swept, and the baseline and unconstrained blocks repeat per value. gap=None with
+    unconstrained=True builds only the no-wall block. Raises SweepError naming the parameter
+    (an unknown name too).
     """
     given = sweep_parameters({"gap": gap, **parameters})
     if impact not in IMPACT_LAWS:
@@ -174,13 +177,18 @@ def make_grid(gap=None, *, impact: str = "bumper", isolator: str = "bilinear",
     plausible("m_eff", M_EFF, _checked(M_EFF, np.asarray(m_eff), "m_eff"))
     iso_values, iso_swept = _isolator_values(isolator, given)
     if plan:  # the excitation's parameters lead the isolator's
-        angles, angle_swept = _values("angle", ANGLE.default if given["angle"] is None
-                                      else given["angle"])
-        iso_values = {"angle": _checked(ANGLE, angles, "angle"), **iso_values}
-        iso_swept = ["angle"] * angle_swept + iso_swept
-    elif given["angle"] is not None:
-        raise SweepError("angle applies to runs in plan, under record pairs (moat="
-                         "'rectangular' or 'circular')")
+        in_plan, plan_swept = {}, []
+        for name, param in PLAN_PARAMETERS.items():
+            array, is_swept = _values(name, param.default if given[name] is None
+                                      else given[name])
+            in_plan[name] = plausible(name, param, _checked(param, array, name))
+            plan_swept += [name] * is_swept
+        iso_values, iso_swept = {**in_plan, **iso_values}, plan_swept + iso_swept
+    else:
+        for name in PLAN_PARAMS:
+            if given[name] is not None:
+                raise SweepError(f"{name} applies to runs in plan, under record pairs (moat="
+                                 "'rectangular' or 'circular')")
     if gap is None:
         if not unconstrained or any(given[p] is not None for p in PARAMS) or baseline:
             raise SweepError("gap is required (m); only an unconstrained-only run may omit it")

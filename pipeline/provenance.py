@@ -263,6 +263,9 @@ def building_attributes(building: engine.Building) -> dict:
                                "weight, g m s-2")
     if building.story_yield_force is not None:
         attrs["building_units"] += ", story_yield_force N"
+    if building.story_stiffness_y is not None:
+        attrs["building_units"] += ", story_stiffness_y N/m (along y in plan; story_stiffness " \
+            "along x)"
     attrs["building_yield_displacement"] = building.yield_displacement
     if isolation.law == "bilinear":
         iso_text = "2 zeta_iso sqrt(k1 M_tot)"

@@ -1,16 +1,17 @@
 """The compiled time loop in plan (numba): numpy_plan.py's step, member by member.
 
-The building moves in x and y (state arrays with a last axis of directions), its operator
-shared by both directions (isotropic stories); the isolator's and the yielding stories' slip
-elements return radially (isolators/hysteresis.radial_return, the same function the NumPy loop
-calls); the moat is two wall directions (rectangular: x and y, each wall on the side the slab
-moves towards) or one (circular: along the slab's radius), every impact law along the wall's
-normal through the laws' own `force_terms` (the planar kernel's dispatch). The dense step
-operator serves every height here (the planar kernel's banded solve above 12 levels is not
-used in plan yet). Agrees with the NumPy plan loop to round-off; like the planar kernel, a
-member's result never depends on its batch or on threads. Members run on threads of this
-process (the kernel releases the GIL) rather than in a numba parallel loop, which would take
-three times as long to compile (10.7 s against 4.2 s).
+The building moves in x and y (state arrays with a last axis of directions), with its step
+operator along x and along y (the same arrays for isotropic stories); the isolator's and the
+yielding stories' slip elements return radially (isolators/hysteresis.radial_return, the same
+function the NumPy loop calls); the moat is two wall directions (rectangular: x and y, each
+wall on the side the slab moves towards) or one (circular: along the slab's radius), every
+impact law along the wall's normal through the laws' own `force_terms` (the planar kernel's
+dispatch), and the slab-wall friction along the wall, solved as numpy_plan._friction solves it.
+The dense step operator serves every height here (the planar kernel's banded solve above 12
+levels is not used in plan yet). Agrees with the NumPy plan loop to round-off; like the planar
+kernel, a member's result never depends on its batch or on threads. Members run on threads of
+this process (the kernel releases the GIL) rather than in a numba parallel loop, which would
+take three times as long to compile (10.7 s against 4.2 s).
 """
 from __future__ import annotations
 
@@ -48,8 +49,8 @@ from .numba_support import install_cache_locator, stack_doubles
 install_cache_locator(Path(__file__), [compiled.__file__, *PHYSICS_FILES])
 
 # Per-member scalars, and per wall direction: the clear gap, then the law's arguments.
-(_COMPLIANCE, _K_ELASTIC, _K_SLIP, _F_LIMIT, _SLOW_DROP, _RATE, _STORIES_YIELD, _COS, _SIN,
- _N_PAR) = range(10)
+(_COMPLIANCE, _COMPLIANCE_Y, _ANISOTROPIC, _MU_WALL, _K_ELASTIC, _K_SLIP, _F_LIMIT, _SLOW_DROP,
+ _RATE, _STORIES_YIELD, _COS, _SIN, _N_PAR) = range(13)
 _GAP, _LAW_ARGS = 0, 1
 _N_WALL_PAR = _LAW_ARGS + len(LAW_ARGUMENTS)
 # State carried between chunks: the isolator's slip force (x, y), then per wall direction its
@@ -73,11 +74,26 @@ def _contact(code, wp, delta, new, v_imp, delta_prev, rate_free, comp):
     return implicit_force(elastic, dashpot, rate_free, comp)
 
 
+@njit(**LINK)
+def _friction(nx_, ny_, w, wy, comp, comp_y, limit, nrm_x, nrm_y):
+    """numpy_plan._friction for one member: the friction force (fx, fy) N of a wall pushing
+    with unit normal (nrm_x, nrm_y), limit = mu_wall N, added to the velocities in place."""
+    t_x, t_y = -nrm_y, nrm_x
+    slip = t_x * nx_[0] + t_y * ny_[0]
+    stick = -slip / (comp * (t_x * t_x) + comp_y * (t_y * t_y))
+    force = min(max(stick, -limit), limit)
+    fx, fy = t_x * force, t_y * force
+    for i in range(len(nx_)):
+        nx_[i] += w[i] * fx
+        ny_[i] += wy[i] * fy
+    return fx, fy
+
+
 @njit(**JIT)
-def _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par, wall_par,
-            u_all, v_all, f_story_all, state, peak_level, peak_level_xy, peak_story,
-            peak_story_xy, peak_iso_xy, peak_scalar, n_impacts, peak_wall, hist_row, every,
-            h_u, h_acc, h_f, h_d):
+def _member(levels, circular, b, s0, s1, ag, dt, op, wall, op_y, wall_y, story_y, mass, story, law,
+            par, wall_par, u_all, v_all, f_story_all, state, peak_level, peak_level_xy, peak_story,
+            peak_story_xy, peak_iso_xy, peak_scalar, n_impacts, peak_wall, hist_row, every, h_u,
+            h_acc, h_f, h_d):
     """Steps s0 <= step < s1 of member b (see the module docstring). Like the planar kernel,
     the member's state lives in scalars and arrays on the stack (x and y apart) while it
     runs; resultant peaks are kept squared (the square root of the largest square is the
@@ -86,9 +102,14 @@ def _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par
     n_st = n_levels - 1
     ot = op[b]
     w = wall[b]
+    oty = op_y[b]
+    wy = wall_y[b]
+    k_story_y = story_y[b]
     m = mass[b]
     p = par[b]
-    comp = p[_COMPLIANCE]
+    comp, comp_y = p[_COMPLIANCE], p[_COMPLIANCE_Y]
+    anisotropic = p[_ANISOTROPIC] != 0.0
+    mu_wall = p[_MU_WALL]
     k_el, k_slip, f_limit = p[_K_ELASTIC], p[_K_SLIP], p[_F_LIMIT]
     slow_drop, rate = p[_SLOW_DROP], p[_RATE]
     stories_yield = p[_STORIES_YIELD] != 0.0
@@ -107,6 +128,10 @@ def _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par
     delta_prev = carray(stack_doubles(levels), (2,))
     inside = carray(stack_doubles(levels), (2,))
     gaps = carray(stack_doubles(levels), (2,))
+    # per wall direction this step: its normal force and unit normal (for the friction)
+    f_n = carray(stack_doubles(levels), (2,))
+    n_x = carray(stack_doubles(levels), (2,))
+    n_y = carray(stack_doubles(levels), (2,))
     for d in range(n_walls):
         j = _WALL_STATE + 3 * d
         v_imp[d], delta_prev[d], inside[d] = st[j], st[j + 1], st[j + 2]
@@ -162,7 +187,7 @@ def _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par
                 cy[i + 1] = k_post[i] * dy[i] + fsy[i]
             else:
                 cx[i + 1] = k_story[i] * dx[i]
-                cy[i + 1] = k_story[i] * dy[i]
+                cy[i + 1] = k_story_y[i] * dy[i]
         for i in range(n_st):
             rx[i] = (cx[i + 1] - cx[i]) - m[i] * ax
             ry[i] = (cy[i + 1] - cy[i]) - m[i] * ay
@@ -171,17 +196,17 @@ def _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par
         # Both directions through the one operator, read once (ot: transposed, by column).
         for i in range(n_levels):
             nx_[i] = ot[0, i] * rx[0]
-            ny_[i] = ot[0, i] * ry[0]
+            ny_[i] = oty[0, i] * ry[0]
         for j in range(1, n_levels):
             rxj, ryj = rx[j], ry[j]
             for i in range(n_levels):
                 nx_[i] += ot[j, i] * rxj
-                ny_[i] += ot[j, i] * ryj
+                ny_[i] += oty[j, i] * ryj
         for j in range(n_levels):
             vxj, vyj = vx[j], vy[j]
             for i in range(n_levels):
                 nx_[i] += ot[n_levels + j, i] * vxj
-                ny_[i] += ot[n_levels + j, i] * vyj
+                ny_[i] += oty[n_levels + j, i] * vyj
 
         # The moat: the force on the slab (wfx, wfy), towards the centre; one wall direction
         # (the circle's radius) or two (x, then y), each the same code, the law's once.
@@ -197,6 +222,8 @@ def _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par
                 before = nrm_x * vx[0] + nrm_y * vy[0]
                 free = nrm_x * (0.5 * (vx[0] + nx_[0])) + nrm_y * (0.5 * (vy[0] + ny_[0]))
                 which = 0
+                along = comp if not anisotropic else \
+                    comp * (nrm_x * nrm_x) + comp_y * (nrm_y * nrm_y)
             else:
                 u0d, v0d, n0d = (ux[0], vx[0], nx_[0]) if d == 0 else (uy[0], vy[0], ny_[0])
                 side = np.sign(u0d)
@@ -205,6 +232,7 @@ def _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par
                 before = side * v0d
                 free = side * 0.5 * (v0d + n0d)
                 which = 2 * d if side > 0 else 2 * d + 1
+                along = comp if d == 0 else comp_y
             delta = max(distance - gaps[d], -1.0)
             touching = delta > 0.0
             new = touching and inside[d] == 0.0
@@ -212,20 +240,29 @@ def _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par
                 n_imp += 1
                 v_imp[d] = before
             inside[d] = 1.0 if touching else 0.0
+            f_n[d] = 0.0
             if touching:
                 force = _contact(codes[d], wall_par[b, d], delta, new, v_imp[d],
-                                 delta_prev[d], free, comp)
+                                 delta_prev[d], free, along)
                 wfx -= nrm_x * force
                 wfy -= nrm_y * force
                 p_force = max(p_force, force)
                 pw[which] = max(pw[which], force)
+                f_n[d], n_x[d], n_y[d] = force, nrm_x, nrm_y
             delta_prev[d] = delta
             p_indent = max(p_indent, delta)
             deepest = max(deepest, delta)
         if wfx != 0.0 or wfy != 0.0:
             for i in range(n_levels):
                 nx_[i] += w[i] * wfx
-                ny_[i] += w[i] * wfy
+                ny_[i] += wy[i] * wfy
+            if mu_wall > 0.0:
+                for d in range(n_walls):
+                    if f_n[d] > 0.0:
+                        fx, fy = _friction(nx_, ny_, w, wy, comp, comp_y, mu_wall * f_n[d],
+                                           n_x[d], n_y[d])
+                        wfx += fx
+                        wfy += fy
             energy -= (wfx * (vx[0] + nx_[0]) + wfy * (vy[0] + ny_[0])) * half_dt
 
         keep = hrow >= 0 and step % every == 0  # this step goes into the histories
@@ -286,26 +323,36 @@ def _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par
 
 
 @njit(**JIT)
-def _run(levels, circular, members, s0, s1, ag, dt, op, wall, mass, story, law, par, wall_par,
-         u, v, f_story, state, peak_level, peak_level_xy, peak_story, peak_story_xy,
-         peak_iso_xy, peak_scalar, n_impacts, peak_wall, hist_row, every, h_u, h_acc, h_f, h_d):
+def _run(levels, circular, members, s0, s1, ag, dt, op, wall, op_y, wall_y, story_y, mass, story,
+         law, par, wall_par, u, v, f_story, state, peak_level, peak_level_xy, peak_story,
+         peak_story_xy, peak_iso_xy, peak_scalar, n_impacts, peak_wall, hist_row, every, h_u,
+         h_acc, h_f, h_d):
     """Steps s0 <= step < s1 of the members in `members` (indices), one after the other. It
     releases the GIL (nogil), so that run_plan's threads run batches of members at once: the
     same parallelism as numba's parallel loops, at a third of their compile time."""
     for b in members:
-        _member(levels, circular, b, s0, s1, ag, dt, op, wall, mass, story, law, par, wall_par,
-                u, v, f_story, state, peak_level, peak_level_xy, peak_story, peak_story_xy,
-                peak_iso_xy, peak_scalar, n_impacts, peak_wall, hist_row, every, h_u, h_acc,
-                h_f, h_d)
+        _member(levels, circular, b, s0, s1, ag, dt, op, wall, op_y, wall_y, story_y, mass, story,
+                law, par, wall_par, u, v, f_story, state, peak_level, peak_level_xy, peak_story,
+                peak_story_xy, peak_iso_xy, peak_scalar, n_impacts, peak_wall, hist_row, every,
+                h_u, h_acc, h_f, h_d)
 
 
-def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, history=None):
+def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, history=None,
+             arrays_y=None, mu_wall=None):
     """numpy_plan.run_plan on the kernel: the same arguments, the same (peaks, history)."""
     size, n_levels = arrays.masses.shape
     levels = (0,) * n_levels
     op, wall_response, compliance = step_operators(arrays, dt)
+    op = np.ascontiguousarray(op.transpose(0, 2, 1))
+    if arrays_y is None:  # isotropic: the x arrays serve y
+        op_y, response_y, compliance_y, story_y = op, wall_response, compliance, arrays.story_k
+    else:
+        op_y, response_y, compliance_y = step_operators(arrays_y, dt)
+        op_y, story_y = np.ascontiguousarray(op_y.transpose(0, 2, 1)), arrays_y.story_k
     par = np.empty((size, _N_PAR))
-    par[:, _COMPLIANCE] = compliance
+    par[:, _COMPLIANCE], par[:, _COMPLIANCE_Y] = compliance, compliance_y
+    par[:, _ANISOTROPIC] = arrays_y is not None
+    par[:, _MU_WALL] = 0.0 if mu_wall is None else mu_wall
     par[:, _K_ELASTIC], par[:, _K_SLIP] = arrays.k_elastic, arrays.k_slip
     par[:, _F_LIMIT], par[:, _SLOW_DROP], par[:, _RATE] = (arrays.f_limit, arrays.slow_drop,
                                                            arrays.rate)
@@ -339,10 +386,10 @@ def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, histor
         hist_row[unique] = np.arange(rows)
         every = int(history.every)
     hist = empty_plan_history(rows, n_steps, every, dt, n_levels)
-    args = (np.ascontiguousarray(ag, dtype=np.float64), float(dt),
-            np.ascontiguousarray(op.transpose(0, 2, 1)), np.ascontiguousarray(wall_response),
-            np.ascontiguousarray(arrays.masses), story, law, par, wall_par, u, v, f_story,
-            state, peaks["peak_total_accel"], peaks["peak_total_accel_xy"],
+    args = (np.ascontiguousarray(ag, dtype=np.float64), float(dt), op,
+            np.ascontiguousarray(wall_response), op_y, np.ascontiguousarray(response_y),
+            np.ascontiguousarray(story_y), np.ascontiguousarray(arrays.masses), story, law, par,
+            wall_par, u, v, f_story, state, peaks["peak_total_accel"], peaks["peak_total_accel_xy"],
             peaks["peak_interstory_drift"], peaks["peak_interstory_drift_xy"],
             peaks["peak_isolator_disp_xy"], scalar, peaks["n_impacts"],
             peaks["max_impact_force_wall"], hist_row, every, hist["isolator_disp"],

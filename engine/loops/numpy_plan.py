@@ -2,17 +2,24 @@
 of record components, on coupled isolators, against a rectangular or circular moat.
 
 The scheme is the planar one (engine/scheme.py) applied to each direction: the state carries a
-last axis of directions (x, y; room for a rotation later), and the building is isotropic (the
-same mass, stiffness and damping in x and y), so one step operator serves both directions and
-a force along x moves nothing along y. What couples the directions:
+last axis of directions (x, y; room for a rotation later). The building has its step operator
+along x and, when its stories differ along y (Building.story_stiffness_y), another along y;
+either way a force along x moves nothing along y. What couples the directions:
 - the isolator's and the yielding stories' slip elements, with a circular yield surface and
   the exact radial return (isolators/hysteresis.radial_return), the friction pendulum's limit
   at the sliding speed |v|;
 - the moat: a rectangular one is two walls per axis, at +-clear gap along x (contact) and
   along y (contact_y), a corner loading both; a circular one pushes along the slab's radial
   direction n = u0 / |u0| with the radial indentation |u0| - clear gap. Every impact law acts
-  along the wall's normal as in the planar loop, with the same implicit solve: the isotropic
-  operator's response along n to a force along n is the planar compliance.
+  along the wall's normal as in the planar loop, with the same implicit solve: the operator's
+  response along n to a force along n is the compliance along n (c_x n_x^2 + c_y n_y^2, the
+  planar compliance for an isotropic building);
+- friction between slab and wall (mu_wall > 0): while a wall pushes with normal force N, a
+  tangential force T along the wall, |T| <= mu_wall N, solved implicitly like the normal one
+  (backward Euler on Coulomb's law): the force that stops the slab's tangential velocity at the
+  end of the step if it is within the cone (stick), else mu_wall N against that velocity
+  (slide). It cannot reverse the sliding, so it never chatters. At a corner the x wall's
+  friction acts along y after the y wall's normal force, and conversely.
 A motion along x alone gives the planar loop's numbers to rounding.
 """
 from __future__ import annotations
@@ -69,18 +76,29 @@ class _Wall:
 
 
 def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, angle,
-             history=None):
+             history=None, b_y: BuildingArrays | None = None, mu_wall=None):
     """engine.simulate's loop in plan: (peaks: PEAKS as resultants, then PLAN_PEAKS; history
     dict or None).
 
     ag (N, 2) m/s^2 on the step grid (x, y); b: B members; contacts: (x walls, y walls) for a
     rectangular moat, (radial wall,) for a circular one; scale (B,); angle (B,) rad, rotating
     each member's ground motion counterclockwise; history: engine.History or None (the
-    histories in plan: results.plan_history).
+    histories in plan: results.plan_history); b_y: the members along y when their stories
+    differ along y (None: b both ways); mu_wall: None (frictionless walls) or (B,) slab-wall
+    friction coefficients.
     """
     size, n_levels = b.masses.shape
     mass = b.masses
     step_op, wall_response, compliance = step_operators(b, dt)
+    if b_y is None:
+        story_k = b.story_k[:, :, None]
+        respond = wall_response[:, :, None]
+        comp_xy = np.column_stack([compliance, compliance])
+    else:
+        op_y, response_y, compliance_y = step_operators(b_y, dt)
+        story_k = np.stack([b.story_k, b_y.story_k], axis=-1)
+        respond = np.stack([wall_response, response_y], axis=-1)
+        comp_xy = np.column_stack([compliance, compliance_y])
     cos, sin = np.cos(angle) * scale, np.sin(angle) * scale
     walls = [_Wall(c, size) for c in contacts]
 
@@ -109,23 +127,29 @@ def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, an
         u0 = u[:, 0]
         chain[:, 0] = b.k_elastic[:, None] * u0 + f_plastic
         drift = np.diff(u, axis=1)
-        chain[:, 1:n_levels] = b.story_k[:, :, None] * drift
+        chain[:, 1:n_levels] = story_k * drift
         if any_yields:
             chain[yields, 1:n_levels] = (b.story_k_post[yields][:, :, None] * drift[yields]
                                          + f_story[yields])
         rhs[:, :n_levels] = chain[:, 1:] - chain[:, :-1] - mass[:, :, None] * a[:, None, :]
         rhs[:, n_levels:] = v_half
-        v_next = np.einsum("bij,bjd->bid", step_op, rhs)
+        if b_y is None:
+            v_next = np.einsum("bij,bjd->bid", step_op, rhs)
+        else:
+            v_next = np.stack([np.einsum("bij,bj->bi", step_op, rhs[..., 0]),
+                               np.einsum("bij,bj->bi", op_y, rhs[..., 1])], axis=-1)
 
         wall_force = np.zeros((size, n_dir))  # on the slab, towards the centre
         step_delta = np.full(size, -1.0)  # the deepest indentation this step
+        normals = []  # per wall direction: its normal force (B,) and unit normal (B, 2)
         if moat == "rectangular":
             for d, wall in enumerate(walls):
                 side = np.sign(u0[:, d])
                 force, delta, new = wall.force(
                     np.abs(u0[:, d]), side * v_half[:, 0, d],
-                    side * 0.5 * (v_half[:, 0, d] + v_next[:, 0, d]), compliance)
+                    side * 0.5 * (v_half[:, 0, d] + v_next[:, 0, d]), comp_xy[:, d])
                 wall_force[:, d] = -side * force
+                normals.append((force, np.eye(2)[d] * np.where(side < 0, -1.0, 1.0)[:, None]))
                 step_delta = np.maximum(step_delta, delta)
                 _wall_peaks(peaks, force, delta, new, np.where(side > 0, 2 * d, 2 * d + 1))
         else:
@@ -133,13 +157,18 @@ def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, an
             normal = np.where(radius[:, None] > 0, u0 / np.maximum(radius, 1e-300)[:, None],
                               np.array([1.0, 0.0]))
             central = 0.5 * (v_half[:, 0] + v_next[:, 0])
+            along = compliance if b_y is None else np.sum(comp_xy * normal**2, axis=1)
             force, delta, new = walls[0].force(
                 radius, np.sum(normal * v_half[:, 0], axis=1), np.sum(normal * central, axis=1),
-                compliance)
+                along)
             wall_force = -normal * force[:, None]
             step_delta = delta
+            normals.append((force, normal))
             _wall_peaks(peaks, force, delta, new, np.zeros(size, dtype=int))
-        v_next += wall_response[:, :, None] * wall_force[:, None, :]
+        v_next += respond * wall_force[:, None, :]
+        if mu_wall is not None:
+            for force, normal in normals:
+                wall_force += _friction(v_next, respond, comp_xy, mu_wall * force, normal)
         # Work on the walls over this step, with the central velocity of level 0.
         peaks["impact_energy"] -= np.sum(wall_force * (v_half[:, 0] + v_next[:, 0]),
                                          axis=1) * (0.5 * dt)
@@ -178,6 +207,20 @@ def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, an
     if hist is not None:
         hist["members"] = np.asarray(history.members, dtype=int)
     return peaks, hist
+
+
+def _friction(v_next, respond, comp_xy, limit, normal):
+    """The friction force (B, 2) N of one wall direction on the slab, added to v_next (B, L, 2)
+    in place: along the tangent t (normal turned by +90 degrees), the force that brings the
+    slab's tangential velocity t . v0 to zero at the end of the step (compliance along t:
+    c_x t_x^2 + c_y t_y^2) if its magnitude is within limit = mu_wall N (B,), else limit
+    against that velocity; zero where the wall does not push (N = 0)."""
+    tangent = np.column_stack([-normal[:, 1], normal[:, 0]])
+    slip = np.sum(tangent * v_next[:, 0], axis=1)
+    stick = -slip / np.sum(comp_xy * tangent**2, axis=1)
+    force = tangent * np.clip(stick, -limit, limit)[:, None]
+    v_next += respond * force[:, None, :]
+    return force
 
 
 def _peak(peaks, name, vectors):

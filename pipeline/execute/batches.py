@@ -51,7 +51,8 @@ def simulate_batch(accel: np.ndarray, accel_dt: float, members: np.ndarray,
         def progress(step, n_steps):
             worker.log_event(topic, [tag, step / n_steps])
 
-    plan = {} if moat is None else {"moat": moat, "angle": members["angle"]}
+    plan = {} if moat is None else {"moat": moat, "angle": members["angle"],
+                                    "mu_wall": members["mu_wall"]}
     result = engine.simulate(accel, accel_dt, contact_for(members),
                              building=buildings_for(members, building), dt=dt,
                              progress=progress, **plan)

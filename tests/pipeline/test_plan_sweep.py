@@ -97,3 +97,25 @@ def test_command_line_runs_in_plan(plan_sweep, tmp_path, capsys):
     assert sweep.main(["--records", "kobe", "--gap-cm", "15", "--angle", "30",
                        "--out", str(tmp_path / "x")]) == 2
     assert "angle applies to runs in plan" in capsys.readouterr().err
+
+
+def test_wall_friction_and_stories_along_y_sweep_like_the_angle(tmp_path):
+    """mu_wall is a dimension of its own; a building stiffer along x than along y reaches the
+    engine; every member is the engine's run."""
+    building = engine.Building(story_stiffness_y=(3e8, 2.8e8, 2.5e8, 2e8))
+    ds = pipeline.sweep(["RSN953"], gap=0.12, angle=[0.0, 60.0], mu_wall=[0.0, 0.4],
+                        moat="circular", building=building, quiet=True)
+    assert ds.peak_isolator_disp.dims == ("record", "angle", "mu_wall")
+    assert ds.mu_wall.attrs["units"] == "1" and "friction" in ds.mu_wall.attrs["long_name"]
+    acc, dt = pair_accel(*load_pair("RSN953"))
+    run = engine.simulate(acc, dt, engine.Contact.bumper([0.12] * 4), building,
+                          moat="circular", angle=[0.0, 0.0, 60.0, 60.0],
+                          mu_wall=[0.0, 0.4, 0.0, 0.4])
+    for peak, value in {**run.peaks(), **run.plan_peaks()}.items():
+        got = ds[peak].isel(record=0).transpose("angle", "mu_wall", ...)
+        np.testing.assert_array_equal(got.values.reshape(value.shape), value, err_msg=peak)
+    assert (ds.n_impacts > 0).all()
+    with pytest.raises(SweepError, match="mu_wall applies to runs in plan"):
+        pipeline.sweep(["RSN953"], gap=0.12, mu_wall=0.2, quiet=True)
+    with pytest.raises(SweepError, match="mu_wall 5 1 is implausible"):
+        pipeline.sweep(["RSN953"], gap=0.12, mu_wall=5.0, moat="circular", quiet=True)
