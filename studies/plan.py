@@ -1,23 +1,27 @@
 """Plan (beyond the paper): the paper's building and bumpers under record pairs, moving in both
-horizontal directions, against the planar model the paper uses.
+horizontal directions, against the planar model the paper uses, over the seismic gap.
 
 For every pair (default: the 22 FEMA P695 far-field pairs) and incidence angle theta (0-165
 degrees, every 15), the planar model runs the pair's component along theta (the paper's
 model: one component, walls on either side of one axis) and the model in plan runs the whole
 pair rotated by theta (engine.simulate with a record pair: coupled isolators, a square or
-circular moat). Both at the paper's gap rule (section 4): gap = 0.9 x the planar model's peak
-isolator displacement without wall, for that component; each without wall, against the bare
-wall (the paper's baseline) and with the paper's bumpers (4 x 5 cm a side).
+circular moat). The gap is a fraction (0.5-1.3; the paper's rule, section 4: 0.9) of the
+planar model's peak isolator displacement without wall for that component; at each gap, each
+model runs against the bare wall (the paper's baseline) and with the paper's bumpers (4 x 5
+cm a side), and once without wall.
 
 How much the planar study underestimates: the ratio plan / planar of the peak isolator
 displacement (without wall), of the largest impact force and of the largest peak floor
-acceleration (bumpers; where the planar model is hit), over pairs and angles. And whether the
-paper's conclusion on bumpers at its gap (section 4, 5.1: they can reduce the peak base
-acceleration against the bare wall) holds in plan.
+acceleration (bumpers at the paper's gap; where the planar model is hit), over pairs and
+angles; and per pair, the largest peak without wall over the angles against the larger
+as-recorded component's planar peak (planar rotated, and in plan). Whether the paper's
+conclusions on the gap size (sections 4, 5.1, 6) hold in plan, side by side with the planar
+model on the same pairs: each counted only at the points where what it speaks of happens.
 """
 from __future__ import annotations
 
 import json
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -25,13 +29,16 @@ from engine.units import CM, G
 
 from ._paper import GAP_FRACTION, N_BUMPERS, THICKNESS
 from ._plot import plt
-from ._recipe import Recipe, Verdict
+from ._recipe import Recipe, Verdict, verdict
 
 BARRIERS = ("none", "bare wall", "bumpers")
 MODELS = ("planar", "plan")
-ORBITS = 3  # pairs whose orbits (plan, bumpers, angle 0) the figure draws
+FRACTIONS = (0.5, 0.7, GAP_FRACTION, 1.1, 1.3)  # gap / the planar peak without wall
+QUICK_FRACTIONS = (0.7, GAP_FRACTION)
+ORBITS = 3  # pairs whose orbits (plan, bumpers, angle 0, the paper's gap) the figure draws
 MIN_CLEARANCE = 0.01  # m: the least clear gap in front of the bumpers for them to be run
 QUANTILES = (0.16, 0.5, 0.84)
+AS_RECORDED = (0.0, 90.0)  # degrees: the angles whose planar component is x, and -y
 
 
 def default_pairs(quick: bool) -> list[str]:
@@ -43,7 +50,13 @@ def default_pairs(quick: bool) -> list[str]:
 
 def angles(quick: bool) -> np.ndarray:
     """Incidence angles in degrees: 0-165 every 15 (quick: 0 and 90)."""
-    return np.array([0.0, 90.0]) if quick else np.arange(0.0, 180.0, 15.0)
+    return np.array(AS_RECORDED) if quick else np.arange(0.0, 180.0, 15.0)
+
+
+def gap_fractions(quick: bool) -> np.ndarray:
+    """Seismic gaps as fractions (-) of the planar model's peak isolator displacement without
+    wall for the component along the angle; the paper's 0.9 among them."""
+    return np.array(QUICK_FRACTIONS if quick else FRACTIONS)
 
 
 def options(p) -> None:
@@ -57,38 +70,50 @@ def compute(args):
     from pipeline.errors import resolve_pairs
 
     pairs, names = resolve_pairs(args.records or default_pairs(args.quick), args.records_dir)
-    thetas = angles(args.quick)
+    thetas, fracs = angles(args.quick), gap_fractions(args.quick)
     dt = engine.DEFAULT_DT if args.dt is None else args.dt
-    shape = (len(pairs), thetas.size, len(MODELS), len(BARRIERS))
-    out = {name: np.zeros(shape) for name in ("peak_isolator_disp", "peak_floor_accel",
-                                              "max_impact_force")}
-    impacts = np.zeros(shape, dtype=np.int64)
-    gaps = np.zeros(shape[:2])
+    shape = (len(pairs), thetas.size, fracs.size, len(MODELS), len(BARRIERS))
+    out = {name: np.zeros(shape, dtype=np.int64 if name == "n_impacts" else float)
+           for name in PEAK_NAMES}
+    gaps = np.zeros(shape[:3])
     orbit_t, orbits = [], []
-    rad = np.radians(thetas)
+    block = 1 + 2 * fracs.size  # members per angle: no wall, then bare wall and bumpers per gap
     for p, pair in enumerate(pairs):
         if not args.quiet:
             print(f"plan: {p + 1}/{len(pairs)} {names[p]}", flush=True)
-        accel, acc_dt = pair.accel, pair.dt
-        for a, theta in enumerate(rad):
-            along = np.cos(theta) * accel[:, 0] - np.sin(theta) * accel[:, 1]
-            free = engine.simulate(along, acc_dt, engine.Contact.none(1), args.building, dt)
-            gaps[p, a] = GAP_FRACTION * free.peak_isolator_disp[0]
-            walls = engine.Contact.concat([engine.Contact.none(1), bare(gaps[p, a]),
-                                           bumpers(gaps[p, a])])
-            planar = engine.simulate(along, acc_dt, walls, args.building, dt)
-            _store(out, impacts, planar, p, a, 0, fits(gaps[p, a]))
-        contact = engine.Contact.concat([c for g in gaps[p] for c in (
-            engine.Contact.none(1), bare(g), bumpers(g))])
-        history = engine.History([2], every=10) if p < ORBITS else None
-        plan = engine.simulate(accel, acc_dt, contact, args.building, dt, history=history,
-                               moat=args.moat, angle=np.repeat(thetas, len(BARRIERS)))
+        for a, theta in enumerate(thetas):
+            # The planar model's ground motion differs with the angle: one call per angle,
+            # every gap and barrier its members (the free run first: it sets the gaps).
+            along = component(pair.accel, theta)
+            free = engine.simulate(along, pair.dt, engine.Contact.none(1), args.building, dt)
+            gaps[p, a] = fracs * free.peak_isolator_disp[0]
+            planar = engine.simulate(along, pair.dt, walls(gaps[p, a]), args.building, dt)
+            both = [peaks_of(free), peaks_of(planar)]
+            _store(out, (p, a, slice(None), 0), {k: np.concatenate([f[k] for f in both])
+                                                 for k in PEAK_NAMES}, gaps[p, a])
+        # In plan the pair is the same at every angle: one call, angles x gaps x barriers.
+        f_paper = int(np.flatnonzero(fracs == GAP_FRACTION)[0])
+        history = engine.History([int(layout(fracs.size)[f_paper, 2])], every=10) \
+            if p < ORBITS else None
+        contact = engine.Contact.concat([members(g) for g in gaps[p]])
+        plan = engine.simulate(pair.accel, pair.dt, contact, args.building, dt, history=history,
+                               moat=args.moat, angle=np.repeat(thetas, block))
+        peaks = peaks_of(plan)
         for a in range(thetas.size):
-            _store(out, impacts, plan, p, a, 1, fits(gaps[p, a]), slice(a * 3, a * 3 + 3))
+            rows = slice(a * block, (a + 1) * block)
+            _store(out, (p, a, slice(None), 1), {k: v[rows] for k, v in peaks.items()},
+                   gaps[p, a])
         if history is not None:
             orbit_t.append(plan.history["time"])
             orbits.append(plan.history["isolator_disp"][0])
-    return _dataset(out, impacts, gaps, names, pairs, thetas, orbit_t, orbits, args)
+    return _dataset(out, gaps, names, pairs, thetas, fracs, orbit_t, orbits, args)
+
+
+def component(accel, theta) -> np.ndarray:
+    """The pair's ground acceleration (N, 2) m/s^2 along the incidence angle theta (degrees):
+    the x component of the pair rotated counterclockwise by theta, m/s^2."""
+    rad = np.radians(theta)
+    return np.cos(rad) * accel[:, 0] - np.sin(rad) * accel[:, 1]
 
 
 def bare(gap):
@@ -98,10 +123,10 @@ def bare(gap):
     return engine.Contact.linear([gap])
 
 
-def fits(gap) -> bool:
-    """Whether the paper's bumpers fit in the gap (m) with room to spare: a weak record's
-    0.9 x rule gives gaps the 5 cm pads would fill."""
-    return gap > THICKNESS + MIN_CLEARANCE
+def fits(gap):
+    """Whether the paper's bumpers fit in the gap (m; scalar or array) with room to spare: a
+    weak record's gap rule gives gaps the 5 cm pads would fill."""
+    return np.asarray(gap) > THICKNESS + MIN_CLEARANCE
 
 
 def bumpers(gap):
@@ -114,22 +139,60 @@ def bumpers(gap):
     return engine.Contact.bumper([gap], thickness=THICKNESS, n_bumpers=N_BUMPERS)
 
 
-def _store(out, impacts, result, p, a, model, fit, rows=slice(0, 3)):
-    out["peak_isolator_disp"][p, a, model] = result.peak_isolator_disp[rows]
-    out["peak_floor_accel"][p, a, model] = result.peak_total_accel[rows].max(axis=1)
-    out["max_impact_force"][p, a, model] = result.max_impact_force[rows]
-    impacts[p, a, model] = result.n_impacts[rows]
-    if not fit:  # no bumpers were run: nothing to report for them
-        for name in out:
-            out[name][p, a, model, 2] = np.nan
-        impacts[p, a, model, 2] = -1
+def walls(gaps):
+    """The members at the gaps (m, in order): bare wall, bumpers, bare wall, bumpers, ..."""
+    import engine
+
+    return engine.Contact.concat([c for g in gaps for c in (bare(g), bumpers(g))])
 
 
-def _dataset(out, impacts, gaps, names, pairs, thetas, orbit_t, orbits, args):
+def members(gaps):
+    """One angle's members in plan: no wall, then `walls(gaps)` (see `layout`)."""
+    import engine
+
+    return engine.Contact.concat([engine.Contact.none(1), walls(gaps)])
+
+
+def layout(n_gaps: int) -> np.ndarray:
+    """(gap, barrier) -> member in a block of `members`: the one free run serves every gap."""
+    rows = np.zeros((n_gaps, len(BARRIERS)), dtype=np.int64)
+    rows[:, 1] = 1 + 2 * np.arange(n_gaps)
+    rows[:, 2] = 2 + 2 * np.arange(n_gaps)
+    return rows
+
+
+PEAK_NAMES = ("peak_isolator_disp", "peak_floor_accel", "peak_base_accel",
+              "peak_interstory_drift", "max_impact_force", "n_impacts")
+
+
+def peaks_of(result) -> dict:
+    """The peaks this study keeps, (B,) each: isolator displacement (m), the largest floor and
+    the base's acceleration (m/s^2), the largest interstory drift (m), the largest impact force
+    (N) and the impacts (-)."""
+    return {"peak_isolator_disp": result.peak_isolator_disp,
+            "peak_floor_accel": result.peak_total_accel.max(axis=1),
+            "peak_base_accel": result.peak_total_accel[:, 0],
+            "peak_interstory_drift": result.peak_interstory_drift.max(axis=1),
+            "max_impact_force": result.max_impact_force,
+            "n_impacts": result.n_impacts}
+
+
+def _store(out, where, block, gaps):
+    """One angle's block of members (see `layout`) into out[name][where] (gap, barrier)."""
+    rows = layout(gaps.size)
+    unfit = ~fits(gaps)
+    for name, values in block.items():
+        target = out[name][where]
+        target[...] = values[rows]
+        # No bumpers were run there: nothing to report for them.
+        target[unfit, 2] = -1 if name == "n_impacts" else np.nan
+
+
+def _dataset(out, gaps, names, pairs, thetas, fracs, orbit_t, orbits, args):
     from engine.results import quantity
     from pipeline.archive import labelled_dataset, variable
 
-    dims = ("record", "angle", "model", "barrier")
+    dims = ("record", "angle", "gap_fraction", "model", "barrier")
 
     def peak(name, values, what):  # the engine's declaration, as this archive holds it
         q = quantity(name)
@@ -140,12 +203,16 @@ def _dataset(out, impacts, gaps, names, pairs, thetas, orbit_t, orbits, args):
                                    "plan: resultant"),
         "peak_floor_accel": peak("peak_total_accel", out["peak_floor_accel"],
                                  "the largest over the floors; plan: resultant"),
+        "peak_base_accel": peak("peak_total_accel", out["peak_base_accel"],
+                                "the base, where the wall is hit; plan: resultant"),
+        "peak_interstory_drift": peak("peak_interstory_drift", out["peak_interstory_drift"],
+                                      "the largest over the stories; plan: resultant"),
         "max_impact_force": peak("max_impact_force", out["max_impact_force"],
                                  "the largest over the walls"),
-        "n_impacts": peak("n_impacts", impacts, "-1: the bumpers do not fit in the gap, "
-                          "not run"),
-        "gap": variable(("record", "angle"), gaps, "m",
-                        f"seismic gap: {GAP_FRACTION} x the planar model's peak isolator "
+        "n_impacts": peak("n_impacts", out["n_impacts"], "-1: the bumpers do not fit in the "
+                          "gap, not run"),
+        "gap": variable(("record", "angle", "gap_fraction"), gaps, "m",
+                        "seismic gap: the fraction x the planar model's peak isolator "
                         "displacement without wall, for the component along the angle"),
     }
     n_t = max((t.size for t in orbit_t), default=0)
@@ -154,14 +221,18 @@ def _dataset(out, impacts, gaps, names, pairs, thetas, orbit_t, orbits, args):
         for i, orbit in enumerate(orbits):
             padded[i, :orbit.shape[0]] = orbit
         data["orbit"] = variable(("orbit_record", "time", "direction"), padded, "m",
-                                 "isolator displacement in plan with bumpers, angle 0 (NaN "
-                                 "after the record ends)")
+                                 f"isolator displacement in plan with bumpers, angle 0, gap "
+                                 f"{GAP_FRACTION} x the planar peak (NaN after the record ends)")
     coords = {
         "record": variable("record", np.array(names), "1", "record pair"),
         "record_source": variable("record", np.array([p.source for p in pairs]), "1",
                                   "where the pair's components were read from"),
         "angle": variable("angle", thetas, "degree", "incidence angle: the pair rotated "
                           "counterclockwise, x towards y (planar: the component along it)"),
+        "gap_fraction": variable("gap_fraction", fracs, "1", "seismic gap / the planar "
+                                 "model's peak isolator displacement without wall for the "
+                                 f"component along the angle (the paper's rule: {GAP_FRACTION}; "
+                                 "barrier none: the same run at every fraction)"),
         "model": variable("model", np.array(MODELS), "1", "planar: the paper's model under "
                           "the component along the angle; plan: the building in plan under "
                           "the rotated pair"),
@@ -177,18 +248,32 @@ def _dataset(out, impacts, gaps, names, pairs, thetas, orbit_t, orbits, args):
         coords["direction"] = variable("direction", np.array(["x", "y"]), "1",
                                        "horizontal direction")
     ds = labelled_dataset(data, coords, {"moat": args.moat})
-    fit = np.vectorize(fits)(gaps)
-    ds["bumpers_fit"] = (("record", "angle"), fit.astype(np.int8),
+    ds["bumpers_fit"] = (("record", "angle", "gap_fraction"), fits(gaps).astype(np.int8),
                          {"units": "1", "long_name": f"1 where the bumpers fit in the gap with "
                           f"{MIN_CLEARANCE / CM:g} cm to spare (else not run: NaN)"})
+    ds["angle_gain"] = (("record", "model"), angle_gain(ds).transpose("record", "model").values,
+                        {"units": "1", "long_name": "the largest peak isolator displacement "
+                         "without wall over the angles / the larger planar peak of the two "
+                         "as-recorded components (planar: the component along each angle; "
+                         "plan: the resultant under the rotated pair)"})
     ds.attrs["plan_vs_planar"] = json.dumps(underestimates(ds))
     return ds
 
 
+def angle_gain(ds):
+    """(record, model) -: the largest peak without wall over the angles / the larger planar
+    peak of the as-recorded components (angles 0 and 90: x and -y, the same peak as y)."""
+    free = ds.peak_isolator_disp.sel(barrier="none").isel(gap_fraction=0)
+    recorded = free.sel(model="planar", angle=list(AS_RECORDED)).max("angle")
+    return free.max("angle") / recorded
+
+
 def ratios(ds) -> dict:
-    """plan / planar of the quantities the planar study underestimates, each a flat array over
-    (pair, angle), only where the planar model has something to compare (impacts)."""
-    plan, planar = ds.sel(model="plan"), ds.sel(model="planar")
+    """plan / planar of the quantities the planar study underestimates at the paper's gap,
+    each a flat array over (pair, angle), only where the planar model has something to
+    compare (impacts)."""
+    at = ds.sel(gap_fraction=GAP_FRACTION)
+    plan, planar = at.sel(model="plan"), at.sel(model="planar")
     hit = (planar.n_impacts.sel(barrier="bumpers") > 0).values
     force = (plan.max_impact_force / planar.max_impact_force).sel(barrier="bumpers").values
     accel = (plan.peak_floor_accel / planar.peak_floor_accel).sel(barrier="bumpers").values
@@ -198,10 +283,18 @@ def ratios(ds) -> dict:
             "peak floor acceleration (bumpers)": accel[hit].ravel()}
 
 
+GAIN_KEYS = {"planar": "largest peak over angles / larger component (planar, rotated)",
+             "plan": "largest peak over angles in plan / larger component (planar)"}
+
+
 def underestimates(ds) -> dict:
-    """Median, 16th and 84th percentiles and extremes of each ratio, with its count."""
+    """Median, 16th and 84th percentiles and extremes of each ratio (plan / planar, and the
+    angle gains per pair), with its count."""
+    data = dict(ratios(ds))
+    for model, key in GAIN_KEYS.items():
+        data[key] = ds.angle_gain.sel(model=model).values
     summary = {}
-    for name, values in ratios(ds).items():
+    for name, values in data.items():
         if values.size:
             q = np.quantile(values, QUANTILES)
             summary[name] = {"points": int(values.size), "p16": float(q[0]),
@@ -212,95 +305,313 @@ def underestimates(ds) -> dict:
     return summary
 
 
-def check(ds) -> list[Verdict]:
-    """Section 4 / 5.1: at the paper's gap, bumpers can reduce the peak base acceleration
-    against the bare wall; does it hold in plan? The comparison counts only (pair, angle)
-    points where the bare wall is hit."""
-    out = []
-    counts = {}
+# --- The paper's conclusions on the gap size, asked of both models. ---
+
+POINT = ("record", "angle", "gap_fraction")  # a point the conclusions are counted at
+QUANTIFIERS = {"every": "at every counted point", "some": "at one counted point at least",
+               "most": "at more than half the counted points"}
+
+
+def judged(quantifier: str, held: int, counted: int) -> bool | None:
+    """Whether a claim with the quantifier holds, `held` of `counted` points bearing it out;
+    None where nothing was counted."""
+    if not counted:
+        return None
+    return {"every": held == counted, "some": held > 0, "most": held > counted / 2}[quantifier]
+
+
+def _hit(sel, barrier) -> np.ndarray:
+    """(record, angle, gap_fraction) bool: the barrier is hit (-1, not run, is not)."""
+    return (sel.n_impacts.sel(barrier=barrier) > 0).transpose(*POINT).values
+
+
+def _amp(sel, name) -> np.ndarray:
+    """(record, angle, gap_fraction): with bumpers / against the bare wall at the same gap (>1:
+    the bumpers make it worse; NaN where they were not run)."""
+    ratio = sel[name].sel(barrier="bumpers") / sel[name].sel(barrier="bare wall")
+    return ratio.transpose(*POINT).values
+
+
+
+# Each rule: (holds, counted, amplification) over (record, angle, gap_fraction), counted only
+# where the bumpers were run (`fit`) and the walls are hit as the claim says.
+
+def only_bumpers_amplify(sel, fit):
+    """gap_size's 'wide gap': the bumpers are hit, the bare wall at that gap is not; there the
+    largest peak floor acceleration is amplified."""
+    amp = _amp(sel, "peak_floor_accel")
+    return amp > 1, fit & _hit(sel, "bumpers") & ~_hit(sel, "bare wall"), amp
+
+
+def base_reduced(sel, fit):
+    """Where the bare wall is hit: the base's peak acceleration lower with bumpers."""
+    amp = _amp(sel, "peak_base_accel")
+    return amp < 1, fit & _hit(sel, "bare wall"), amp
+
+
+def floor_reduced(sel, fit):
+    """Where the bare wall is hit: the largest peak floor acceleration lower with bumpers."""
+    amp = _amp(sel, "peak_floor_accel")
+    return amp < 1, fit & _hit(sel, "bare wall"), amp
+
+
+def drift_amplified(sel, fit):
+    """Where the bumpers or the bare wall are hit: the largest interstory drift amplified."""
+    amp = _amp(sel, "peak_interstory_drift")
+    return amp > 1, fit & (_hit(sel, "bumpers") | _hit(sel, "bare wall")), amp
+
+
+def force_reduced(sel, fit):
+    """Where both are hit: the largest impact force lower with bumpers than on the bare wall."""
+    amp = _amp(sel, "max_impact_force")
+    return amp < 1, fit & _hit(sel, "bumpers") & _hit(sel, "bare wall"), amp
+
+
+@dataclass(frozen=True)
+class Claim:
+    """A conclusion of the paper on the gap size: where (section), what (with the paper's
+    quantifier, `QUANTIFIERS`), the points it is counted at, and the rule giving (holds,
+    counted, amplification) over (record, angle, gap_fraction)."""
+
+    conclusion: str
+    claim: str
+    quantifier: str
+    points: str
+    rule: object
+
+
+CLAIMS = (
+    Claim("5.1", "Wide gaps, where only the bumpers are hit: bumpers amplify the peak floor "
+          "acceleration (the paper states it without quantifier; read, as gap_size does, as "
+          "at every such point)", "every",
+          "(pair, angle, gap) points where the bumpers are hit and the bare wall is not",
+          only_bumpers_amplify),
+    Claim("5.1", "Narrow gaps: bumpers can reduce the peak base acceleration (under the "
+          "strongest motions)", "some",
+          "(pair, angle, gap) points where the bare wall is hit (bumpers run)", base_reduced),
+    Claim("5.1", "Interstory deflections are amplified by bumpers in most of the examined "
+          "cases", "most",
+          "(pair, angle, gap) points where the bumpers or the bare wall are hit (bumpers run)",
+          drift_amplified),
+    Claim("6", "Bumpers may reduce the maximum impact force", "some",
+          "(pair, angle, gap) points where both the bumpers and the bare wall are hit",
+          force_reduced),
+)
+
+
+def counts(ds, rule) -> dict:
+    """model -> (held, counted, amplification): two boolean arrays over (record, angle,
+    gap_fraction) and the amplifications (-) at the counted points."""
+    fit = ds.bumpers_fit.transpose(*POINT).values.astype(bool)
+    out = {}
     for model in MODELS:
-        sel = ds.sel(model=model)
-        hit = (sel.n_impacts.sel(barrier="bare wall") > 0).values
-        reduced = (sel.peak_floor_accel.sel(barrier="bumpers")
-                   < sel.peak_floor_accel.sel(barrier="bare wall")).values & hit
-        counts[model] = (int(reduced.sum()), int(hit.sum()))
-    (r_planar, n_planar), (r_plan, n_plan) = counts["planar"], counts["plan"]
-    summary = json.loads(ds.attrs["plan_vs_planar"])
-    free = summary["isolator displacement (no wall)"]
-    out.append(Verdict(
-        "4, 5.1", "At the paper's gap (0.9 x the peak without wall), bumpers can reduce the "
-        "peak floor acceleration against the bare wall",
-        f"planar: at {r_planar}/{n_planar} (pair, angle) points where the bare wall is hit; "
-        f"in plan: at {r_plan}/{n_plan}; the isolator's peak in plan is x{free['median']:.2f} "
-        f"the planar one (median; 84th percentile x{free['p84']:.2f})",
-        (r_plan > 0) if n_plan else None,
-        {"reduced_planar": r_planar, "hit_planar": n_planar, "reduced_plan": r_plan,
-         "hit_plan": n_plan, "plan_vs_planar": summary}))
+        holds, counted, amp = rule(ds.sel(model=model), fit)
+        out[model] = (holds & counted, counted, amp[counted])
     return out
 
 
+def _side_by_side(claim: Claim, ds, extra: str = "", numbers: dict | None = None) -> Verdict:
+    """The claim judged in plan, with the planar model's count beside it."""
+    masks = counts(ds, claim.rule)
+    fracs = ds.gap_fraction.values
+    per_model, by_gap = {}, {}
+    for model, (held, counted, amp) in masks.items():
+        h, n = int(held.sum()), int(counted.sum())
+        per_model[model] = {"held": h, "counted": n, "fraction": h / n if n else None,
+                            "verdict": verdict(judged(claim.quantifier, h, n)),
+                            "amplification": _spread(amp)}
+        by_gap[model] = {f"{f:g}": [int(held[..., i].sum()), int(counted[..., i].sum())]
+                         for i, f in enumerate(fracs)}
+    return _verdict(claim.conclusion, f"{claim.claim} [{QUANTIFIERS[claim.quantifier]}]",
+                    claim.points, per_model, extra,
+                    {"quantifier": claim.quantifier, "counted_at": claim.points,
+                     **per_model, "by_gap_fraction": by_gap, **(numbers or {})})
+
+
+def _verdict(conclusion, claim, points, per_model, extra, numbers) -> Verdict:
+    def share(m):
+        n, amp = per_model[m]["counted"], per_model[m].get("amplification")
+        median = f", median x{amp['median']:.2f}" if amp else ""
+        return f"{per_model[m]['held']}/{n}" + (f" ({per_model[m]['held'] / n:.0%}{median})"
+                                                 if n else "")
+
+    plan = per_model["plan"]
+    finding = (f"planar: {share('planar')} {points} ({per_model['planar']['verdict']}); "
+               f"in plan: {share('plan')}{extra}")
+    return Verdict(conclusion, claim, finding,
+                   None if plan["verdict"] == "not tested" else plan["verdict"] == "agrees",
+                   numbers)
+
+
+def _spread(amp) -> dict | None:
+    """Median and extremes (-) of the amplifications at the counted points (None: none)."""
+    if not amp.size:
+        return None
+    return {"median": float(np.median(amp)), "min": float(amp.min()), "max": float(amp.max())}
+
+
+def narrow_more_effective(ds) -> Verdict:
+    """Paper 6: bumpers more effective at narrow gaps compared with the displacement: per
+    (pair, angle), the base amplification at the narrowest fraction below that at the widest,
+    counted where the bumpers fit at both and a wall is hit at both (where nothing is hit at
+    the widest, the amplification there is 1 by construction, not a comparison)."""
+    fit = ds.bumpers_fit.transpose(*POINT).values.astype(bool)
+    narrow, wide = int(np.argmin(ds.gap_fraction.values)), int(np.argmax(ds.gap_fraction.values))
+    per_model = {}
+    for model in MODELS:
+        sel = ds.sel(model=model)
+        amp = _amp(sel, "peak_base_accel")
+        hit = _hit(sel, "bumpers") | _hit(sel, "bare wall")
+        counted = fit[..., narrow] & fit[..., wide] & hit[..., narrow] & hit[..., wide] \
+            & (narrow != wide)
+        held = int((counted & (amp[..., narrow] < amp[..., wide])).sum())
+        n = int(counted.sum())
+        per_model[model] = {"held": held, "counted": n, "fraction": held / n if n else None,
+                            "verdict": verdict(judged("most", held, n))}
+    f_n, f_w = ds.gap_fraction.values[narrow], ds.gap_fraction.values[wide]
+    points = (f"(pair, angle) points where the base acceleration is amplified less at gap "
+              f"{f_n:g} than at {f_w:g} x the peak (counted: a wall hit at both)")
+    return _verdict("6", "Bumpers seem more effective at gaps narrow compared with the induced "
+                    "displacement (no quantifier in the paper; read as a tendency, as "
+                    f"studies.suite does) [{QUANTIFIERS['most']}]", points, per_model, "",
+                    {"quantifier": "most", "counted_at": points, **per_model,
+                     "narrow_fraction": float(f_n), "wide_fraction": float(f_w)})
+
+
+def check(ds) -> list[Verdict]:
+    """Section 4 / 5.1 at the paper's gap (bumpers can reduce the peak floor acceleration
+    against the bare wall), then the paper's conclusions on the gap size over every gap
+    fraction (5.1, 6): each in plan, the planar model's count beside it, counted only at the
+    points where what it speaks of happens (bumpers run, walls hit as the claim says)."""
+    summary = underestimates(ds)
+    free = summary["isolator displacement (no wall)"]
+    gains = {m: summary[k] for m, k in GAIN_KEYS.items()}
+    extra = (f"; the isolator's peak in plan is x{free['median']:.2f} the planar one (median; "
+             f"84th percentile x{free['p84']:.2f}); the largest peak over the angles / the "
+             "larger as-recorded component's, per pair (median, 84th percentile, largest): "
+             + "; ".join(f"{m} {_pct(g, 'median')}, {_pct(g, 'p84')}, {_pct(g, 'max')}"
+                         for m, g in gains.items()))
+    paper_gap = Claim("4, 5.1", f"At the paper's gap ({GAP_FRACTION} x the peak without wall), "
+                      "bumpers can reduce the peak floor acceleration against the bare wall",
+                      "some", "(pair, angle) points where the bare wall is hit (bumpers run)",
+                      floor_reduced)
+    out = [_side_by_side(paper_gap, ds.sel(gap_fraction=[GAP_FRACTION]), extra,
+                         {"plan_vs_planar": summary})]
+    out += [_side_by_side(claim, ds) for claim in CLAIMS]
+    out.append(narrow_more_effective(ds))
+    return out
+
+
+def _pct(stats: dict, key: str) -> str:
+    """A gain (ratio) as its excess in percent, e.g. 1.07 -> '+7%'."""
+    return f"{stats[key] - 1:+.0%}" if stats.get("points") else "n/a"
+
+
 def plot(ds):
-    fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4.6))
+    fig, (left, middle, right) = plt.subplots(1, 3, figsize=(13.5, 4.6))
     if "orbit" in ds:
         for i, name in enumerate(ds.orbit_record.values):
             orbit = ds.orbit.sel(orbit_record=name).values / CM
             left.plot(orbit[:, 0], orbit[:, 1], lw=0.7, label=str(name))
-            gap = float(ds.gap.sel(record=name, angle=0.0)) / CM
-            _moat(left, gap, ds.attrs["moat"], f"C{i}")
+            gap = float(ds.gap.sel(record=name, angle=0.0, gap_fraction=GAP_FRACTION)) / CM
+            _moat(left, gap, ds.attrs["moat"], f"C{i}", bumpers=i == 0)
         left.set_aspect("equal")
         left.set_xlabel("x (cm)")
         left.set_ylabel("y (cm)")
-        left.set_title("isolator orbits in plan with bumpers, angle 0\n"
-                       "dashed: each pair's moat (0.9 x the planar peak); bumpers: ticks")
+        left.set_title(f"orbits in plan with bumpers, angle 0, gap {GAP_FRACTION} x\n"
+                       "dashed: the moats; filled: the first pair's bumpers", fontsize=9)
         left.legend(fontsize=6, loc="upper right")
     data = ratios(ds)
-    labels = [f"{name}\n({values.size} points)" for name, values in data.items()]
-    right.boxplot([v if v.size else [np.nan] for v in data.values()], whis=(5, 95),
-                  showfliers=True, flierprops={"markersize": 2})
-    right.set_xticks(range(1, len(labels) + 1), labels, fontsize=7)
-    right.axhline(1.0, color="k", lw=0.8, ls="--")
-    right.set_ylabel("plan / planar")
-    right.set_title(f"the building in plan against the planar model, {ds.sizes['record']} "
-                    f"pairs x {ds.sizes['angle']} angles\nbox: 25-75%, whiskers 5-95%; "
-                    "above 1, the planar study underestimates")
+    # One line per part: three labels side by side in a third of the figure's width.
+    labels = [f"{name.replace(' (', chr(10) + '(')}\n{values.size} points"
+              for name, values in data.items()]
+    middle.boxplot([v if v.size else [np.nan] for v in data.values()], whis=(5, 95),
+                   showfliers=True, flierprops={"markersize": 2})
+    middle.set_xticks(range(1, len(labels) + 1), labels, fontsize=7)
+    middle.axhline(1.0, color="k", lw=0.8, ls="--")
+    middle.set_ylabel("plan / planar")
+    middle.set_title(f"plan / planar, {ds.sizes['record']} pairs x {ds.sizes['angle']} "
+                     f"angles, gap {GAP_FRACTION} x\nbox 25-75%, whiskers 5-95%; above 1: "
+                     "planar underestimates", fontsize=9)
+    _shares(right, ds)
     fig.suptitle(f"Beyond the paper: record pairs in plan, {ds.attrs['moat']} moat, the "
                  f"paper's building and bumpers ({N_BUMPERS} x {THICKNESS / CM:g} cm), gap "
-                 f"{GAP_FRACTION} x the planar peak; the largest peak floor acceleration "
-                 f"of any run: {float(ds.peak_floor_accel.max()) / G:.1f} g", fontsize=8)
+                 "a fraction of the planar peak without wall; the largest peak floor "
+                 f"acceleration of any run: {float(ds.peak_floor_accel.max()) / G:.1f} g",
+                 fontsize=8)
     fig.tight_layout()
     return fig
 
 
-def _moat(ax, gap, moat, color):
-    """The moat's outline at +-gap (cm) and the bumpers' places (the walls' middles)."""
+SHOWN = ((only_bumpers_amplify, "floor accel. amplified (only bumpers hit)"),
+         (base_reduced, "base accel. reduced (bare wall hit)"),
+         (drift_amplified, "drift amplified (a wall hit)"),
+         (force_reduced, "impact force reduced (both hit)"))
+
+
+def _shares(ax, ds):
+    """Against the gap fraction: the share of the counted points where each gap-size claim
+    holds, planar dashed, plan solid (no marker where nothing is counted)."""
+    fracs = ds.gap_fraction.values
+    for i, (rule, label) in enumerate(SHOWN):
+        for model, style in (("planar", "--"), ("plan", "-")):
+            held, counted, _ = counts(ds, rule)[model]
+            n = counted.sum(axis=(0, 1))
+            with np.errstate(invalid="ignore", divide="ignore"):
+                share = np.where(n > 0, held.sum(axis=(0, 1)) / n, np.nan)
+            ax.plot(fracs, share, ls=style, marker="o", ms=3, color=f"C{i}",
+                    label=label if model == "plan" else None)
+    ax.plot([], [], "k--", label="planar")
+    ax.plot([], [], "k-", label="in plan")
+    ax.axvline(GAP_FRACTION, color="0.6", lw=0.8, ls=":")
+    ax.set_ylim(-0.03, 1.03)
+    ax.set_xlabel("seismic gap / planar peak without wall")
+    ax.set_ylabel("share of the counted points where it holds")
+    ax.set_title("the paper's gap-size conclusions against the gap\n(dotted: the paper's "
+                 "rule)", fontsize=9)
+    ax.legend(fontsize=6, loc="best")
+
+
+def _moat(ax, gap, moat, color, bumpers=True):
+    """The moat's outline at +-gap (cm) and, if `bumpers` and where they fit, the bumpers:
+    N_BUMPERS pads of THICKNESS on each wall (on the circle: at 0, 90, 180 and 270 degrees),
+    each drawn as a small filled rectangle standing on the wall."""
     if moat == "circular":
         t = np.linspace(0, 2 * np.pi, 200)
         ax.plot(gap * np.cos(t), gap * np.sin(t), ls="--", lw=0.6, color=color)
     else:
         ax.plot([-gap, gap, gap, -gap, -gap], [-gap, -gap, gap, gap, -gap], ls="--", lw=0.6,
                 color=color)
-    t = THICKNESS / CM
+    if not (bumpers and fits(gap * CM)):
+        return
+    depth = THICKNESS / CM
+    places = [0.0] if moat == "circular" else np.linspace(-0.6, 0.6, N_BUMPERS) * gap
     for sx, sy in ((1, 0), (-1, 0), (0, 1), (0, -1)):
-        ax.plot(*_bumper(sx, sy, gap, t), color=color, lw=2)
+        for along in places:
+            ax.fill(*_pad(sx, sy, gap, depth, along, 0.04 * gap), color=color, lw=0)
 
 
-def _bumper(sx, sy, gap, t):
-    """A bumper on the wall with outward normal (sx, sy), drawn as a short thick tick of its
-    thickness t (cm) at the wall's middle."""
+def _pad(sx, sy, gap, depth, along, width):
+    """The outline (x, y) in cm of a pad of `depth` on the wall with outward normal (sx, sy)
+    at +-gap, centred `along` the wall, `width` wide."""
+    inner, outer = gap - depth, gap
+    lo, hi = along - width / 2, along + width / 2
     if sx:
-        return [sx * (gap - t), sx * gap], [0.0, 0.0]
-    return [0.0, 0.0], [sy * (gap - t), sy * gap]
+        return [sx * inner, sx * outer, sx * outer, sx * inner], [lo, lo, hi, hi]
+    return [lo, lo, hi, hi], [sy * inner, sy * outer, sy * outer, sy * inner]
 
 
 recipe = Recipe(
     name="plan", figure="beyond the paper",
     summary="The paper's building and bumpers under record pairs in plan (coupled isolators, a "
             "square or circular moat) against the paper's planar model: how much the planar "
-            "study underestimates",
+            "study underestimates, and whether the paper's gap-size conclusions hold in plan",
     compute=compute, plot=plot, check=check,
-    chosen=(f"the 22 FEMA P695 far-field pairs (x: lower azimuth); angles 0-165 degrees every "
-            f"15; gap {GAP_FRACTION} x the planar model's peak for the component along the "
-            "angle; the same walls on every side; quick: 3 pairs, angles 0 and 90"),
+    chosen=("the 22 FEMA P695 far-field pairs (x: lower azimuth); angles 0-165 degrees every "
+            f"15; gaps {', '.join(f'{f:g}' for f in FRACTIONS)} x the planar model's peak for "
+            f"the component along the angle (the paper's rule: {GAP_FRACTION}); the same walls "
+            "on every side; quick: 3 pairs, angles 0 and 90, gaps "
+            f"{', '.join(f'{f:g}' for f in QUICK_FRACTIONS)} x"),
     records=(), options=options)
 main = recipe.main
 
