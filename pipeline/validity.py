@@ -1,0 +1,124 @@
+"""Where a result leaves the model's range: the bumpers' contact stress and shape factor, floor
+accelerations a shear building with rigid floors cannot carry, a linear story's shear above its
+capacity, the wall's force above its capacity. Pure functions of peaks (engine.results.PEAKS,
+SI) and of the bumper and building parameters; the studies store the flags per member in
+their archives (variables `invalid_*`, 1 where the member is outside the range) and count them
+in every summary.
+
+The limits are stated defaults, each replaceable by the user:
+- RUBBER_STRESS_LIMIT, 30.9 MPa: the largest compressive stress of the rubber tests the bumper
+  law is calibrated on (Kajita et al. 2006, the paper's section 3.4: a 40 x 40 x 10 mm pad,
+  static fit 0.2 kN/mm^2.65 delta^2.65, at its crush strain 0.8, delta = 8 mm: 49.5 kN on
+  1600 mm^2). Beyond it the law is extrapolated. At the crush limit every bumper of that rubber
+  reaches alpha K_r 0.8^n = 69.5 MPa whatever its size (the stress does not depend on the
+  thickness), so a crushed bumper is always beyond it.
+- ACCEL_LIMIT, 5 g: floor accelerations above it come from the impact spikes of a lumped-mass
+  model with rigid floors; real floors, walls and the slab's local deformation cut them off.
+- A linear story's shear k_i x peak drift above a capacity the caller gives (N): the studies
+  take the code's superstructure design shear (`code_story_capacity`).
+- The wall's force above a capacity the caller gives (N); none by default (not checked, and
+  said so).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from engine.units import G
+
+RUBBER_STRESS_LIMIT = 0.2e3 / 1e-3**2.65 * (0.8 * 0.010) ** 2.65 / 0.040**2
+"""Pa: the calibration test's stress at its crush strain (see the module docstring), 30.9 MPa."""
+ACCEL_LIMIT = 5.0 * G
+"""m/s^2: the largest floor acceleration the rigid-floor shear building represents."""
+
+
+def bumper_stress(max_impact_force, n_bumpers, area) -> np.ndarray:
+    """Mean contact stress (Pa) on each bumper at the largest impact force (N): force / (n A),
+    n bumpers of contact area A (m^2) sharing it. Broadcast over arrays."""
+    return np.asarray(max_impact_force, float) / (np.asarray(n_bumpers, float)
+                                                 * np.asarray(area, float))
+
+
+def shape_factor(area, thickness) -> np.ndarray:
+    """Shape factor (-) of a square rubber pad: loaded area over the area free to bulge,
+    A / (4 sqrt(A) t) = side / (4 t). Below about 1 a pad bulges freely and its stiffness and
+    strength fall well below a confined pad's (the paper's 150 x 150 x 50 mm bumper: 0.75; the
+    40 x 40 x 10 mm test pads: 1.0)."""
+    area = np.asarray(area, float)
+    return np.sqrt(area) / (4 * np.asarray(thickness, float))
+
+
+def code_story_capacity(design, building, r_i: float = 2.0, overstrength: float = 2.0) -> float:
+    """A linear superstructure's story shear capacity (N) from the code's design of it: the
+    base shear at the isolation system's design displacement V_b = k_M D_M (ASCE 7-22 eq.
+    17.5-7), the superstructure's share V_st = V_b (W_s / W)^(1 - 2.5 beta_M) (eq. 17.5-8),
+    reduced by R_I (at most 2, section 17.5.4.2) and raised by an overstrength factor for the
+    strength a designed structure has beyond its design force. design: a
+    pipeline.target.IsolationDesign (k_m N/m, d_m m, beta_m); building: engine.Building.
+    Applied to every story (the first carries the most)."""
+    v_b = design.k_m * design.d_m
+    masses = np.asarray(building.masses, float)
+    share = (masses[1:].sum() / masses.sum()) ** (1 - 2.5 * design.beta_m)
+    return float(overstrength * v_b * share / r_i)
+
+
+@dataclass(frozen=True)
+class Limits:
+    """The limits a result is checked against (SI): bumper stress Pa, floor acceleration
+    m/s^2, story shear N (None: stories not checked), wall force N (None: not checked)."""
+
+    bumper_stress: float = RUBBER_STRESS_LIMIT
+    floor_accel: float = ACCEL_LIMIT
+    story_shear: float | None = None
+    wall_force: float | None = None
+
+    def describe(self) -> str:
+        """One line for an archive's attributes and a summary's header."""
+        parts = [f"bumper contact stress {self.bumper_stress / 1e6:.3g} MPa",
+                 f"floor acceleration {self.floor_accel / G:.3g} g"]
+        parts.append("story shear not checked" if self.story_shear is None else
+                     f"story shear {self.story_shear / 1e3:.4g} kN")
+        parts.append("wall force not checked" if self.wall_force is None else
+                     f"wall force {self.wall_force / 1e3:.4g} kN")
+        return "; ".join(parts)
+
+
+FLAGS = {
+    "invalid_bumper_stress": "the bumpers' contact stress exceeds the rubber's limit",
+    "invalid_floor_accel": "a floor acceleration exceeds what the rigid-floor model represents",
+    "invalid_story_shear": "a linear story's shear exceeds its capacity",
+    "invalid_wall_force": "the wall's force exceeds its capacity",
+}
+"""The flags `flags` returns and what each says (the archives' long_name)."""
+
+
+def flags(peak_total_accel, peak_interstory_drift, max_impact_force, story_k, limits: Limits,
+          n_bumpers=None, area=None, stories_yield: bool = False) -> dict[str, np.ndarray]:
+    """Per member, whether it left the model's range: name (FLAGS) -> bool array (...,).
+
+    peak_total_accel (..., levels) m/s^2; peak_interstory_drift (..., stories) m; story_k
+    (stories,) N/m; max_impact_force (...,) N; n_bumpers, area: the bumpers (None: a bare wall,
+    no bumper stress); stories_yield: the stories follow their own yield law (their shear is
+    bounded by the model: not checked).
+    """
+    accel = np.asarray(peak_total_accel, float)
+    force = np.asarray(max_impact_force, float)
+    out = {"invalid_floor_accel": accel.max(axis=-1) > limits.floor_accel}
+    if n_bumpers is None:
+        out["invalid_bumper_stress"] = np.zeros(force.shape, dtype=bool)
+    else:
+        out["invalid_bumper_stress"] = bumper_stress(force, n_bumpers, area) \
+            > limits.bumper_stress
+    shear = np.asarray(peak_interstory_drift, float) * np.asarray(story_k, float)
+    out["invalid_story_shear"] = np.zeros(force.shape, dtype=bool) \
+        if limits.story_shear is None or stories_yield \
+        else shear.max(axis=-1) > limits.story_shear
+    out["invalid_wall_force"] = np.zeros(force.shape, dtype=bool) \
+        if limits.wall_force is None else force > limits.wall_force
+    return {name: out[name] for name in FLAGS}
+
+
+def any_flag(flagged: dict[str, np.ndarray]) -> np.ndarray:
+    """(...,) bool: the member left the model's range in any way."""
+    return np.any(np.stack(list(flagged.values())), axis=0)

@@ -1,0 +1,58 @@
+"""The model's range (pipeline.validity) and the counting of comparisons (pipeline.outcomes)."""
+import numpy as np
+import pytest
+
+from engine.impact.laws import rubber_bumper
+from engine.units import G
+from pipeline import outcomes, validity
+
+
+def test_rubber_limit_is_the_calibration_tests_stress_and_crushed_bumpers_exceed_it():
+    # Kajita et al. 2006: 0.2 kN/mm^2.65 x (8 mm)^2.65 = 49.5 kN on 40 x 40 mm
+    assert validity.RUBBER_STRESS_LIMIT == pytest.approx(49.48e3 / 1.6e-3, rel=1e-3)
+    # at the crush strain the paper's bumper carries alpha K_r 0.8^n whatever its size
+    for side, t in ((0.150, 0.05), (0.3, 0.10)):
+        area = side * side
+        k = rubber_bumper.impact_stiffness(area, t)
+        stress = validity.bumper_stress(k * (0.8 * t) ** 2.65, 1, area)
+        assert stress == pytest.approx(2.25 * 55_835e3 * 0.8 ** 2.65, rel=1e-6)
+        assert stress == pytest.approx(69.5e6, rel=2e-3) and stress > validity.RUBBER_STRESS_LIMIT
+    assert validity.shape_factor(0.15 ** 2, 0.05) == pytest.approx(0.75)
+
+
+def test_flags():
+    limits = validity.Limits(story_shear=10e6, wall_force=50e6)
+    accel = np.array([[1.0, 2.0], [1.0, 6 * G], [0.0, 0.0]])
+    drift = np.array([[0.01], [0.02], [0.0]])
+    force = np.array([0.0, 4 * 0.0225 * 40e6, 60e6])
+    got = validity.flags(accel, drift, force, [600e6], limits, n_bumpers=4, area=0.0225)
+    assert got["invalid_floor_accel"].tolist() == [False, True, False]
+    assert got["invalid_bumper_stress"].tolist() == [False, True, True]
+    assert got["invalid_story_shear"].tolist() == [False, True, False]  # 6 and 12 MN
+    assert got["invalid_wall_force"].tolist() == [False, False, True]
+    assert validity.any_flag(got).tolist() == [False, True, True]
+    bare = validity.flags(accel, drift, force, [600e6], validity.Limits(), stories_yield=True)
+    assert not bare["invalid_bumper_stress"].any() and not bare["invalid_story_shear"].any()
+    assert "not checked" in validity.Limits().describe()
+
+
+def test_effect_counts_ties_as_neutral_and_only_where_contact():
+    with_b = np.array([0.5, 1.0, 1.01, 1.5, 2.0, 1.0])
+    without = np.array([1.0, 1.0, 1.0, 1.0, 1.0, 1.0])
+    e = outcomes.effect(with_b, without)
+    assert e.tolist() == [-1, 0, 0, 1, 1, 0]
+    counted = outcomes.where_contact([1, 1, 0, 2, 0, 0], [0, 3, 1, 0, 2, 0])
+    assert counted.tolist() == [True, True, True, True, True, False]
+    t = outcomes.tally(e, counted)
+    assert t == {"helped": 1, "neutral": 2, "hurt": 2, "counted": 5, "no_contact": 1}
+    t = outcomes.tally(e, counted, weights=[0.5, 1, 1, 1, 1, 1])
+    assert t["helped"] == 0.5 and t["counted"] == 4.5
+
+
+def test_quantifiers():
+    assert outcomes.judged("every", 5, 5) and not outcomes.judged("every", 4, 5)
+    assert outcomes.judged("most", 3, 5) and not outcomes.judged("most", 2, 4)
+    assert outcomes.judged("some", 1, 9) and not outcomes.judged("some", 0, 9)
+    assert outcomes.judged("most", 0, 0) is None
+    with pytest.raises(ValueError):
+        outcomes.judged("all", 1, 1)
