@@ -1,0 +1,177 @@
+"""Record pairs at code intensities, shared by the studies beyond the paper (fragility, suite,
+design): a site's target spectrum, the isolated building's code quantities, and the pairs
+scaled by a code's rule, with the archive variables that say how.
+
+The default site is a high-seismicity one: S_MS = 1.5 g, S_M1 = 0.9 g, T_L = 8 s (ASCE 7's
+two-period spectrum, e.g. site class D in coastal California; any site by --sms-g, --sm1-g,
+--tl). Levels of intensity are fractions of the MCE_R spectrum: the design earthquake is 2/3 of
+it (ASCE 7-22 section 11.4.5), the service level a third (a stated choice, about the 50% in
+50 years motion of such sites). A pair's factor at a level is its MCE_R factor times the
+level's fraction: the shape of the suite's spectrum is kept and its amplitude scaled, as an
+incremental dynamic analysis does.
+
+Rules (--rule): "asce7" (default; ASCE 7-22 chapter 17, pipeline.code_scaling.asce7_isolated:
+the mean maximum-direction spectrum not below the fraction of the target over the period range
+around T_M), "p695" (FEMA P695: PGV normalisation, the median anchored at T_M) and
+"displacement" (every pair scaled so that the building without wall reaches D_M in plan: kept
+as an explicit option, labelled as removing the record-to-record scatter).
+
+Pairs that share an earthquake are weighted 1 / (their number) in every statistic
+(pipeline.fragility.event_weights): no event dominates, every pair still runs.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+SITE = {"s_ms": 1.5, "s_m1": 0.9, "t_long": 8.0}
+"""The default site: S_MS g, S_M1 g, T_L s."""
+LEVELS = {"service": 1 / 3, "design": 2 / 3, "MCE_R": 1.0}
+"""Intensity levels as fractions of the MCE_R target."""
+RULES = ("asce7", "p695", "displacement")
+RULE_TEXT = {
+    "asce7": "ASCE 7-22 chapter 17 (section 17.3.3): the suite's mean maximum-direction "
+             "(RotD100) spectrum not below the stated fraction of the target over the stated "
+             "period range around T_M",
+    "p695": "FEMA P695 (appendix A.8): each pair normalised by its PGV to the set's median, "
+            "then one factor anchoring the set's median spectrum at T_M",
+    "displacement": "each pair scaled so that the building without wall reaches D_M in plan: "
+                    "REMOVES the record-to-record scatter by construction (not a code rule)",
+}
+
+
+def site_options(p) -> None:
+    """The site's and the rule's command-line options."""
+    p.add_argument("--sms-g", type=float, default=SITE["s_ms"], metavar="G",
+                   help=f"MCE_R short-period spectral acceleration S_MS in g (default "
+                        f"{SITE['s_ms']:g})")
+    p.add_argument("--sm1-g", type=float, default=SITE["s_m1"], metavar="G",
+                   help=f"MCE_R 1-s spectral acceleration S_M1 in g (default {SITE['s_m1']:g})")
+    p.add_argument("--tl", type=float, default=SITE["t_long"], metavar="S",
+                   help=f"long-period transition period T_L in s (default {SITE['t_long']:g})")
+    p.add_argument("--rule", choices=RULES, default="asce7",
+                   help="how the pairs are scaled: " + "; ".join(
+                       f"{k}: {v}" for k, v in RULE_TEXT.items()))
+
+
+@dataclass(frozen=True)
+class CodeSuite:
+    """Pairs scaled to the MCE_R by a rule: pairs (RecordPair), names, factors (R,) at the
+    MCE_R, weights (R,) per earthquake, the target (pipeline.target.TargetSpectrum), the
+    building's code quantities (pipeline.target.IsolationDesign), the scaling (a
+    pipeline.code_scaling.ScaledPairs, or None for the displacement rule) and the rule."""
+
+    pairs: list
+    names: list
+    factors: np.ndarray
+    weights: np.ndarray
+    events: list
+    target: object
+    design: object
+    scaled: object
+    rule: str
+    site: dict
+
+    def factors_at(self, level: float) -> np.ndarray:
+        """(R,) factors at a fraction of the MCE_R."""
+        return self.factors * level
+
+
+def code_suite(pairs, names, building, rule: str = "asce7", s_ms: float = SITE["s_ms"],
+               s_m1: float = SITE["s_m1"], t_long: float = SITE["t_long"],
+               dt: float | None = None) -> CodeSuite:
+    """Scale the pairs (RecordPair) to the site's MCE_R by the rule (see the module
+    docstring). Pairs the rule excludes (factor limits) are dropped and listed in
+    .scaled.excluded."""
+    from pipeline.code_scaling import asce7_isolated, fema_p695
+    from pipeline.fragility import event_weights
+    from pipeline.target import asce7_target, isolation_design
+
+    if rule not in RULES:
+        raise ValueError(f"rule must be one of {RULES}, got {rule!r}")
+    design = isolation_design(s_m1, building)
+    target = asce7_target(s_ms, s_m1, t_long, level="MCE_R")
+    scaled = None
+    if rule == "asce7":
+        scaled = asce7_isolated(pairs, target, design.t_m)
+    elif rule == "p695":
+        scaled = fema_p695(pairs, target, design.t_m)
+    if scaled is not None:
+        keep = {n: f for n, f in zip(scaled.names, scaled.factors, strict=True)}
+        chosen = [i for i, p in enumerate(pairs) if p.name in keep]
+        factors = np.array([keep[pairs[i].name] for i in chosen])
+    else:
+        chosen = list(range(len(pairs)))
+        factors = np.array([_to_displacement(p, design.d_m, building, dt) for p in pairs])
+    pairs = [pairs[i] for i in chosen]
+    names = [names[i] for i in chosen]
+    events = [str(p.event) for p in pairs]
+    return CodeSuite(pairs, names, factors, event_weights(events), events, target, design,
+                     scaled, rule, {"s_ms": s_ms, "s_m1": s_m1, "t_long": t_long})
+
+
+def _to_displacement(pair, displacement: float, building, dt) -> float:
+    """The factor bringing the pair's resultant peak isolator displacement without wall, in
+    plan, to `displacement` (m): bisection in log over [0.05, 20] on batched engine runs."""
+    import engine
+
+    dt = engine.DEFAULT_DT if dt is None else dt
+    low, high = np.log(0.05), np.log(20.0)
+    for _ in range(4):  # 4 passes of 16 trial factors: a bracket 16^-4 of the range wide
+        trial = np.exp(np.linspace(low, high, 16))
+        peaks = engine.simulate(pair.accel, pair.dt, engine.Contact.none(trial.size),
+                                building, dt, scale=trial, moat="circular").peak_isolator_disp
+        above = np.flatnonzero(peaks >= displacement)
+        if above.size == 0:
+            return float(trial[-1])
+        k = max(int(above[0]), 1)
+        low, high = np.log(trial[k - 1]), np.log(trial[k])
+    return float(np.exp(high))
+
+
+def archive_variables(suite: CodeSuite) -> tuple[dict, dict, dict]:
+    """(data variables, coordinates, attributes) saying how the suite was scaled: each
+    record's MCE_R factor and weight, the target and the suite's scaled spectrum over
+    `period`, the rule, its clause and period range, the building's T_M, D_M, D_TM."""
+    from pipeline.archive import variable
+
+    data = {
+        "scale_factor": variable("record", suite.factors, "1",
+                                 "the pair's factor at the MCE_R (both components)"),
+        "record_weight": variable("record", suite.weights, "1",
+                                  "1 / the number of pairs of the same earthquake, normalised "
+                                  "to sum to the number of pairs (no event dominates)"),
+    }
+    coords = {"record_event": variable("record", np.array(suite.events), "1",
+                                       "the pair's earthquake")}
+    attrs = {"scaling_rule": suite.rule, "scaling_rule_text": RULE_TEXT[suite.rule],
+             "target": suite.target.source, "T_M": suite.design.t_m,
+             "D_M": suite.design.d_m, "D_TM": suite.design.d_tm,
+             "beta_M": suite.design.beta_m, "S_MS_g": suite.site["s_ms"],
+             "S_M1_g": suite.site["s_m1"], "T_L": suite.site["t_long"],
+             "levels": ", ".join(f"{k} {v:.4g} x MCE_R" for k, v in LEVELS.items())}
+    if suite.scaled is not None:
+        s = suite.scaled
+        data["target_sa"] = variable("period", s.target, "m s-2",
+                                     "MCE_R target spectral acceleration (5% damping)")
+        data["suite_sa"] = variable("period", s.suite, "m s-2",
+                                    f"the scaled suite's {s.statistic} spectrum (5% damping)")
+        coords["period"] = variable("period", s.periods, "s", "oscillator period")
+        attrs.update({"scaling_clause": s.clause, "scaling_period_range_s": list(s.period_range),
+                      "scaling_fraction": s.fraction, "scaling_worst_ratio": s.worst_ratio,
+                      "scaling_enough_pairs": int(s.enough_pairs),
+                      "scaling_excluded": "; ".join(f"{n}: {r}" for n, _, r in s.excluded)
+                      or "none"})
+    return data, coords, attrs
+
+
+def describe(suite: CodeSuite) -> str:
+    """One line: the rule, the site, T_M, D_M and the factors' spread."""
+    f = suite.factors
+    site = suite.site
+    return (f"{len(suite.pairs)} pairs scaled to the MCE_R by {suite.rule} (S_MS "
+            f"{site['s_ms']:g} g, S_M1 {site['s_m1']:g} g, T_L {site['t_long']:g} s); "
+            f"T_M {suite.design.t_m:.3g} s, D_M {suite.design.d_m * 100:.3g} cm, D_TM "
+            f"{suite.design.d_tm * 100:.3g} cm; factors {f.min():.3g}-{f.max():.3g} (median "
+            f"{np.median(f):.3g})")
