@@ -1,0 +1,87 @@
+"""studies.fragility --quick: code-scaled pairs at intensity levels in plan, the events, the
+fragility fits and the validity flags, each checked against what it is made of: the engine's
+run of a member, the events recomputed from the stored peaks, the fit recomputed from the
+stored events (pipeline.fragility), the scaling recomputed (studies._code_suite)."""
+import json
+
+import numpy as np
+import pytest
+
+import engine
+from engine.units import G
+from pipeline.errors import resolve_pairs
+from pipeline.fragility import fit_outcomes
+from pipeline.validity import RUBBER_STRESS_LIMIT
+from studies import fragility
+from studies._code_suite import code_suite
+from tests.helpers import assert_udunits, run_recipe
+
+
+@pytest.fixture(scope="module")
+def quick(tmp_path_factory):
+    return run_recipe(fragility, ["--quick"], tmp_path_factory.mktemp("fragility"))
+
+
+def test_archive(quick):
+    ds = quick
+    assert ds.event_contact.dims == ("record", "level", "gap_fraction", "barrier")
+    assert ds.fragility_median.dims == ("event", "gap_fraction", "barrier")
+    assert list(ds.level.values) == list(fragility.QUICK_LEVELS) and ds.sizes["record"] == 4
+    assert ds.gap_fraction.values[-1] == pytest.approx(ds.attrs["D_TM"] / ds.attrs["D_M"])
+    assert ds.attrs["scaling_rule"] == "asce7" and ds.attrs["quick"] == 1
+    assert_udunits(ds)
+    (verdict,) = json.loads(ds.attrs["paper_verdicts"])
+    assert verdict["verdict"] in ("agrees", "differs", "not tested")
+
+
+def test_scaling_and_one_member_are_the_engines(quick):
+    ds = quick
+    pairs, names = resolve_pairs(list(ds.record.values))
+    suite = code_suite(pairs, names, engine.Building())
+    np.testing.assert_allclose(ds.scale_factor.values, suite.factors, rtol=1e-12)
+    r, level, g = 1, 1.0, 0
+    gap = float(ds.gap.isel(gap_fraction=g))
+    run = engine.simulate(pairs[r].accel, pairs[r].dt,
+                          engine.Contact.bumper([gap], thickness=0.05, n_bumpers=4),
+                          scale=suite.factors[r] * level, moat="rectangular")
+    got = ds.isel(record=r, gap_fraction=g).sel(level=level, barrier="bumpers")
+    assert float(got.peak_isolator_disp) == run.peak_isolator_disp[0]
+    assert float(got.max_impact_force) == run.max_impact_force[0]
+    assert float(got.peak_floor_accel) == run.peak_total_accel[0].max()
+
+
+def test_events_and_fits_follow_from_the_stored_numbers(quick):
+    ds = quick
+    np.testing.assert_array_equal(ds.event_contact.values, ds.n_impacts.values > 0)
+    np.testing.assert_array_equal(ds.event_floor_accel.values,
+                                  ds.peak_floor_accel.values > ds.attrs["accel_threshold"])
+    crushed = ds.event_bumpers_crushed
+    assert not crushed.sel(barrier="bare wall").any()
+    np.testing.assert_array_equal(crushed.sel(barrier="bumpers").values,
+                                  ds.max_indentation.sel(barrier="bumpers").values
+                                  >= fragility.STRAIN * fragility.THICKNESS)
+    for event in ds.event.values:
+        for barrier in ds.barrier.values:
+            seen = ds[f"event_{event}"].sel(barrier=barrier).isel(gap_fraction=0).values
+            fit = fit_outcomes(ds.level.values, seen, ds.record_weight.values)
+            stored = ds.sel(event=event, barrier=barrier).isel(gap_fraction=0)
+            np.testing.assert_equal(float(stored.fragility_median), fit.theta)
+            assert str(stored.fragility_status.values) == fit.status
+    # the stronger the shaking, the likelier every event (stripes nest: a record's peaks grow
+    # with the level here)
+    share = ds.event_contact.mean("record")
+    assert (share.diff("level") >= 0).all()
+
+
+def test_validity_is_flagged_and_counted(quick):
+    ds = quick
+    counts = json.loads(ds.attrs["invalid_counts"])
+    for name, count in counts.items():
+        assert int(ds[name].sum()) == count
+    np.testing.assert_array_equal(ds.invalid_floor_accel.values,
+                                  ds.peak_floor_accel.values > 5 * G)
+    stress = ds.bumper_stress.values
+    np.testing.assert_array_equal(ds.invalid_bumper_stress.sel(barrier="bumpers").values,
+                                  stress > RUBBER_STRESS_LIMIT)
+    assert not ds.invalid_bumper_stress.sel(barrier="bare wall").any()
+    assert "outside the model's range" in ds.attrs["paper_check"]
