@@ -37,11 +37,13 @@ def _mixed_batch(size, rng):
 
 def test_member_peaks_do_not_depend_on_the_batch(short_record, backend):
     accel, accel_dt = short_record
-    contact, buildings = _mixed_batch(520, np.random.default_rng(7))
+    # the NumPy loop, a step per Python iteration, on a smaller batch (it costs 10x more)
+    size = 520 if backend == "numba" else 130
+    contact, buildings = _mixed_batch(size, np.random.default_rng(7))
     dt = 1e-3
     batch = engine.simulate(accel, accel_dt, contact, buildings, dt=dt, backend=backend)
-    assert np.count_nonzero(batch.n_impacts) > 300      # the batch really pounds
-    for i in (0, 1, 137, 311, 519):
+    assert np.count_nonzero(batch.n_impacts) > 0.55 * size      # the batch really pounds
+    for i in (0, 1, size // 4 + 7, size // 2 + 51, size - 1):
         alone = engine.simulate(accel, accel_dt, contact[i], [buildings[i]], dt=dt,
                                 backend=backend)
         for name, value in alone.peaks().items():

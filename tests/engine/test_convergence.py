@@ -1,5 +1,7 @@
 """dt convergence on the paper's practical example (section 4, SPEC section 4): halving the
-default step moves every peak by less than 0.5%. This is how DEFAULT_DT was chosen."""
+default step moves every peak by less than 0.5%. This is how DEFAULT_DT was chosen. On the
+compiled loop: the NumPy loop gives its numbers to 1e-9 (tests/engine/test_kernel.py), so its
+convergence is the same."""
 import numpy as np
 import pytest
 
@@ -14,7 +16,7 @@ PEAKS = ("peak_total_accel", "peak_interstory_drift", "peak_isolator_disp", "max
 
 @pytest.mark.parametrize("key", sorted(PRACTICAL_EXAMPLE))
 def test_halving_the_default_dt_moves_peaks_less_than_half_a_percent(real_paper_record, key,
-                                                                     backend):
+                                                                     backend="numba"):
     gap = PRACTICAL_EXAMPLE[key]
     # No poundings, no bumpers (linear wall at the gap), 4 bumpers of 5 cm (gap - 5 cm).
     contact = Contact.concat([Contact.none(1), Contact.linear(gap), Contact.bumper(gap)])
