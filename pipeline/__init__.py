@@ -190,12 +190,10 @@ def _execute(grid, records, dt, workers, scheduler, out, building, batch_size, r
     if out is not None and out.suffix == ".zarr":
         from .execute.zarr_store import ZarrStore
 
-        if moat is not None:
-            raise SweepError(f"out: {out}: a sweep in plan writes NetCDF (.nc); Zarr stores "
-                             "hold planar sweeps only, for now")
         # the outermost folder this run creates, removed again if no batch runs
         new_store = next((p for p in reversed((out, *out.parents)) if not p.exists()), None)
-        store = ZarrStore(grid, recs, names, dt, building, arguments, out, batch_size, force)
+        store = ZarrStore(grid, recs, names, dt, building, arguments, out, batch_size, force,
+                          moat)
     else:
         from .execute.netcdf_store import NetCDFStore
 

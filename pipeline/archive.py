@@ -223,7 +223,8 @@ def build_dataset(grid: Grid, records, results: list[dict[str, np.ndarray]] | No
             if results is None:
                 import dask.array as da
 
-                tail = q.trailing_shape(building.n_levels)
+                tail = q.trailing_shape(building.n_levels,
+                                        len(WALLS[moat]) if moat is not None else 1)
                 fill = np.nan if np.dtype(q.dtype).kind == "f" else -1
                 peaks[q.name] = da.full((len(records), *block.shape, *tail), fill,
                                         dtype=q.dtype, chunks=(1, *chunks(block), *tail))

@@ -88,7 +88,7 @@ def regions_for(grid, n_records: int, target: int) -> list[Region]:
 
 
 def write_template(path: Path, grid, records, names, dt, building, arguments, key,
-                   n_batches: int, target: int) -> None:
+                   n_batches: int, target: int, moat: str | None = None) -> None:
     """Create the store: labelled variables (lazy), coordinates, attributes, batch_done."""
     import dask.array as da
     import xarray as xr
@@ -101,7 +101,8 @@ def write_template(path: Path, grid, records, names, dt, building, arguments, ke
 
     # The labels of the NetCDF archive, its data lazy fill values: nothing of the size of the
     # results is ever held here.
-    ds = build_dataset(grid, records, None, dt, building, names, arguments, chunks=chunks)
+    ds = build_dataset(grid, records, None, dt, building, names, arguments, chunks=chunks,
+                       moat=moat)
     encoding = {name: {"chunks": var.data.chunksize} for name, var in ds.data_vars.items()}
     ds["batch_done"] = xr.Variable("batch", da.zeros(n_batches, dtype=np.int8, chunks=1),
                                    {"units": "1", "long_name": "1 once the batch's chunk "
@@ -118,13 +119,14 @@ def write_template(path: Path, grid, records, names, dt, building, arguments, ke
 
 
 def write_batch(accel, accel_dt, members, building, dt, path: str, prefix: str, region,
-                index: int, progress=None, report=None) -> int:
-    """A worker's task: simulate one batch (batches.simulate_batch) and write its peaks into
-    its chunk region, then mark it done; returns its size."""
+                index: int, moat: str | None = None, progress=None, report=None) -> int:
+    """A worker's task: simulate one batch (batches.simulate_batch; in plan under a record
+    pair when `moat` is given) and write its peaks into its chunk region, then mark it done;
+    returns its size."""
     import zarr
 
-    peaks = batches.simulate_batch(accel, accel_dt, members, building, dt, progress=progress,
-                                   report=report)
+    peaks = batches.simulate_batch(accel, accel_dt, members, building, dt, moat=moat,
+                                   progress=progress, report=report)
     group = zarr.open_group(path, mode="r+")
     for name, values in peaks.items():
         target = group[prefix + name]
@@ -144,16 +146,18 @@ class ZarrStore:
     """
 
     def __init__(self, grid, records, names, dt, building, arguments, out: Path,
-                 batch_size: int, force: bool = False):
+                 batch_size: int, force: bool = False, moat: str | None = None):
         import shutil
 
         import zarr
 
         self.grid, self.records, self.dt, self.building = grid, records, dt, building
+        self.moat = moat
         self.out = self.kept_in = out
         self.members = grid.members
         self.total = len(records) * grid.n_members
-        self.key = sweep_key(self.members, [context_key(rec, dt, building) for rec in records])
+        self.key = sweep_key(self.members, [context_key(rec, dt, building, moat)
+                                            for rec in records])
         target = max(1, min(batch_size, TARGET_CHUNK))
         if force and out.exists() and archive_key(out) != self.key:  # asked to replace it
             if out.is_dir():
@@ -177,7 +181,7 @@ class ZarrStore:
         else:
             self.done = np.zeros(len(self.regions), dtype=bool)
             write_template(out, grid, records, names, dt, building, arguments, self.key,
-                           len(self.regions), target)
+                           len(self.regions), target, moat)
 
     def pending(self, sizes: list[int]) -> list[batches.Batch]:
         """The regions not marked done (their size is the store's chunk, whatever `sizes`)."""
@@ -190,7 +194,7 @@ class ZarrStore:
         r = batch.place
         return write_batch, (self.records[batch.record].dt, self.members[batch.members],
                              self.building, self.dt, str(self.out), r.prefix, r.region,
-                             r.index)
+                             r.index, self.moat)
 
     def accept(self, batch: batches.Batch, size: int) -> None:
         """Nothing to do: the worker wrote the region."""

@@ -67,7 +67,6 @@ def test_labels_units_and_conventions(plan_sweep):
 @pytest.mark.parametrize("kwargs, match", [
     ({"angle": [0, 30]}, "angle applies to runs in plan"),
     ({"moat": "hexagonal"}, "moat must be one of"),
-    ({"moat": "circular", "out": "x.zarr"}, "Zarr stores hold planar sweeps only"),
     ({"moat": "circular", "records": ["RSN953", "RSN953"]}, "each pair must appear once"),
 ])
 def test_bad_plan_sweeps_fail_before_compute(kwargs, match, tmp_path, monkeypatch):
@@ -119,3 +118,16 @@ def test_wall_friction_and_stories_along_y_sweep_like_the_angle(tmp_path):
         pipeline.sweep(["RSN953"], gap=0.12, mu_wall=0.2, quiet=True)
     with pytest.raises(SweepError, match="mu_wall 5 1 is implausible"):
         pipeline.sweep(["RSN953"], gap=0.12, mu_wall=5.0, moat="circular", quiet=True)
+
+
+def test_a_sweep_in_plan_into_a_zarr_store_equals_the_netcdf_archive(plan_sweep, tmp_path):
+    """The same sweep written region by region (small chunks: many batches) into Zarr."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        store = pipeline.sweep(PAIRS, gap=GAPS, angle=ANGLES, moat="rectangular",
+                               baseline=True, unconstrained=True, quiet=True,
+                               out=tmp_path / "plan.zarr", batch_size=4).load()
+    for name, value in plan_sweep.data_vars.items():
+        np.testing.assert_array_equal(store[name].values, value.values, err_msg=name)
+    assert store.attrs["moat"] == "rectangular" and store.attrs["complete"] == 1
+    assert store.max_impact_force_wall.dims == ("record", "angle", "gap", "wall")
