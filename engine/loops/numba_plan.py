@@ -75,36 +75,37 @@ def _contact(code, wp, delta, new, v_imp, delta_prev, rate_free, comp):
 
 
 @njit(**LINK)
-def _friction(nx_, ny_, w, wy, comp, comp_y, limit, nrm_x, nrm_y):
+def _friction(nx, w, comp, comp_y, limit, nrm_x, nrm_y):
     """numpy_plan._friction for one member: the friction force (fx, fy) N of a wall pushing
-    with unit normal (nrm_x, nrm_y), limit = mu_wall N, added to the velocities in place."""
+    with unit normal (nrm_x, nrm_y), limit = mu_wall N, added to the velocities nx (L, 2) in
+    place through the wall responses w (L, 2)."""
     t_x, t_y = -nrm_y, nrm_x
-    slip = t_x * nx_[0] + t_y * ny_[0]
+    slip = t_x * nx[0, 0] + t_y * nx[0, 1]
     stick = -slip / (comp * (t_x * t_x) + comp_y * (t_y * t_y))
     force = min(max(stick, -limit), limit)
     fx, fy = t_x * force, t_y * force
-    for i in range(len(nx_)):
-        nx_[i] += w[i] * fx
-        ny_[i] += wy[i] * fy
+    for i in range(nx.shape[0]):
+        nx[i, 0] += w[i, 0] * fx
+        nx[i, 1] += w[i, 1] * fy
     return fx, fy
 
 
 @njit(**JIT)
-def _member(levels, circular, b, s0, s1, ag, dt, op, wall, op_y, wall_y, story_y, mass, story, law,
-            par, wall_par, u_all, v_all, f_story_all, state, peak_level, peak_level_xy, peak_story,
-            peak_story_xy, peak_iso_xy, peak_scalar, n_impacts, peak_wall, hist_row, every, h_u,
-            h_acc, h_f, h_d):
+def _member(levels, pairs, circular, b, s0, s1, ag, dt, op, wall, story_k, mass, story, law,
+            par, wall_par, u_all, v_all, f_story_all, state, peak_level, peak_level_xy,
+            peak_story, peak_story_xy, peak_iso_xy, peak_scalar, n_impacts, peak_wall, hist_row,
+            every, h_u, h_acc, h_f, h_d):
     """Steps s0 <= step < s1 of member b (see the module docstring). Like the planar kernel,
-    the member's state lives in scalars and arrays on the stack (x and y apart) while it
-    runs; resultant peaks are kept squared (the square root of the largest square is the
-    largest root, bit for bit; run_plan roots them at the end)."""
+    the member's state lives in scalars and arrays on the stack while it runs, each level's x
+    and y side by side (a last axis of 2, as the operators: op (2L, L, 2), the operator along
+    x and along y transposed, wall (L, 2), story_k (L - 1, 2)), so that the compiler pairs the
+    two directions' identical arithmetic; resultant peaks are kept squared (the square root of
+    the largest square is the largest root, bit for bit; run_plan roots them at the end)."""
     n_levels = len(levels)
     n_st = n_levels - 1
     ot = op[b]
     w = wall[b]
-    oty = op_y[b]
-    wy = wall_y[b]
-    k_story_y = story_y[b]
+    ks = story_k[b]
     m = mass[b]
     p = par[b]
     comp, comp_y = p[_COMPLIANCE], p[_COMPLIANCE_Y]
@@ -114,8 +115,7 @@ def _member(levels, circular, b, s0, s1, ag, dt, op, wall, op_y, wall_y, story_y
     slow_drop, rate = p[_SLOW_DROP], p[_RATE]
     stories_yield = p[_STORIES_YIELD] != 0.0
     cs, sn = p[_COS], p[_SIN]
-    k_story, k_post, k_slip_story, f_limit_story = story[b, 0], story[b, 1], story[b, 2], \
-        story[b, 3]
+    k_post, k_slip_story, f_limit_story = story[b, 1], story[b, 2], story[b, 3]
     n_walls = law.shape[1]
     codes = law[b]
     half_dt = 0.5 * dt
@@ -144,88 +144,81 @@ def _member(levels, circular, b, s0, s1, ag, dt, op, wall, op_y, wall_y, story_y
     pw = peak_wall[b]
     hrow = hist_row[b]
 
-    ux = carray(stack_doubles(levels), (n_levels,))
-    uy = carray(stack_doubles(levels), (n_levels,))
-    vx = carray(stack_doubles(levels), (n_levels,))
-    vy = carray(stack_doubles(levels), (n_levels,))
-    nx_ = carray(stack_doubles(levels), (n_levels,))
-    ny_ = carray(stack_doubles(levels), (n_levels,))
-    rx = carray(stack_doubles(levels), (n_levels,))
-    ry = carray(stack_doubles(levels), (n_levels,))
-    cx = carray(stack_doubles(levels), (n_levels,))
-    cy = carray(stack_doubles(levels), (n_levels,))
+    u = carray(stack_doubles(pairs), (n_levels, 2))
+    v = carray(stack_doubles(pairs), (n_levels, 2))
+    nx = carray(stack_doubles(pairs), (n_levels, 2))  # v_{n+1/2}
+    r = carray(stack_doubles(pairs), (n_levels, 2))
+    c = carray(stack_doubles(pairs), (n_levels, 2))
     pa2 = carray(stack_doubles(levels), (n_levels,))
-    pax = carray(stack_doubles(levels), (n_levels,))
-    pay = carray(stack_doubles(levels), (n_levels,))
-    dx = carray(stack_doubles(levels), (n_st,))
-    dy = carray(stack_doubles(levels), (n_st,))
-    fsx = carray(stack_doubles(levels), (n_st,))
-    fsy = carray(stack_doubles(levels), (n_st,))
-    pd2 = carray(stack_doubles(levels), (n_st,))
-    pdx = carray(stack_doubles(levels), (n_st,))
-    pdy = carray(stack_doubles(levels), (n_st,))
+    pa = carray(stack_doubles(pairs), (n_levels, 2))
+    dr = carray(stack_doubles(pairs), (n_levels, 2))  # the stories' drifts (first n_st rows)
+    fs = carray(stack_doubles(pairs), (n_levels, 2))
+    pd2 = carray(stack_doubles(levels), (n_levels,))
+    pd = carray(stack_doubles(pairs), (n_levels, 2))
+    a = carray(stack_doubles(pairs), (2,))
     for i in range(n_levels):
-        ux[i], uy[i], vx[i], vy[i] = u_all[b, i, 0], u_all[b, i, 1], v_all[b, i, 0], \
-            v_all[b, i, 1]
+        for e in range(2):
+            u[i, e], v[i, e] = u_all[b, i, e], v_all[b, i, e]
+            pa[i, e] = peak_level_xy[b, i, e]
         pa2[i] = peak_level[b, i]
-        pax[i], pay[i] = peak_level_xy[b, i, 0], peak_level_xy[b, i, 1]
     for i in range(n_st):
-        fsx[i], fsy[i] = f_story_all[b, i, 0], f_story_all[b, i, 1]
+        for e in range(2):
+            fs[i, e] = f_story_all[b, i, e]
+            pd[i, e] = peak_story_xy[b, i, e]
         pd2[i] = peak_story[b, i]
-        pdx[i], pdy[i] = peak_story_xy[b, i, 0], peak_story_xy[b, i, 1]
 
     for step in range(s0, s1):
-        ax = cs * ag[step, 0] - sn * ag[step, 1]
-        ay = sn * ag[step, 0] + cs * ag[step, 1]
-        cx[0] = k_el * ux[0] + fpx
-        cy[0] = k_el * uy[0] + fpy
+        a[0] = cs * ag[step, 0] - sn * ag[step, 1]
+        a[1] = sn * ag[step, 0] + cs * ag[step, 1]
+        c[0, 0] = k_el * u[0, 0] + fpx
+        c[0, 1] = k_el * u[0, 1] + fpy
         for i in range(n_st):
-            dx[i] = ux[i + 1] - ux[i]
-            dy[i] = uy[i + 1] - uy[i]
+            for e in range(2):
+                dr[i, e] = u[i + 1, e] - u[i, e]
             if stories_yield:
-                cx[i + 1] = k_post[i] * dx[i] + fsx[i]
-                cy[i + 1] = k_post[i] * dy[i] + fsy[i]
+                for e in range(2):
+                    c[i + 1, e] = k_post[i] * dr[i, e] + fs[i, e]
             else:
-                cx[i + 1] = k_story[i] * dx[i]
-                cy[i + 1] = k_story_y[i] * dy[i]
+                for e in range(2):
+                    c[i + 1, e] = ks[i, e] * dr[i, e]
         for i in range(n_st):
-            rx[i] = (cx[i + 1] - cx[i]) - m[i] * ax
-            ry[i] = (cy[i + 1] - cy[i]) - m[i] * ay
-        rx[n_st] = (0.0 - cx[n_st]) - m[n_st] * ax
-        ry[n_st] = (0.0 - cy[n_st]) - m[n_st] * ay
-        # Both directions through the one operator, read once (ot: transposed, by column).
+            for e in range(2):
+                r[i, e] = (c[i + 1, e] - c[i, e]) - m[i] * a[e]
+        for e in range(2):
+            r[n_st, e] = (0.0 - c[n_st, e]) - m[n_st] * a[e]
+        # Both directions through their operators (ot: transposed, by column, x and y side by
+        # side), in the order of the planar kernel's sums.
         for i in range(n_levels):
-            nx_[i] = ot[0, i] * rx[0]
-            ny_[i] = oty[0, i] * ry[0]
+            for e in range(2):
+                nx[i, e] = ot[0, i, e] * r[0, e]
         for j in range(1, n_levels):
-            rxj, ryj = rx[j], ry[j]
             for i in range(n_levels):
-                nx_[i] += ot[j, i] * rxj
-                ny_[i] += oty[j, i] * ryj
+                for e in range(2):
+                    nx[i, e] += ot[j, i, e] * r[j, e]
         for j in range(n_levels):
-            vxj, vyj = vx[j], vy[j]
             for i in range(n_levels):
-                nx_[i] += ot[n_levels + j, i] * vxj
-                ny_[i] += oty[n_levels + j, i] * vyj
+                for e in range(2):
+                    nx[i, e] += ot[n_levels + j, i, e] * v[j, e]
 
         # The moat: the force on the slab (wfx, wfy), towards the centre; one wall direction
         # (the circle's radius) or two (x, then y), each the same code, the law's once.
         wfx, wfy = 0.0, 0.0
         deepest = -1.0
-        radius = math.hypot(ux[0], uy[0]) if circular else 0.0
+        radius = math.hypot(u[0, 0], u[0, 1]) if circular else 0.0
         for d in range(n_walls):
             if circular:
                 nrm_x, nrm_y = 1.0, 0.0
                 if radius > 0.0:
-                    nrm_x, nrm_y = ux[0] / max(radius, 1e-300), uy[0] / max(radius, 1e-300)
+                    nrm_x, nrm_y = u[0, 0] / max(radius, 1e-300), u[0, 1] / max(radius, 1e-300)
                 distance = radius
-                before = nrm_x * vx[0] + nrm_y * vy[0]
-                free = nrm_x * (0.5 * (vx[0] + nx_[0])) + nrm_y * (0.5 * (vy[0] + ny_[0]))
+                before = nrm_x * v[0, 0] + nrm_y * v[0, 1]
+                free = nrm_x * (0.5 * (v[0, 0] + nx[0, 0])) + nrm_y * (0.5 * (v[0, 1]
+                                                                               + nx[0, 1]))
                 which = 0
                 along = comp if not anisotropic else \
                     comp * (nrm_x * nrm_x) + comp_y * (nrm_y * nrm_y)
             else:
-                u0d, v0d, n0d = (ux[0], vx[0], nx_[0]) if d == 0 else (uy[0], vy[0], ny_[0])
+                u0d, v0d, n0d = u[0, d], v[0, d], nx[0, d]
                 side = np.sign(u0d)
                 nrm_x, nrm_y = (side, 0.0) if d == 0 else (0.0, side)
                 distance = abs(u0d)
@@ -254,64 +247,65 @@ def _member(levels, circular, b, s0, s1, ag, dt, op, wall, op_y, wall_y, story_y
             deepest = max(deepest, delta)
         if wfx != 0.0 or wfy != 0.0:
             for i in range(n_levels):
-                nx_[i] += w[i] * wfx
-                ny_[i] += wy[i] * wfy
+                nx[i, 0] += w[i, 0] * wfx
+                nx[i, 1] += w[i, 1] * wfy
             if mu_wall > 0.0:
                 for d in range(n_walls):
                     if f_n[d] > 0.0:
-                        fx, fy = _friction(nx_, ny_, w, wy, comp, comp_y, mu_wall * f_n[d],
-                                           n_x[d], n_y[d])
+                        fx, fy = _friction(nx, w, comp, comp_y, mu_wall * f_n[d], n_x[d],
+                                           n_y[d])
                         wfx += fx
                         wfy += fy
-            energy -= (wfx * (vx[0] + nx_[0]) + wfy * (vy[0] + ny_[0])) * half_dt
+            energy -= (wfx * (v[0, 0] + nx[0, 0]) + wfy * (v[0, 1] + nx[0, 1])) * half_dt
 
         keep = hrow >= 0 and step % every == 0  # this step goes into the histories
         if keep:
             t = step // every
-            h_u[hrow, t, 0], h_u[hrow, t, 1] = ux[0], uy[0]
+            h_u[hrow, t, 0], h_u[hrow, t, 1] = u[0, 0], u[0, 1]
             h_f[hrow, t] = math.hypot(wfx, wfy)
             h_d[hrow, t] = max(deepest, 0.0)
+            for i in range(n_levels):
+                for e in range(2):
+                    h_acc[hrow, t, i, e] = (nx[i, e] - v[i, e]) / dt + a[e]
         for i in range(n_levels):
-            tx = (nx_[i] - vx[i]) / dt + ax
-            ty = (ny_[i] - vy[i]) / dt + ay
-            if keep:
-                h_acc[hrow, step // every, i, 0] = tx
-                h_acc[hrow, step // every, i, 1] = ty
+            tx = (nx[i, 0] - v[i, 0]) / dt + a[0]
+            ty = (nx[i, 1] - v[i, 1]) / dt + a[1]
             pa2[i] = max(pa2[i], tx * tx + ty * ty)
-            pax[i] = max(pax[i], abs(tx))
-            pay[i] = max(pay[i], abs(ty))
+            pa[i, 0] = max(pa[i, 0], abs(tx))
+            pa[i, 1] = max(pa[i, 1], abs(ty))
         for i in range(n_st):
-            pd2[i] = max(pd2[i], dx[i] * dx[i] + dy[i] * dy[i])
-            pdx[i] = max(pdx[i], abs(dx[i]))
-            pdy[i] = max(pdy[i], abs(dy[i]))
-        p_iso2 = max(p_iso2, ux[0] * ux[0] + uy[0] * uy[0])
-        p_iso_x = max(p_iso_x, abs(ux[0]))
-        p_iso_y = max(p_iso_y, abs(uy[0]))
+            pd2[i] = max(pd2[i], dr[i, 0] * dr[i, 0] + dr[i, 1] * dr[i, 1])
+            for e in range(2):
+                pd[i, e] = max(pd[i, e], abs(dr[i, e]))
+        p_iso2 = max(p_iso2, u[0, 0] * u[0, 0] + u[0, 1] * u[0, 1])
+        p_iso_x = max(p_iso_x, abs(u[0, 0]))
+        p_iso_y = max(p_iso_y, abs(u[0, 1]))
 
         # Advance: the slip elements see this step's increments, the isolator's limit at this
         # step's sliding speed |v|.
         limit = f_limit if slow_drop == 0.0 else slip_limit(
-            f_limit, slow_drop, rate, math.hypot(nx_[0], ny_[0]))
-        fpx, fpy = radial_return(fpx, fpy, dt * nx_[0], dt * ny_[0], k_slip, limit)
+            f_limit, slow_drop, rate, math.hypot(nx[0, 0], nx[0, 1]))
+        fpx, fpy = radial_return(fpx, fpy, dt * nx[0, 0], dt * nx[0, 1], k_slip, limit)
         if stories_yield:
             for i in range(n_st):
-                fsx[i], fsy[i] = radial_return(fsx[i], fsy[i], dt * (nx_[i + 1] - nx_[i]),
-                                                dt * (ny_[i + 1] - ny_[i]), k_slip_story[i],
-                                                f_limit_story[i])
+                fs[i, 0], fs[i, 1] = radial_return(
+                    fs[i, 0], fs[i, 1], dt * (nx[i + 1, 0] - nx[i, 0]),
+                    dt * (nx[i + 1, 1] - nx[i, 1]), k_slip_story[i], f_limit_story[i])
         for i in range(n_levels):
-            vx[i], vy[i] = nx_[i], ny_[i]
-            ux[i] = ux[i] + dt * nx_[i]
-            uy[i] = uy[i] + dt * ny_[i]
+            for e in range(2):
+                v[i, e] = nx[i, e]
+                u[i, e] = u[i, e] + dt * nx[i, e]
 
     for i in range(n_levels):
-        u_all[b, i, 0], u_all[b, i, 1], v_all[b, i, 0], v_all[b, i, 1] = ux[i], uy[i], vx[i], \
-            vy[i]
+        for e in range(2):
+            u_all[b, i, e], v_all[b, i, e] = u[i, e], v[i, e]
+            peak_level_xy[b, i, e] = pa[i, e]
         peak_level[b, i] = pa2[i]
-        peak_level_xy[b, i, 0], peak_level_xy[b, i, 1] = pax[i], pay[i]
     for i in range(n_st):
-        f_story_all[b, i, 0], f_story_all[b, i, 1] = fsx[i], fsy[i]
+        for e in range(2):
+            f_story_all[b, i, e] = fs[i, e]
+            peak_story_xy[b, i, e] = pd[i, e]
         peak_story[b, i] = pd2[i]
-        peak_story_xy[b, i, 0], peak_story_xy[b, i, 1] = pdx[i], pdy[i]
     st[_FPX], st[_FPY] = fpx, fpy
     for d in range(n_walls):
         j = _WALL_STATE + 3 * d
@@ -323,18 +317,18 @@ def _member(levels, circular, b, s0, s1, ag, dt, op, wall, op_y, wall_y, story_y
 
 
 @njit(**JIT)
-def _run(levels, circular, members, s0, s1, ag, dt, op, wall, op_y, wall_y, story_y, mass, story,
-         law, par, wall_par, u, v, f_story, state, peak_level, peak_level_xy, peak_story,
+def _run(levels, pairs, circular, members, s0, s1, ag, dt, op, wall, story_k, mass, story, law,
+         par, wall_par, u, v, f_story, state, peak_level, peak_level_xy, peak_story,
          peak_story_xy, peak_iso_xy, peak_scalar, n_impacts, peak_wall, hist_row, every, h_u,
          h_acc, h_f, h_d):
     """Steps s0 <= step < s1 of the members in `members` (indices), one after the other. It
     releases the GIL (nogil), so that run_plan's threads run batches of members at once: the
     same parallelism as numba's parallel loops, at a third of their compile time."""
     for b in members:
-        _member(levels, circular, b, s0, s1, ag, dt, op, wall, op_y, wall_y, story_y, mass, story,
-                law, par, wall_par, u, v, f_story, state, peak_level, peak_level_xy, peak_story,
-                peak_story_xy, peak_iso_xy, peak_scalar, n_impacts, peak_wall, hist_row, every,
-                h_u, h_acc, h_f, h_d)
+        _member(levels, pairs, circular, b, s0, s1, ag, dt, op, wall, story_k, mass, story,
+                law, par, wall_par, u, v, f_story, state, peak_level, peak_level_xy,
+                peak_story, peak_story_xy, peak_iso_xy, peak_scalar, n_impacts, peak_wall,
+                hist_row, every, h_u, h_acc, h_f, h_d)
 
 
 def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, history=None,
@@ -342,13 +336,19 @@ def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, histor
     """numpy_plan.run_plan on the kernel: the same arguments, the same (peaks, history)."""
     size, n_levels = arrays.masses.shape
     levels = (0,) * n_levels
+    pairs = (0,) * (2 * n_levels)  # x and y of every level, side by side on the stack
     op, wall_response, compliance = step_operators(arrays, dt)
-    op = np.ascontiguousarray(op.transpose(0, 2, 1))
     if arrays_y is None:  # isotropic: the x arrays serve y
         op_y, response_y, compliance_y, story_y = op, wall_response, compliance, arrays.story_k
     else:
         op_y, response_y, compliance_y = step_operators(arrays_y, dt)
-        op_y, story_y = np.ascontiguousarray(op_y.transpose(0, 2, 1)), arrays_y.story_k
+        story_y = arrays_y.story_k
+    # x and y side by side: the operators transposed (B, 2L, L, 2), the wall responses
+    # (B, L, 2), the story stiffnesses (B, L - 1, 2)
+    op_xy = np.ascontiguousarray(np.stack([op.transpose(0, 2, 1), op_y.transpose(0, 2, 1)],
+                                          axis=-1))
+    wall_xy = np.ascontiguousarray(np.stack([wall_response, response_y], axis=-1))
+    story_xy = np.ascontiguousarray(np.stack([arrays.story_k, story_y], axis=-1))
     par = np.empty((size, _N_PAR))
     par[:, _COMPLIANCE], par[:, _COMPLIANCE_Y] = compliance, compliance_y
     par[:, _ANISOTROPIC] = arrays_y is not None
@@ -386,10 +386,9 @@ def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, histor
         hist_row[unique] = np.arange(rows)
         every = int(history.every)
     hist = empty_plan_history(rows, n_steps, every, dt, n_levels)
-    args = (np.ascontiguousarray(ag, dtype=np.float64), float(dt), op,
-            np.ascontiguousarray(wall_response), op_y, np.ascontiguousarray(response_y),
-            np.ascontiguousarray(story_y), np.ascontiguousarray(arrays.masses), story, law, par,
-            wall_par, u, v, f_story, state, peaks["peak_total_accel"], peaks["peak_total_accel_xy"],
+    args = (np.ascontiguousarray(ag, dtype=np.float64), float(dt), op_xy, wall_xy, story_xy,
+            np.ascontiguousarray(arrays.masses), story, law, par, wall_par, u, v, f_story, state,
+            peaks["peak_total_accel"], peaks["peak_total_accel_xy"],
             peaks["peak_interstory_drift"], peaks["peak_interstory_drift_xy"],
             peaks["peak_isolator_disp_xy"], scalar, peaks["n_impacts"],
             peaks["max_impact_force_wall"], hist_row, every, hist["isolator_disp"],
@@ -405,10 +404,10 @@ def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, histor
 
     def steps(s0, s1):
         if pool is None:
-            _run(levels, circular, everyone, s0, s1, *args)
+            _run(levels, pairs, circular, everyone, s0, s1, *args)
         else:
-            list(pool.map(lambda members: _run(levels, circular, members, s0, s1, *args),
-                          batches))
+            list(pool.map(lambda members: _run(levels, pairs, circular, members, s0, s1,
+                                               *args), batches))
 
     try:
         if progress is None:
