@@ -7,8 +7,8 @@
 - `where_contact`: a point counts only where contact occurs in at least one of the two
   configurations; elsewhere both runs are the same unconstrained run and the amplification is
   1 by construction, not a finding.
-- `judged`: a claim with the paper's quantifier ("every", "most", "some") held at `held` of
-  `counted` points; None when nothing was counted (not tested).
+- `judged`: a claim with the paper's quantifier ("every", "almost every", "most", "some")
+  held at `held` of `counted` points; None when nothing was counted (not tested).
 """
 from __future__ import annotations
 
@@ -19,8 +19,13 @@ TOLERANCE = 0.02
 convergence error, 0.5% at the default step, and below what an engineer would act on)."""
 HELPED, NEUTRAL, HURT = -1, 0, 1
 NAMES = {HELPED: "helped", NEUTRAL: "neutral", HURT: "hurt"}
-QUANTIFIERS = {"every": "at every counted point", "most": "at more than half the counted "
-               "points", "some": "at one counted point at least"}
+ALMOST_EVERY = 0.9
+"""The paper's "almost all": held at this fraction of the counted points at least (a stated
+reading: the paper gives no number)."""
+QUANTIFIERS = {"every": "at every counted point",
+               "almost every": f"at {ALMOST_EVERY:.0%} at least of the counted points",
+               "most": "at more than half the counted points",
+               "some": "at one counted point at least"}
 
 
 def amplification(with_bumpers, without) -> np.ndarray:
@@ -65,5 +70,5 @@ def judged(quantifier: str, held: float, counted: float) -> bool | None:
         raise ValueError(f"quantifier must be one of {tuple(QUANTIFIERS)}, got {quantifier!r}")
     if not counted:
         return None
-    return {"every": held == counted, "some": held > 0,
-            "most": held > counted / 2}[quantifier]
+    return {"every": held == counted, "some": held > 0, "most": held > counted / 2,
+            "almost every": held >= ALMOST_EVERY * counted}[quantifier]

@@ -90,7 +90,10 @@ def code_suite(pairs, names, building, rule: str = "asce7", s_ms: float = SITE["
 
     if rule not in RULES:
         raise ValueError(f"rule must be one of {RULES}, got {rule!r}")
-    design = isolation_design(s_m1, building)
+    # The model's isolation dashpot is part of its isolation system: the code's effective
+    # damping beta_M counts every energy the system dissipates (section 17.5.3), so D_M and
+    # T_M are those of the building that is run.
+    design = isolation_design(s_m1, building, dashpot=True)
     target = asce7_target(s_ms, s_m1, t_long, level="MCE_R")
     scaled = None
     if rule == "asce7":

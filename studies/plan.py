@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from engine.units import CM, G
+from pipeline.outcomes import QUANTIFIERS, judged
 
 from ._paper import GAP_FRACTION, N_BUMPERS, THICKNESS
 from ._plot import plt
@@ -308,18 +309,6 @@ def underestimates(ds) -> dict:
 # --- The paper's conclusions on the gap size, asked of both models. ---
 
 POINT = ("record", "angle", "gap_fraction")  # a point the conclusions are counted at
-QUANTIFIERS = {"every": "at every counted point", "some": "at one counted point at least",
-               "most": "at more than half the counted points"}
-
-
-def judged(quantifier: str, held: int, counted: int) -> bool | None:
-    """Whether a claim with the quantifier holds, `held` of `counted` points bearing it out;
-    None where nothing was counted."""
-    if not counted:
-        return None
-    return {"every": held == counted, "some": held > 0, "most": held > counted / 2}[quantifier]
-
-
 def _hit(sel, barrier) -> np.ndarray:
     """(record, angle, gap_fraction) bool: the barrier is hit (-1, not run, is not)."""
     return (sel.n_impacts.sel(barrier=barrier) > 0).transpose(*POINT).values
