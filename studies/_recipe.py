@@ -33,7 +33,9 @@ class Recipe:
     the archive); records: the paper's records for this figure (None: no records, e.g. the
     two-body studies); compute(args) -> Dataset; plot(ds) -> matplotlib Figure;
     check(ds) -> list of Verdict, one per conclusion of the paper against what was computed;
-    options(parser): adds the recipe's own command-line options (None: none)."""
+    options(parser): adds the recipe's own command-line options (None: none); resumable: its
+    simulations go through pipeline.sweep's work folder, so that a Ctrl-C keeps them (False:
+    the recipe runs the engine itself, and an interrupted run starts over)."""
 
     name: str
     figure: str
@@ -44,14 +46,17 @@ class Recipe:
     chosen: str = ""
     records: tuple[str, ...] | None = PAPER_KEYS
     options: Callable | None = None
+    resumable: bool = True
 
     def parser(self) -> argparse.ArgumentParser:
         epilog = f"Values the paper does not state: {self.chosen}" if self.chosen else None
         p = argparse.ArgumentParser(
             prog=f"python -m studies.{self.name}",
             description=f"{self.summary} (paper {self.figure}). Writes {self.name}.nc, "
-                        f"{self.name}.png and {self.name}.pdf into --out. Ctrl-C keeps the "
-                        "finished simulations: the same command again resumes.",
+                        f"{self.name}.png and {self.name}.pdf into --out. " + (
+                            "Ctrl-C keeps the finished simulations: the same command again "
+                            "resumes." if self.resumable else "Ctrl-C stops it and keeps "
+                            "nothing: the same command again starts over."),
             epilog=epilog)
         accept_negative_numbers(p)
         if self.records is None:
@@ -125,7 +130,9 @@ class Recipe:
             print(f"{self.name}: error: {' '.join(str(err).split())}", file=sys.stderr)
             return 2
         except KeyboardInterrupt as stop:
-            print(f"{self.name}: {interrupted(stop, getattr(args, 'work_dir', None))}",
+            told = interrupted(stop, getattr(args, 'work_dir', None)) if self.resumable else \
+                "interrupted: this command keeps no partial results; run it again to start over"
+            print(f"{self.name}: {told}",
                   file=sys.stderr)
             return 130
 

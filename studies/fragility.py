@@ -358,7 +358,8 @@ recipe = Recipe(
             f"D_TM; floor acceleration threshold {ACCEL_THRESHOLD / G:g} g, drift "
             f"{DRIFT_THRESHOLD / CM:g} cm; quick: 4 pairs, levels "
             f"{', '.join(map(str, QUICK_LEVELS))}"),
-    records=(), options=options)
+    records=(), options=options,
+    resumable=False)
 main = recipe.main
 
 if __name__ == "__main__":

@@ -239,7 +239,8 @@ recipe = Recipe(
     chosen="impact velocities 0.5, 0.75, 1.0 m/s (inside the 0.2-1.0 m/s of the Kajita et al. "
            "apparatus; peak forces 17-47 kN); k_w = 8200 kN/mm past delta_u = 8 mm (axial "
            "E A / L of one 1000 x 200 x 200 mm steel rod; not reached); Hertzdamp with "
-           "k = k_imp, n = 2.65, chi = 3(1-COR^2)/4")
+           "k = k_imp, n = 2.65, chi = 3(1-COR^2)/4",
+    resumable=False)
 main = recipe.main
 
 if __name__ == "__main__":

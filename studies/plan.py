@@ -601,7 +601,8 @@ recipe = Recipe(
             f"the component along the angle (the paper's rule: {GAP_FRACTION}); the same walls "
             "on every side; quick: 3 pairs, angles 0 and 90, gaps "
             f"{', '.join(f'{f:g}' for f in QUICK_FRACTIONS)} x"),
-    records=(), options=options)
+    records=(), options=options,
+    resumable=False)
 main = recipe.main
 
 if __name__ == "__main__":

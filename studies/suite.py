@@ -880,7 +880,8 @@ recipe = Recipe(
             f"per earthquake; 'almost all' = {ALMOST_EVERY:.0%} of the cases that change; "
             f"quick: {QUICK_PAIRS} pairs, levels {', '.join(QUICK_LEVELS)}, gaps "
             f"{', '.join(map(str, QUICK_GAPS))} D_M and D_TM, {QUICK_COUNTS[0]} and "
-            f"{QUICK_COUNTS[1]} bumpers"))
+            f"{QUICK_COUNTS[1]} bumpers"),
+    resumable=False)
 main = recipe.main
 
 if __name__ == "__main__":
