@@ -72,3 +72,25 @@ def judged(quantifier: str, held: float, counted: float) -> bool | None:
         return None
     return {"every": held == counted, "some": held > 0, "most": held > counted / 2,
             "almost every": held >= ALMOST_EVERY * counted}[quantifier]
+
+
+def weighted_quantiles(values, weights, qs) -> np.ndarray:
+    """(Q, ...) weighted quantiles qs (Q,) over axis 0 of values (R, ...), weights (R,) >= 0
+    (e.g. per earthquake): the weighted empirical distribution at the midpoints of its steps,
+    linear between (Hazen's (i - 1/2) / R with equal weights); NaN where no weight."""
+    v = np.asarray(values, float)
+    qs = np.atleast_1d(np.asarray(qs, float))
+    w = np.asarray(weights, float)
+    if v.size == 0:
+        return np.full((qs.size, *v.shape[1:]), np.nan)
+    w = np.broadcast_to(w.reshape(w.shape + (1,) * (v.ndim - w.ndim)), v.shape)
+    order = np.argsort(v, axis=0)
+    ranked, w = np.take_along_axis(v, order, axis=0), np.take_along_axis(w, order, axis=0)
+    total = w.sum(axis=0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        cdf = (np.cumsum(w, axis=0) - 0.5 * w) / total
+    flat_v, flat_p = ranked.reshape(len(v), -1), cdf.reshape(len(v), -1)
+    out = np.full((qs.size, flat_v.shape[1]), np.nan)
+    for j in np.flatnonzero(total.reshape(-1) > 0):
+        out[:, j] = np.interp(qs, flat_p[:, j], flat_v[:, j])
+    return out.reshape((qs.size, *v.shape[1:]))

@@ -56,6 +56,7 @@ from pipeline.outcomes import (
     amplification,
     effect,
     judged,
+    weighted_quantiles,
 )
 
 from ._code_suite import LEVELS, archive_variables, code_suite, describe, site_options
@@ -413,19 +414,6 @@ def _shares(eff, touch, w) -> np.ndarray:
         parts = [(ww * (touch & (e == k))).sum(axis=0) for k in (HELPED, NEUTRAL, HURT)]
         out.append(np.stack([*parts, (ww * ~touch).sum(axis=0)]) / total)
     return np.stack(out)
-
-
-def weighted_quantiles(values, weights, qs) -> np.ndarray:
-    """Quantiles (len(qs),) of values (n,) with weights (n,) >= 0: the weighted empirical CDF
-    at the midpoints of its steps, linear between (Hazen's rule with unit weights); NaN for
-    no weight."""
-    values, weights = np.asarray(values, float), np.asarray(weights, float)
-    if values.size == 0 or weights.sum() <= 0:
-        return np.full(len(qs), np.nan)
-    order = np.argsort(values)
-    v, wt = values[order], weights[order]
-    cdf = (np.cumsum(wt) - 0.5 * wt) / wt.sum()
-    return np.interp(qs, cdf, v)
 
 
 def _quantiles(amp, keep, w) -> np.ndarray:

@@ -5,21 +5,23 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from pipeline.outcomes import weighted_quantiles
+from studies import _design_search as search
 from studies import design
 from studies._recipe import verdicts
 from tests.helpers import assert_udunits, run_recipe
 
 # --------------------------------------------------------------------- hand-made tables
 
-BOUNDS = design.Bounds(gap=0.20, clearance=0.10, usable_strain=0.6, wall_length=100.0)
+BOUNDS = search.Bounds(gap=0.20, clearance=0.10, usable_strain=0.6, wall_length=100.0)
 """Loose bounds for the tables below: the bumpers may protrude 10 cm, c/t up to 0.4."""
 AXES = {"thickness": (0.04, 0.06, 0.08), "cavity_ratio": (0.0, 0.1, 0.2),
         "n_bumpers": (4, 8, 16), "shape_factor": (0.6, 0.8, 1.0), "wall_k": (5e8, 1e9, 2e9)}
 
 
 def table_of(axes=AXES) -> dict:
-    mesh = np.meshgrid(*(np.asarray(axes[v], float) for v in design.VARIABLES), indexing="ij")
-    return {v: m.ravel() for v, m in zip(design.VARIABLES, mesh, strict=True)}
+    mesh = np.meshgrid(*(np.asarray(axes[v], float) for v in search.VARIABLES), indexing="ij")
+    return {v: m.ravel() for v, m in zip(search.VARIABLES, mesh, strict=True)}
 
 
 def at(table, **config) -> int:
@@ -30,19 +32,19 @@ def at(table, **config) -> int:
 
 
 def centre(axes=AXES) -> dict:
-    return {v: axes[v][1] for v in design.VARIABLES}
+    return {v: axes[v][1] for v in search.VARIABLES}
 
 
 def test_an_optimum_inside_the_grid_is_interior():
     table = table_of()
-    found = design.nature(table, at(table, **centre()), BOUNDS)
+    found = search.nature(table, at(table, **centre()), BOUNDS)
     assert found.interior and not found.bounds
     assert found.text().startswith("interior")
 
 
 def test_an_optimum_at_the_grids_edge_is_named_and_may_lie_beyond():
     table = table_of()
-    found = design.nature(table, at(table, **{**centre(), "thickness": 0.08}), BOUNDS)
+    found = search.nature(table, at(table, **{**centre(), "thickness": 0.08}), BOUNDS)
     assert not found.interior
     (bound,) = found.bounds
     assert (bound["variable"], bound["side"], bound["kind"]) == ("thickness", "upper", "grid")
@@ -52,10 +54,10 @@ def test_an_optimum_at_the_grids_edge_is_named_and_may_lie_beyond():
 
 def test_an_optimum_on_a_physical_bound_names_it():
     # 8 cm bumpers without cavity protrude 8 cm: the most a 14 cm gap leaves beyond 6 cm
-    tight = design.Bounds(gap=0.14, clearance=0.06, usable_strain=0.6, wall_length=100.0)
+    tight = search.Bounds(gap=0.14, clearance=0.06, usable_strain=0.6, wall_length=100.0)
     table = table_of()
     best = at(table, **{**centre(), "thickness": 0.08, "cavity_ratio": 0.0})
-    found = design.nature(table, best, tight)
+    found = search.nature(table, best, tight)
     kinds = {(b["variable"], b["side"]): b["kind"] for b in found.bounds}
     assert kinds == {("thickness", "upper"): "physical", ("cavity_ratio", "lower"): "physical"}
     assert "(physical: the clearance: thickness - cavity <= gap - D_S" in found.text()
@@ -68,7 +70,7 @@ def test_a_tie_at_a_bound_is_indifferent_and_a_failing_neighbour_an_active_const
     scores[at(table, **{**centre(), "wall_k": 1e9})] = scores[best]  # k_w plays no part
     fails = [[] for _ in scores]
     fails[at(table, **{**centre(), "wall_k": 2e9, "thickness": 0.04})] = ["within_limits"]
-    found = design.nature(table, best, BOUNDS, fails=fails, scores=scores)
+    found = search.nature(table, best, BOUNDS, fails=fails, scores=scores)
     assert found.interior and found.bounds[0]["indifferent"]
     assert found.active == ({"variable": "thickness", "side": "lower", "neighbour": 0.04,
                              "fails": ["within_limits"]},)
@@ -76,11 +78,11 @@ def test_a_tie_at_a_bound_is_indifferent_and_a_failing_neighbour_an_active_const
         in found.text()
     # without the tie, the wall's bound holds the optimum
     distinct = np.column_stack([np.arange(table["thickness"].size, dtype=float)] * 2)
-    assert not design.nature(table, best, BOUNDS, scores=distinct).interior
+    assert not search.nature(table, best, BOUNDS, scores=distinct).interior
 
 
 def test_bounds_from_physical_limits():
-    b = design.Bounds(gap=0.131, clearance=0.048, usable_strain=0.589, wall_length=18.0)
+    b = search.Bounds(gap=0.131, clearance=0.048, usable_strain=0.589, wall_length=18.0)
     limits = b.limits({"thickness": 0.10, "cavity_ratio": 0.2, "n_bumpers": 8,
                        "shape_factor": 0.5, "wall_k": 1.5e9})
     assert limits["thickness"][1][0] == pytest.approx(0.083 / 0.8)  # t (1 - c/t) <= room
@@ -89,13 +91,13 @@ def test_bounds_from_physical_limits():
     # the neighbours stop at a bound, exactly on it
     config = {"thickness": 0.10, "cavity_ratio": 0.4, "n_bumpers": 8, "shape_factor": 0.5,
               "wall_k": 2.5e9}
-    near = design.neighbours(config, 0, b)
+    near = search.neighbours(config, 0, b)
     up = near["cavity_ratio"] > 0.4
     assert near["cavity_ratio"][up].tolist() == [pytest.approx(0.411)]
     assert not np.any(near["wall_k"] > 2.5e9) and not np.any(near["shape_factor"] < 0.5)
-    assert all(b.allows(design.row(near, i)) for i in range(near["thickness"].size))
-    assert design.usable_strain(0.8, None) == 0.8
-    assert design.usable_strain(0.8, 30.9e6) == pytest.approx(0.589, abs=1e-3)
+    assert all(b.allows(search.row(near, i)) for i in range(near["thickness"].size))
+    assert search.usable_strain(0.8, None) == 0.8
+    assert search.usable_strain(0.8, 30.9e6) == pytest.approx(0.589, abs=1e-3)
 
 
 # ---------------------------------------------------------------- constraints, ranking
@@ -104,7 +106,7 @@ def test_bounds_from_physical_limits():
 def stats_of(**columns) -> dict:
     """Statistics (L = 3 levels, K candidates) from (K,) columns per level name."""
     k = len(next(iter(columns.values()))[0])
-    out = {name: np.zeros((3, k)) for name in design.STAT_TEXT}
+    out = {name: np.zeros((3, k)) for name in search.STAT_TEXT}
     for name, rows in columns.items():
         out[name] = np.asarray(rows, float)
     return out
@@ -120,17 +122,17 @@ def test_constraints_filter_known_numbers():
         fraction_contact=[[0.0, 0.1, 0.0, 0.0], zero, zero],
         fraction_hurt=[zero, [0.0, 0.0, 0.3, 0.0], zero],
         fraction_valid=[zero, zero, [1.0] * 4])
-    new = design.judge(stats, design.Criteria(), [4] * 4, [1.5e9] * 4)
+    new = search.judge(stats, search.Criteria(), [4] * 4, [1.5e9] * 4)
     # 1: contact at the service level; 2 and 3: within limits under < 84%
     assert new["feasible"].tolist() == [True, False, False, False]
     assert new["rank"].tolist() == [1, 0, 0, 0]
     assert new["margins"]["within_limits"] == pytest.approx([0.06, 0.06, -0.04, -0.34])
     # the old criteria (uncrushed only, the service level free) admit 2 as well: it wins
-    old = design.judge(stats, design.Criteria("median", stress_limit=False, service_contact=1.0),
+    old = search.judge(stats, search.Criteria("median", stress_limit=False, service_contact=1.0),
                        [4] * 4, [1.5e9] * 4)
     assert old["rank"].tolist() == [3, 2, 1, 0]
     # hurt at the design level under at most 20%: 2 is out again; p84 as the objective
-    capped = design.judge(stats, design.Criteria(stress_limit=False, service_contact=1.0,
+    capped = search.judge(stats, search.Criteria(stress_limit=False, service_contact=1.0,
                                                  hurt_design=0.2, objective="p84"),
                           [4] * 4, [1.5e9] * 4)
     assert capped["rank"].tolist() == [2, 1, 0, 0]
@@ -138,7 +140,7 @@ def test_constraints_filter_known_numbers():
 
 
 def test_ties_go_to_fewer_bumpers_then_the_stiffer_wall():
-    rank = design.ranking([1.0, 1.0, 1.0, 0.5], [2.0] * 4, [8, 4, 4, 4],
+    rank = search.ranking([1.0, 1.0, 1.0, 0.5], [2.0] * 4, [8, 4, 4, 4],
                           [2.5e9, 5e8, 2.5e9, 1e9], [True, True, True, False])
     assert rank.tolist() == [3, 2, 1, 0]
 
@@ -146,13 +148,13 @@ def test_ties_go_to_fewer_bumpers_then_the_stiffer_wall():
 def test_weighted_statistics():
     values = np.array([[1.0], [2.0], [3.0], [4.0]])
     # equal weights: Hazen's plotting positions (i - 1/2) / n, interpolated
-    assert design.weighted_quantile(values, np.ones(4), [0.5])[0, 0] == 2.5
-    assert design.weighted_quantile(values, np.ones(4), [0.125, 0.875])[:, 0].tolist() == \
+    assert weighted_quantiles(values, np.ones(4), [0.5])[0, 0] == 2.5
+    assert weighted_quantiles(values, np.ones(4), [0.125, 0.875])[:, 0].tolist() == \
         [1.0, 4.0]
     # weights 1, 3, 1, 1: the steps' midpoints 0.5/6, 2.5/6, 4.5/6, 5.5/6, interpolated
-    assert design.weighted_quantile(values, [1, 3, 1, 1], [2.5 / 6, 0.5])[:, 0] == \
+    assert weighted_quantiles(values, [1, 3, 1, 1], [2.5 / 6, 0.5])[:, 0] == \
         pytest.approx([2.0, 2.25])
-    assert design.weighted_fraction([[True], [False], [True], [False]],
+    assert search.weighted_fraction([[True], [False], [True], [False]],
                                     [1, 3, 1, 1])[0] == pytest.approx(2 / 6)
 
 
@@ -168,7 +170,7 @@ def test_archive(archive):
     ds = archive
     assert ds.peak_floor_accel.dims == ("record", "level", "candidate")
     assert ds.reference_peak_floor_accel.dims == ("record", "level", "reference")
-    assert ds.sizes["record"] == len(design.QUICK_PAIRS) and ds.sizes["level"] == 3
+    assert ds.sizes["record"] == len(search.QUICK_PAIRS) and ds.sizes["level"] == 3
     assert set(np.unique(ds.stage.values)) == {0, 1}
     assert_udunits(ds)
     # the statistics are the per-pair values', weighted per earthquake
@@ -176,10 +178,10 @@ def test_archive(archive):
     for name, q in (("p16", 0.16), ("median", 0.5), ("p84", 0.84)):
         np.testing.assert_array_equal(
             ds[f"{name}_peak_floor_accel"].values,
-            design.weighted_quantile(ds.peak_floor_accel.values, w, [q])[0])
+            weighted_quantiles(ds.peak_floor_accel.values, w, [q])[0])
     within = (ds.invalid_bumper_stress == 0) & (ds.crushed == 0)
     np.testing.assert_allclose(ds.fraction_within_limits.values,
-                               design.weighted_fraction(within.values, w))
+                               search.weighted_fraction(within.values, w))
     # every flag counted, per level and candidate, references too
     for name in ("invalid_bumper_stress", "invalid_floor_accel", "invalid_story_shear",
                  "invalid_wall_force"):
@@ -201,7 +203,7 @@ def test_choice_is_the_best_feasible_and_its_nature_is_reported(archive):
     chosen = int(ds.attrs["chosen_candidate"])
     assert chosen >= 0 and int(ds["rank"][chosen]) == 1
     feasible = ds.feasible.values.astype(bool)
-    margins = np.array([ds[f"margin_{c}"].values for c in design.CRITERIA])
+    margins = np.array([ds[f"margin_{c}"].values for c in search.CRITERIA])
     np.testing.assert_array_equal(feasible, np.all(margins >= -1e-12, axis=0))
     assert ds.objective.values[chosen] == ds.objective.values[feasible].min()
     assert np.all(ds["rank"].values[~feasible] == 0)
@@ -216,7 +218,7 @@ def test_choice_is_the_best_feasible_and_its_nature_is_reported(archive):
     for b in nature["bounds"]:
         assert b["kind"] in ("physical", "grid") and (b["kind"] == "grid") != bool(b["why"])
     # the stress limit matters: re-judged without it (the old criterion), more candidates pass
-    old = design.rejudge(ds, design.Criteria(stress_limit=False, service_contact=1.0))
+    old = search.rejudge(ds, search.Criteria(stress_limit=False, service_contact=1.0))
     assert old["feasible"].sum() > feasible.sum()
 
 

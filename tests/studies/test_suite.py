@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import engine
-from pipeline.outcomes import TOLERANCE
+from pipeline.outcomes import TOLERANCE, weighted_quantiles
 from pipeline.validity import ACCEL_LIMIT, FLAGS, Limits
 from studies import suite
 from studies._recipe import verdicts
@@ -223,13 +223,13 @@ def test_runs_outside_the_range_are_flagged_and_counted():
 
 def test_weighted_quantiles():
     values = np.array([3.0, 1.0, 2.0, 5.0])
-    np.testing.assert_allclose(suite.weighted_quantiles(values, np.ones(4), [0.16, 0.5, 0.84]),
+    np.testing.assert_allclose(weighted_quantiles(values, np.ones(4), [0.16, 0.5, 0.84]),
                                np.quantile(values, [0.16, 0.5, 0.84], method="hazen"))
     # only relative weights matter, a weight 0 drops the value, more weight pulls towards it
-    np.testing.assert_allclose(suite.weighted_quantiles(values, [3, 3, 3, 0], [0.3, 0.5]),
+    np.testing.assert_allclose(weighted_quantiles(values, [3, 3, 3, 0], [0.3, 0.5]),
                                np.quantile(values[:3], [0.3, 0.5], method="hazen"))
-    assert suite.weighted_quantiles(values, [1, 1, 1, 3], [0.5])[0] > np.median(values)
-    assert np.isnan(suite.weighted_quantiles([], [], [0.5])).all()
+    assert weighted_quantiles(values, [1, 1, 1, 3], [0.5])[0] > np.median(values)
+    assert np.isnan(weighted_quantiles([], [], [0.5])).all()
 
 
 def test_maps_tell_no_contact_and_ties_from_harm():
