@@ -1,12 +1,14 @@
 """Every command a user runs: one recipe per figure of the paper, `python -m studies.NAME
-[--quick] [--replot]`, two studies beyond the paper (suite, design) and `studies.sweep`, the
+[--quick] [--replot]`, studies beyond the paper (suite, design, plan, fragility) and
+`studies.sweep`, the
 general command line of pipeline.sweep. They share one set of command-line conventions
 (_recipe.py), which is why the general sweep lives here beside the recipes.
 
 Recipes, one module each, none importing another:
     impact_validation (Fig. 6), damping_calibration (Eq. 9), practical_example (Figs. 9-13),
     gap_size (Figs. 14-15), thickness (Fig. 16), strain (Fig. 18), n_bumpers (Figs. 19-20),
-    wall_stiffness (Fig. 21), restitution (Fig. 22); suite and design (beyond the paper).
+    wall_stiffness (Fig. 21), restitution (Fig. 22); suite, design, plan and fragility
+    (beyond the paper).
 Shared modules (underscored, imported by the recipes, never run):
     _paper.py          the paper's fixed choices, each with where the paper states it: the
                        practical bumper (thickness, count, strain, wall k_w), the 0.9 gap rule,
@@ -17,7 +19,11 @@ Shared modules (underscored, imported by the recipes, never run):
     _recipe.py         what every recipe shares: command line, archive, figure, paper check.
     _plot.py           the figure style and record labels.
     _peaks_vs_gap.py   the gap grid, figure and check helpers of Figs. 16-21.
-    _suite_records.py  the scaled record suite of suite and design (`--records all`).
+    _suite_records.py  the record library scaled to a displacement (the first suite's rule,
+                       `--records all`).
+    _code_suite.py     record pairs scaled to a site's spectrum by a code's rule, and the
+                       intensity levels (suite, design, fragility).
+    _design_search.py  design's search: bounds, constraints, statistics, the optimum's nature.
 Recipes compute no physics: they choose grids, call the pipeline (pipeline.sweep,
 pipeline.histories, pipeline.scaling, pipeline.intensity) or the engine, label and draw.
 """

@@ -587,7 +587,8 @@ recipe = Recipe(
     chosen=(f"gap {GAP_FRACTION:g} D_M; the 22 FEMA P695 far-field pairs as recorded (quick: "
             f"{', '.join(QUICK_PAIRS)}); coarse grid t 4-20 cm, c/t 0-0.4, 4-32 bumpers, S "
             "0.5-1.5, k_w 500 and 2500 kN/mm, then a pattern search; strain and COR the "
-            f"law's defaults; wall length {WALL_LENGTH:g} m"))
+            f"law's defaults; wall length {WALL_LENGTH:g} m"),
+    resumable=False)
 main = recipe.main
 
 if __name__ == "__main__":
