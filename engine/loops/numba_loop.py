@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numba
 import numpy as np
-from numba import carray, njit, prange
+from numba import carray, njit
 
 from ..impact.contact import LAW_ARGUMENTS
 from ..results import PEAKS
@@ -35,7 +35,7 @@ from .compiled import (
     plastic_spring,
     slip_limit,
 )
-from .numba_support import install_cache_locator, stack_doubles
+from .numba_support import install_cache_locator, run_members, stack_doubles
 
 # Cached kernels go stale when any physics source they compile changes, not only this file.
 install_cache_locator(Path(__file__), [compiled.__file__, *PHYSICS_FILES])
@@ -228,22 +228,14 @@ def _member(levels, b, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u
 
 
 @njit(**JIT)
-def _run_serial(levels, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u, v, f_story,
-                state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u,
-                h_acc, h_f, h_d):
-    # One compilation per number of levels (the length of `levels` is part of its type):
-    # loops of known length, the member's arrays on the stack.
-    for b in range(law.size):
-        _member(levels, b, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u, v, f_story,
-                state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u,
-                h_acc, h_f, h_d)
-
-
-@njit(parallel=True, **JIT)
-def _run_parallel(levels, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u, v, f_story,
-                  state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u,
-                  h_acc, h_f, h_d):
-    for b in prange(law.size):
+def _run(levels, members, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u, v,
+         f_story, state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u,
+         h_acc, h_f, h_d):
+    """Steps s0 <= step < s1 of the members in `members` (indices), one after the other. One
+    compilation per number of levels (the length of `levels` is part of its type): loops of
+    known length, the member's arrays on the stack. It releases the GIL: run_simulation hands
+    batches of members to threads (numba_support.run_members)."""
+    for b in members:
         _member(levels, b, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u, v, f_story,
                 state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u,
                 h_acc, h_f, h_d)
@@ -339,27 +331,12 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
     h_u, h_f, h_d = (np.zeros((rows, n_out)) for _ in range(3))
     h_acc = np.zeros((rows, n_out, n_levels))
 
-    run = _run_parallel if threads() > 1 and size > 1 else _run_serial
-    # The operator transposed, (B, 2L, L): the step reads it column by column.
     args = (ag, float(dt), np.ascontiguousarray(op.transpose(0, 2, 1)), bands,
             np.ascontiguousarray(wall_response), np.ascontiguousarray(arrays.masses), story,
             law, par, u, v, f_story, state, peak_level, peak_story, peak_scalar, n_impacts,
             hist_row, every, h_u, h_acc, h_f, h_d)
-    # Members one at a time to whichever thread is free: they cost unequally (a member that
-    # pounds does more work), and even halves of the batch would leave one thread waiting
-    # (gap_size's batch: 81% -> 88% parallel efficiency on 2 threads). Bitwise the same.
-    previous = numba.set_parallel_chunksize(1)
-    try:
-        if progress is None:
-            run(levels, 0, n_steps, *args)
-        else:
-            chunk = max(n_steps // 100, 1)
-            for start in range(0, n_steps, chunk):
-                progress(start, n_steps)
-                run(levels, start, min(start + chunk, n_steps), *args)
-            progress(n_steps, n_steps)
-    finally:
-        numba.set_parallel_chunksize(previous)
+    run_members(size, n_steps, progress,
+                lambda members, s0, s1: _run(levels, members, s0, s1, *args))
 
     by_name = {"peak_total_accel": peak_level, "peak_interstory_drift": peak_story,
                "n_impacts": n_impacts,

@@ -10,16 +10,13 @@ dispatch), and the slab-wall friction along the wall, solved as numpy_plan._fric
 The dense step operator serves every height here (the planar kernel's banded solve above 12
 levels is not used in plan yet). Agrees with the NumPy plan loop to round-off; like the planar
 kernel, a member's result never depends on its batch or on threads. Members run on threads of
-this process (the kernel releases the GIL) rather than in a numba parallel loop, which would
-take three times as long to compile (10.7 s against 4.2 s).
+this process (the kernel releases the GIL; numba_support.run_members), as the planar kernel's.
 """
 from __future__ import annotations
 
 import math
-from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-import numba
 import numpy as np
 from numba import carray, njit
 
@@ -44,7 +41,7 @@ from .compiled import (
     radial_return,
     slip_limit,
 )
-from .numba_support import install_cache_locator, stack_doubles
+from .numba_support import install_cache_locator, run_members, stack_doubles
 
 install_cache_locator(Path(__file__), [compiled.__file__, *PHYSICS_FILES])
 
@@ -394,33 +391,8 @@ def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, histor
             peaks["max_impact_force_wall"], hist_row, every, hist["isolator_disp"],
             hist["total_accel"], hist["impact_force"], hist["indentation"])
     circular = moat == "circular"
-    # Members in small batches to whichever thread is free: members cost unequally (one that
-    # pounds does more work). Members never interact: the result does not depend on this.
-    threads = min(numba.get_num_threads(), size)
-    batches = np.array_split(np.arange(size), min(size, 4 * threads))
-
-    everyone = np.arange(size)
-    pool = ThreadPoolExecutor(max_workers=threads) if threads > 1 else None
-
-    def steps(s0, s1):
-        if pool is None:
-            _run(levels, pairs, circular, everyone, s0, s1, *args)
-        else:
-            list(pool.map(lambda members: _run(levels, pairs, circular, members, s0, s1,
-                                               *args), batches))
-
-    try:
-        if progress is None:
-            steps(0, n_steps)
-        else:
-            chunk = max(n_steps // 100, 1)
-            for start in range(0, n_steps, chunk):
-                progress(start, n_steps)
-                steps(start, min(start + chunk, n_steps))
-            progress(n_steps, n_steps)
-    finally:
-        if pool is not None:
-            pool.shutdown()
+    run_members(size, n_steps, progress,
+                lambda members, s0, s1: _run(levels, pairs, circular, members, s0, s1, *args))
     for i, name in enumerate(("peak_isolator_disp", "max_indentation", "max_impact_force",
                               "impact_energy")):
         peaks[name] = scalar[:, i].copy()

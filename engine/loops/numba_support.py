@@ -1,8 +1,9 @@
-"""What the compiled loop needs of numba beyond @njit: a disk cache keyed on the physics it
-compiles, and small arrays on the stack. Nothing here is physics."""
+"""What the compiled loops need of numba beyond @njit: a disk cache keyed on the physics they
+compile, small arrays on the stack, and members run on threads. Nothing here is physics."""
 from __future__ import annotations
 
 import hashlib
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 from numba.core import cgutils, types
@@ -53,3 +54,40 @@ def stack_doubles(typingctx, levels):
         return cgutils.alloca_once(builder, context.get_value_type(types.float64),
                                    size=context.get_constant(types.intp, count))
     return types.CPointer(types.float64)(levels), codegen
+
+
+def run_members(size: int, n_steps: int, progress, steps) -> None:
+    """Run a batch of `size` members through `n_steps` steps: steps(members, s0, s1) advances
+    the members (an index array) over steps s0 <= step < s1, in a compiled kernel that
+    releases the GIL. The members go, a few at a time, to whichever of numba's threads is
+    free (members that pound cost more than those that do not); a member's result depends on
+    neither. With progress(step, n_steps), in chunks of about 1% of the steps.
+
+    Threads of this process rather than numba's parallel loops: the same speed, and a kernel
+    compiled without parallel=True takes a third of the time to compile."""
+    import numba
+    import numpy as np
+
+    threads = min(numba.get_num_threads(), size)
+    everyone = np.arange(size)
+    batches = np.array_split(everyone, min(size, 8 * threads))
+    pool = ThreadPoolExecutor(max_workers=threads) if threads > 1 else None
+
+    def advance(s0, s1):
+        if pool is None:
+            steps(everyone, s0, s1)
+        else:
+            list(pool.map(lambda members: steps(members, s0, s1), batches))
+
+    try:
+        if progress is None:
+            advance(0, n_steps)
+        else:
+            chunk = max(n_steps // 100, 1)
+            for start in range(0, n_steps, chunk):
+                progress(start, n_steps)
+                advance(start, min(start + chunk, n_steps))
+            progress(n_steps, n_steps)
+    finally:
+        if pool is not None:
+            pool.shutdown()

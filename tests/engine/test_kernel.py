@@ -183,7 +183,7 @@ def test_compiled_kernel_loads_from_the_cache():
             "from engine.loops import numba_loop\n"
             "t = time.perf_counter()\n"
             "engine.simulate(np.zeros(10), 0.01, engine.Contact.bumper([0.3]), backend='numba')\n"
-            "stats = numba_loop._run_serial.stats\n"
+            "stats = numba_loop._run.stats\n"
             "print(time.perf_counter() - t, sum(stats.cache_hits.values()),\n"
             "      sum(stats.cache_misses.values()))\n")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
