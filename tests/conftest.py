@@ -61,7 +61,8 @@ def backend(request) -> str:
 
 # The longest files first (their measured share of the suite, warm, in s): pytest-xdist hands
 # whole files to whichever worker is free in collection order (--dist loadfile), so the many
-# short files then fill the gaps at the end instead of one long file running alone.
+# short files then fill the gaps. The files that run commands in subprocesses go last: by then
+# the compiled kernels are in the disk cache, and a subprocess loads instead of compiling.
 LONG_FIRST = ("tests/reference/test_references.py",        # 35
               "tests/engine/test_opensees.py",             # 34
               "tests/engine/test_plan_references.py",      # 34
@@ -69,17 +70,19 @@ LONG_FIRST = ("tests/reference/test_references.py",        # 35
               "tests/engine/test_plan.py",                 # 21
               "tests/studies/test_sweeps.py",              # 20
               "tests/studies/test_paper_conclusions.py",   # 19
-              "tests/engine/test_model_edges.py",          # 18
-              "tests/test_readme.py",                      # 16
-              "tests/pipeline/test_interrupt.py")          # 15
+              "tests/engine/test_model_edges.py")          # 18
+SUBPROCESSES_LAST = ("tests/pipeline/test_cluster.py", "tests/pipeline/test_tls.py",
+                     "tests/pipeline/test_interrupt.py", "tests/studies/test_cli.py",
+                     "tests/studies/test_bumpers_command.py", "tests/test_readme.py")
 
 
 def pytest_collection_modifyitems(config, items):
     rank = {name: i for i, name in enumerate(LONG_FIRST)}
+    rank.update({name: len(LONG_FIRST) + 2 + i for i, name in enumerate(SUBPROCESSES_LAST)})
     root = Path(str(config.rootpath))
 
     def key(item):
         path = Path(str(item.path)).relative_to(root).as_posix()
-        return rank.get(path, len(rank))
+        return rank.get(path, len(LONG_FIRST) + 1)
 
     items.sort(key=key)  # stable: the other files keep their order
