@@ -203,35 +203,34 @@ def _member(levels, pairs, circular, b, s0, s1, ag, dt, op, wall, story_k, mass,
         deepest = -1.0
         radius = math.hypot(u[0, 0], u[0, 1]) if circular else 0.0
         for d in range(n_walls):
-            if circular:
-                nrm_x, nrm_y = 1.0, 0.0
-                if radius > 0.0:
-                    nrm_x, nrm_y = u[0, 0] / max(radius, 1e-300), u[0, 1] / max(radius, 1e-300)
-                distance = radius
-                before = nrm_x * v[0, 0] + nrm_y * v[0, 1]
-                free = nrm_x * (0.5 * (v[0, 0] + nx[0, 0])) + nrm_y * (0.5 * (v[0, 1]
-                                                                               + nx[0, 1]))
-                which = 0
-                along = comp if not anisotropic else \
-                    comp * (nrm_x * nrm_x) + comp_y * (nrm_y * nrm_y)
-            else:
-                u0d, v0d, n0d = u[0, d], v[0, d], nx[0, d]
-                side = np.sign(u0d)
-                nrm_x, nrm_y = (side, 0.0) if d == 0 else (0.0, side)
-                distance = abs(u0d)
-                before = side * v0d
-                free = side * 0.5 * (v0d + n0d)
-                which = 2 * d if side > 0 else 2 * d + 1
-                along = comp if d == 0 else comp_y
+            # the distance to the wall first: the rest only where the slab touches it
+            distance = radius if circular else abs(u[0, d])
             delta = max(distance - gaps[d], -1.0)
             touching = delta > 0.0
-            new = touching and inside[d] == 0.0
-            if new:
-                n_imp += 1
-                v_imp[d] = before
-            inside[d] = 1.0 if touching else 0.0
             f_n[d] = 0.0
             if touching:
+                if circular:
+                    nrm_x, nrm_y = 1.0, 0.0
+                    if radius > 0.0:
+                        nrm_x, nrm_y = u[0, 0] / radius, u[0, 1] / radius
+                    before = nrm_x * v[0, 0] + nrm_y * v[0, 1]
+                    free = nrm_x * (0.5 * (v[0, 0] + nx[0, 0])) + nrm_y * (0.5 * (v[0, 1]
+                                                                                   + nx[0, 1]))
+                    which = 0
+                    along = comp if not anisotropic else \
+                        comp * (nrm_x * nrm_x) + comp_y * (nrm_y * nrm_y)
+                else:
+                    u0d, v0d, n0d = u[0, d], v[0, d], nx[0, d]
+                    side = np.sign(u0d)
+                    nrm_x, nrm_y = (side, 0.0) if d == 0 else (0.0, side)
+                    before = side * v0d
+                    free = side * 0.5 * (v0d + n0d)
+                    which = 2 * d if side > 0 else 2 * d + 1
+                    along = comp if d == 0 else comp_y
+                new = inside[d] == 0.0
+                if new:
+                    n_imp += 1
+                    v_imp[d] = before
                 force = _contact(codes[d], wall_par[b, d], delta, new, v_imp[d],
                                  delta_prev[d], free, along)
                 wfx -= nrm_x * force
@@ -239,6 +238,7 @@ def _member(levels, pairs, circular, b, s0, s1, ag, dt, op, wall, story_k, mass,
                 p_force = max(p_force, force)
                 pw[which] = max(pw[which], force)
                 f_n[d], n_x[d], n_y[d] = force, nrm_x, nrm_y
+            inside[d] = 1.0 if touching else 0.0
             delta_prev[d] = delta
             p_indent = max(p_indent, delta)
             deepest = max(deepest, delta)
