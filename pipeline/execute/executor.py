@@ -102,7 +102,9 @@ def _run_on_dask(store: Store, batches: list[Batch], workers: int, scheduler,
         dask.subscribe_topic(topic, on_event)
         futures = {}
         try:
-            accel = {r: dask.scatter(np.asarray(records[r].accel), hash=False)
+            # On every worker: a record held by one worker only is lost with it, and every
+            # batch of that record with it ("cancelled: already forgotten"); a record is small.
+            accel = {r: dask.scatter(np.asarray(records[r].accel), hash=False, broadcast=True)
                      for r in sorted({b.record for b in batches})}
             for batch in batches:
                 function, args = store.task(batch)
