@@ -12,8 +12,7 @@ already computed (numpy + scipy only):
     fit_stripes    multiple-stripe analysis: event counts per intensity level, binomial MLE
     fit_ida        incremental dynamic analysis: each record's intensity at the event,
                    lognormal MLE, right-censored records that never reach it
-    fit_outcomes   either fit from per-record boolean outcomes (R records x L levels)
-    event_weights  record weights so that no earthquake dominates the fit
+    (fit_outcomes and event_weights, from per-record outcomes: pipeline.fragility_outcomes)
 
 Each returns a frozen :class:`Fragility`; degenerate data (the event never or always happens,
 beta not identifiable, a median outside the tested levels) are said in its `status` and
@@ -24,7 +23,7 @@ structural analysis. Earthquake Spectra 31(1), 579-599. doi:10.1193/021113EQS025
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 from scipy import optimize, special
@@ -430,88 +429,3 @@ def _finish(theta, beta, log_lik, lo, hi, notes, res, base) -> Fragility:
                      **base)
 
 
-def fit_outcomes(levels, outcomes, weights=None, method: str = "stripes") -> Fragility:
-    """Fragility from per-record outcomes at each intensity level.
-
-    levels: (L,) intensities x_j > 0, distinct (IM units; any order, sorted here).
-    outcomes: (R, L) bool, outcomes[i, j] whether record i had the event at level j; or float
-        with nan where record i was not run at level j (an IDA stopped early, a failed run).
-    weights: (R,) record weights >= 0 (default 1; see :func:`event_weights`).
-    method: "stripes": weighted counts per level into :func:`fit_stripes`. "ida": each
-        record's capacity is the first level with the event into :func:`fit_ida`, censored at
-        its highest level run when it never has it.
-
-    A record whose event occurs at a level but not at a higher one ("resurrection", common in
-    pounding: a stronger record can move the building so that it misses the wall) is
-    non-monotonic. Stripes use every outcome as it is; IDA takes the first occurrence. Either
-    way the result counts such records in n_nonmonotonic.
-
-    The IDA capacity is the first level with the event, an upper bound: the event occurred
-    somewhere between the previous level and it. With levels a ratio r apart this biases theta
-    up by a factor up to r (about sqrt(r) on average); use fine levels or the stripes.
-    """
-    x, y, w = _outcome_arrays(levels, outcomes, weights)
-    ran = ~np.isnan(y)
-    hit = ran & (y > 0.5)
-    n_nonmono = int(np.count_nonzero(_nonmonotonic(hit, ran)))
-    if method == "stripes":
-        fit = fit_stripes(x, w @ hit, w @ ran)
-    elif method == "ida":
-        fit = _fit_outcomes_ida(x, hit, ran, w)
-    else:
-        raise ValueError(f"method must be 'stripes' or 'ida', got {method!r}")
-    return replace(fit, n_nonmonotonic=n_nonmono)
-
-
-def _outcome_arrays(levels, outcomes, weights):
-    """Validated (x (L,), y (R, L) float with nan = not run, w (R,)), levels increasing."""
-    x = np.atleast_1d(np.asarray(levels, dtype=float))
-    y = np.asarray(outcomes, dtype=float)
-    if y.ndim != 2 or y.shape[1] != x.size:
-        raise ValueError(f"outcomes must be (R, {x.size}), got shape {y.shape}")
-    if x.ndim != 1 or not np.all(np.isfinite(x) & (x > 0)):
-        raise ValueError("levels must be 1-D, finite and > 0")
-    if np.unique(x).size != x.size:
-        raise ValueError("levels must be distinct")
-    w = np.ones(y.shape[0]) if weights is None else np.asarray(weights, dtype=float)
-    if w.shape != (y.shape[0],) or not np.all(np.isfinite(w) & (w >= 0)):
-        raise ValueError(f"weights must be ({y.shape[0]},), finite and >= 0")
-    order = np.argsort(x)
-    return x[order], y[:, order], w
-
-
-def _nonmonotonic(hit, ran):
-    """(R,) bool: records with the event at some level and, run, without it at a higher one.
-    hit, ran: (R, L) bool, levels increasing."""
-    seen = np.cumsum(hit, axis=1) > 0
-    return np.any(seen & ran & ~hit, axis=1)
-
-
-def _fit_outcomes_ida(x, hit, ran, w) -> Fragility:
-    """fit_ida on the first level with the event of each record (x (L,), hit and ran (R, L)),
-    censored at the highest level run; records never run are left out."""
-    any_run = np.any(ran, axis=1)
-    first = np.argmax(hit, axis=1)
-    last_run = x.size - 1 - np.argmax(ran[:, ::-1], axis=1)
-    cens = ~np.any(hit, axis=1)
-    cap = np.where(cens, x[last_run], x[first])
-    fit = fit_ida(cap[any_run], w[any_run], censored=cens[any_run], min_level=x[0])
-    return replace(fit, n_levels=int(x.size))
-
-
-def event_weights(event_ids) -> np.ndarray:
-    """(R,) record weights so that every earthquake counts equally, from event_ids (R,) (any
-    hashable labels, e.g. earthquake names or ids; records of one earthquake share one).
-
-    w_i = 1 / (records sharing record i's earthquake), normalised to sum to R: each of the E
-    earthquakes weighs R / E in total, and the weights keep the scale of unit weights (the
-    counts of fit_stripes stay comparable to numbers of records). FEMA P695 limits its record
-    sets to two records per earthquake so that no event dominates; weighting keeps all the
-    records instead. The fits are then weighted pseudo-likelihoods (see fit_stripes).
-    """
-    ids = np.asarray(event_ids)
-    if ids.ndim != 1:
-        raise ValueError(f"event_ids must be 1-D, got shape {ids.shape}")
-    _, inverse, counts = np.unique(ids, return_inverse=True, return_counts=True)
-    w = 1.0 / counts[inverse.ravel()]
-    return w * (ids.size / np.sum(w))

@@ -85,7 +85,7 @@ def code_suite(pairs, names, building, rule: str = "asce7", s_ms: float = SITE["
     docstring). Pairs the rule excludes (factor limits) are dropped and listed in
     .scaled.excluded."""
     from pipeline.code_scaling import asce7_isolated, fema_p695
-    from pipeline.fragility import event_weights
+    from pipeline.fragility_outcomes import event_weights
     from pipeline.target import asce7_target, isolation_design
 
     if rule not in RULES:

@@ -123,7 +123,7 @@ PEAK_NAMES = ("peak_isolator_disp", "max_impact_force", "max_indentation", "n_im
 def _dataset(suite, levels, fractions, gaps, peaks, args):
     from engine.results import quantity
     from pipeline.archive import labelled_dataset, variable
-    from pipeline.fragility import fit_outcomes
+    from pipeline.fragility_outcomes import fit_outcomes
     from pipeline.validity import FLAGS, Limits, code_story_capacity, flags, shape_factor
 
     building = args.building

@@ -7,14 +7,8 @@ import numpy as np
 import pytest
 from scipy import stats
 
-from pipeline.fragility import (
-    BETA_BOUNDS,
-    Fragility,
-    event_weights,
-    fit_ida,
-    fit_outcomes,
-    fit_stripes,
-)
+from pipeline.fragility import BETA_BOUNDS, Fragility, fit_ida, fit_stripes
+from pipeline.fragility_outcomes import event_weights, fit_outcomes
 
 THETA, BETA = 1.3, 0.4
 """The synthetic fragility: median 1.3 (IM units, e.g. m/s^2), log standard deviation 0.4."""

@@ -7,21 +7,22 @@ import pytest
 
 from pipeline.outcomes import weighted_quantiles
 from studies import _design_search as search
+from studies import _design_space as space
 from studies import design
 from studies._recipe import verdicts
 from tests.helpers import assert_udunits, run_recipe
 
 # --------------------------------------------------------------------- hand-made tables
 
-BOUNDS = search.Bounds(gap=0.20, clearance=0.10, usable_strain=0.6, wall_length=100.0)
+BOUNDS = space.Bounds(gap=0.20, clearance=0.10, usable_strain=0.6, wall_length=100.0)
 """Loose bounds for the tables below: the bumpers may protrude 10 cm, c/t up to 0.4."""
 AXES = {"thickness": (0.04, 0.06, 0.08), "cavity_ratio": (0.0, 0.1, 0.2),
         "n_bumpers": (4, 8, 16), "shape_factor": (0.6, 0.8, 1.0), "wall_k": (5e8, 1e9, 2e9)}
 
 
 def table_of(axes=AXES) -> dict:
-    mesh = np.meshgrid(*(np.asarray(axes[v], float) for v in search.VARIABLES), indexing="ij")
-    return {v: m.ravel() for v, m in zip(search.VARIABLES, mesh, strict=True)}
+    mesh = np.meshgrid(*(np.asarray(axes[v], float) for v in space.VARIABLES), indexing="ij")
+    return {v: m.ravel() for v, m in zip(space.VARIABLES, mesh, strict=True)}
 
 
 def at(table, **config) -> int:
@@ -32,7 +33,7 @@ def at(table, **config) -> int:
 
 
 def centre(axes=AXES) -> dict:
-    return {v: axes[v][1] for v in search.VARIABLES}
+    return {v: axes[v][1] for v in space.VARIABLES}
 
 
 def test_an_optimum_inside_the_grid_is_interior():
@@ -54,7 +55,7 @@ def test_an_optimum_at_the_grids_edge_is_named_and_may_lie_beyond():
 
 def test_an_optimum_on_a_physical_bound_names_it():
     # 8 cm bumpers without cavity protrude 8 cm: the most a 14 cm gap leaves beyond 6 cm
-    tight = search.Bounds(gap=0.14, clearance=0.06, usable_strain=0.6, wall_length=100.0)
+    tight = space.Bounds(gap=0.14, clearance=0.06, usable_strain=0.6, wall_length=100.0)
     table = table_of()
     best = at(table, **{**centre(), "thickness": 0.08, "cavity_ratio": 0.0})
     found = search.nature(table, best, tight)
@@ -82,7 +83,7 @@ def test_a_tie_at_a_bound_is_indifferent_and_a_failing_neighbour_an_active_const
 
 
 def test_bounds_from_physical_limits():
-    b = search.Bounds(gap=0.131, clearance=0.048, usable_strain=0.589, wall_length=18.0)
+    b = space.Bounds(gap=0.131, clearance=0.048, usable_strain=0.589, wall_length=18.0)
     limits = b.limits({"thickness": 0.10, "cavity_ratio": 0.2, "n_bumpers": 8,
                        "shape_factor": 0.5, "wall_k": 1.5e9})
     assert limits["thickness"][1][0] == pytest.approx(0.083 / 0.8)  # t (1 - c/t) <= room
@@ -91,13 +92,13 @@ def test_bounds_from_physical_limits():
     # the neighbours stop at a bound, exactly on it
     config = {"thickness": 0.10, "cavity_ratio": 0.4, "n_bumpers": 8, "shape_factor": 0.5,
               "wall_k": 2.5e9}
-    near = search.neighbours(config, 0, b)
+    near = space.neighbours(config, 0, b)
     up = near["cavity_ratio"] > 0.4
     assert near["cavity_ratio"][up].tolist() == [pytest.approx(0.411)]
     assert not np.any(near["wall_k"] > 2.5e9) and not np.any(near["shape_factor"] < 0.5)
-    assert all(b.allows(search.row(near, i)) for i in range(near["thickness"].size))
-    assert search.usable_strain(0.8, None) == 0.8
-    assert search.usable_strain(0.8, 30.9e6) == pytest.approx(0.589, abs=1e-3)
+    assert all(b.allows(space.row(near, i)) for i in range(near["thickness"].size))
+    assert space.usable_strain(0.8, None) == 0.8
+    assert space.usable_strain(0.8, 30.9e6) == pytest.approx(0.589, abs=1e-3)
 
 
 # ---------------------------------------------------------------- constraints, ranking
@@ -122,17 +123,17 @@ def test_constraints_filter_known_numbers():
         fraction_contact=[[0.0, 0.1, 0.0, 0.0], zero, zero],
         fraction_hurt=[zero, [0.0, 0.0, 0.3, 0.0], zero],
         fraction_valid=[zero, zero, [1.0] * 4])
-    new = search.judge(stats, search.Criteria(), [4] * 4, [1.5e9] * 4)
+    new = search.judge(stats, space.Criteria(), [4] * 4, [1.5e9] * 4)
     # 1: contact at the service level; 2 and 3: within limits under < 84%
     assert new["feasible"].tolist() == [True, False, False, False]
     assert new["rank"].tolist() == [1, 0, 0, 0]
     assert new["margins"]["within_limits"] == pytest.approx([0.06, 0.06, -0.04, -0.34])
     # the old criteria (uncrushed only, the service level free) admit 2 as well: it wins
-    old = search.judge(stats, search.Criteria("median", stress_limit=False, service_contact=1.0),
+    old = search.judge(stats, space.Criteria("median", stress_limit=False, service_contact=1.0),
                        [4] * 4, [1.5e9] * 4)
     assert old["rank"].tolist() == [3, 2, 1, 0]
     # hurt at the design level under at most 20%: 2 is out again; p84 as the objective
-    capped = search.judge(stats, search.Criteria(stress_limit=False, service_contact=1.0,
+    capped = search.judge(stats, space.Criteria(stress_limit=False, service_contact=1.0,
                                                  hurt_design=0.2, objective="p84"),
                           [4] * 4, [1.5e9] * 4)
     assert capped["rank"].tolist() == [2, 1, 0, 0]
@@ -170,7 +171,7 @@ def test_archive(archive):
     ds = archive
     assert ds.peak_floor_accel.dims == ("record", "level", "candidate")
     assert ds.reference_peak_floor_accel.dims == ("record", "level", "reference")
-    assert ds.sizes["record"] == len(search.QUICK_PAIRS) and ds.sizes["level"] == 3
+    assert ds.sizes["record"] == len(space.QUICK_PAIRS) and ds.sizes["level"] == 3
     assert set(np.unique(ds.stage.values)) == {0, 1}
     assert_udunits(ds)
     # the statistics are the per-pair values', weighted per earthquake
@@ -203,7 +204,7 @@ def test_choice_is_the_best_feasible_and_its_nature_is_reported(archive):
     chosen = int(ds.attrs["chosen_candidate"])
     assert chosen >= 0 and int(ds["rank"][chosen]) == 1
     feasible = ds.feasible.values.astype(bool)
-    margins = np.array([ds[f"margin_{c}"].values for c in search.CRITERIA])
+    margins = np.array([ds[f"margin_{c}"].values for c in space.CRITERIA])
     np.testing.assert_array_equal(feasible, np.all(margins >= -1e-12, axis=0))
     assert ds.objective.values[chosen] == ds.objective.values[feasible].min()
     assert np.all(ds["rank"].values[~feasible] == 0)
@@ -218,7 +219,7 @@ def test_choice_is_the_best_feasible_and_its_nature_is_reported(archive):
     for b in nature["bounds"]:
         assert b["kind"] in ("physical", "grid") and (b["kind"] == "grid") != bool(b["why"])
     # the stress limit matters: re-judged without it (the old criterion), more candidates pass
-    old = search.rejudge(ds, search.Criteria(stress_limit=False, service_contact=1.0))
+    old = search.rejudge(ds, space.Criteria(stress_limit=False, service_contact=1.0))
     assert old["feasible"].sum() > feasible.sum()
 
 

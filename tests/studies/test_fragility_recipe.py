@@ -10,7 +10,7 @@ import pytest
 import engine
 from engine.units import G
 from pipeline.errors import resolve_pairs
-from pipeline.fragility import fit_outcomes
+from pipeline.fragility_outcomes import fit_outcomes
 from pipeline.validity import RUBBER_STRESS_LIMIT
 from studies import fragility
 from studies._code_suite import code_suite
