@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import engine
-from pipeline.outcomes import TOLERANCE, weighted_quantiles
+from pipeline.outcomes import TOLERANCE, judged, weighted_quantiles
 from pipeline.validity import ACCEL_LIMIT, FLAGS, Limits
 from studies import suite
 from studies._recipe import verdicts
@@ -91,7 +91,7 @@ def test_verdict_table_states_quantifiers_and_validity(archive):
         if v["verdict"] == "not tested":
             continue
         n = v["numbers"]
-        assert suite.judged(n["quantifier"], n["held_weight"], n["counted_weight"]) \
+        assert judged(n["quantifier"], n["held_weight"], n["counted_weight"]) \
             == (v["verdict"] == "agrees")
         assert 0 <= n["runs_outside_range"] <= n["runs"]
         assert f"{n['runs_outside_range']} of {n['runs']} runs" in v["finding"]

@@ -1,0 +1,103 @@
+"""What studies.suite's archive holds and how its verdicts and figure read it: the bumpers'
+crush limit, the configurations' variable prefixes, the responses, the outcomes, the
+quantifiers' wording, and the accessors (a response with or without bumpers, contact, runs
+outside the model's range, the runs a case counts). Shared by suite.py, _suite_verdicts.py
+and _suite_figure.py."""
+from __future__ import annotations
+
+import numpy as np
+
+from engine.impact import LAWS
+from pipeline.outcomes import ALMOST_EVERY
+
+from ._paper import THICKNESS
+
+_BUMPER = LAWS["bumper"].PARAMETERS  # the paper's bumpers: the law's own area and strain
+
+
+AREA, STRAIN = _BUMPER.area.default, _BUMPER.strain.default
+
+
+DELTA_U = STRAIN * THICKNESS
+"""m: the crush limit of the paper's bumpers, 0.8 x 5 cm (no cavity)."""
+
+
+PREFIX = {"bumpers": "", "bare": "bare_", "free": "free_"}
+"""Archive prefix of each configuration's variables: bumpers, the bare wall, no wall."""
+
+
+RESPONSES = {
+    "base_accel": "peak base (isolation level) acceleration",
+    "floor_accel": "largest peak floor acceleration (base included)",
+    "interstory_drift": "largest peak interstory deflection",
+}
+
+
+OUTCOMES = ("helped", "neutral", "hurt", "no_contact")
+
+
+QUANTIFIER_TEXT = {
+    "every": "at every counted case", "most": "at more than half the counted cases where it "
+    "changes", "almost every": f"at {ALMOST_EVERY:.0%} at least of the counted cases where "
+    "it changes", "some": "at one counted case at least"}
+
+
+def response(ds, name: str, config: str = "bumpers"):
+    """The response `name` (RESPONSES, or "upper_accel": the largest over the floors above the
+    base) of a configuration's runs."""
+    prefix = PREFIX[config]
+    accel = ds[prefix + "peak_total_accel"]
+    return {"base_accel": lambda: accel.isel(floor=0),
+            "floor_accel": lambda: accel.max("floor"),
+            "upper_accel": lambda: accel.isel(floor=slice(1, None)).max("floor"),
+            "interstory_drift": lambda: ds[prefix + "peak_interstory_drift"].max("story"),
+            }[name]()
+
+
+def contact(ds):
+    """(record, level, gap_fraction, n_bumpers, wall_k) bool: the bumpers or the bare wall at
+    the same gap are hit."""
+    return (ds.n_impacts > 0) | (ds.bare_n_impacts > 0)
+
+
+def outside(ds, config: str):
+    """A configuration's runs outside the model's range (any invalid_* flag): a bool
+    DataArray over the configuration's dims."""
+    from functools import reduce
+
+    from pipeline.validity import FLAGS
+
+    prefix = PREFIX[config]
+    return reduce(lambda a, b: a | b, [ds[prefix + name].astype(bool) for name in FLAGS])
+
+
+def _weights(w, shape):
+    """(R,) weights broadcast over (R, ...)."""
+    return np.broadcast_to(np.reshape(w, (-1,) + (1,) * (len(shape) - 1)), shape)
+
+
+POINT = ("record", "level", "gap_fraction")  # a case: one pair at one level and gap
+
+
+def runs(ds, n=None, k=None) -> dict:
+    """One configuration's runs over (record, level, gap_fraction) as arrays: the bumpers (n,
+    k) or, with n None, the bare wall. Keys: base, upper, floor, drift (responses), force,
+    indentation, hit (bool), outside (name of the flag -> bool), outside_any (bool)."""
+    from pipeline.validity import FLAGS
+
+    config = "bare" if n is None else "bumpers"
+    at = {} if n is None else {"n_bumpers": n, "wall_k": k}
+    prefix = PREFIX[config]
+
+    def get(value):
+        return value.sel(**at).transpose(*POINT).values
+
+    out = {key: get(response(ds, name, config)) for key, name in (
+        ("base", "base_accel"), ("upper", "upper_accel"), ("floor", "floor_accel"),
+        ("drift", "interstory_drift"))}
+    out["force"] = get(ds[prefix + "max_impact_force"])
+    out["indentation"] = get(ds[prefix + "max_indentation"])
+    out["hit"] = get(ds[prefix + "n_impacts"]) > 0
+    out["outside"] = {name: get(ds[prefix + name]).astype(bool) for name in FLAGS}
+    out["outside_any"] = np.any(list(out["outside"].values()), axis=0)
+    return out
