@@ -16,7 +16,7 @@ from studies import _paper as paper
 STUDIES = Path(__file__).resolve().parents[2] / "studies"
 SHARED = {"__init__", "_paper", "_plot", "_recipe", "_peaks_vs_gap", "_suite_records",
           "_code_suite", "_design_search", "_design_space", "_design_archive",
-          "_suite_archive", "_suite_verdicts", "_suite_figure"}
+          "_suite_archive", "_suite_verdicts", "_suite_figure", "_plan_verdicts"}
 
 
 def test_practical_bumper_is_the_laws_default():

@@ -8,6 +8,7 @@ import pytest
 import xarray as xr
 
 import engine
+from pipeline.outcomes import judged
 from pipeline.records import load_pair, pair_accel
 from studies import plan
 from tests.helpers import assert_udunits, run_recipe
@@ -160,7 +161,7 @@ def test_verdict_counting():
 
 
 def test_quantifiers():
-    assert plan.judged("every", 3, 3) and not plan.judged("every", 2, 3)
-    assert plan.judged("some", 1, 9) and not plan.judged("some", 0, 9)
-    assert plan.judged("most", 2, 3) and not plan.judged("most", 1, 2)
-    assert plan.judged("most", 0, 0) is None
+    assert judged("every", 3, 3) and not judged("every", 2, 3)
+    assert judged("some", 1, 9) and not judged("some", 0, 9)
+    assert judged("most", 2, 3) and not judged("most", 1, 2)
+    assert judged("most", 0, 0) is None
