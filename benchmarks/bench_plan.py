@@ -7,14 +7,17 @@ The paper's building, the bare linear wall at 20 cm (a square moat in plan), a F
 0.5 ms, one thread: ns per member-step at B = 1 and B = 1024, planar and in plan, the plan /
 planar cost ratio (the issue's target: at most 2.5), and OpenSeesPy's 3D model of the same
 building (tests/reference/opensees_plan.py) for one, whose ratio to the kernel at B = 1 is the
-speed-up per core (target: at least 100). Medians of --repeats runs. Writes
-benchmarks/results/bench_plan.json.
+speed-up per core (target: at least 100). Medians of --repeats runs, planar and plan
+interleaved; the plan / planar ratio is the median of the ratios of each round's pair of runs.
+Writes benchmarks/results/bench_plan.json.
 """
 from __future__ import annotations
 
 import argparse
 import json
+import statistics
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -56,14 +59,20 @@ def main(argv=None) -> int:
 
     planar(1), plan(1)  # compile, or load from the cache
     row = {}
-    for name, run in (("planar", planar), ("plan", plan)):
-        row[f"{name}_ns_per_step_b1"] = median_time(lambda r=run: r(1), args.repeats) \
-            / steps * 1e9
-        row[f"{name}_ns_per_member_step_b1024"] = median_time(
-            lambda r=run: r(1024), args.repeats) / (1024 * steps) * 1e9
-    row["plan_over_planar_b1"] = row["plan_ns_per_step_b1"] / row["planar_ns_per_step_b1"]
-    row["plan_over_planar_b1024"] = (row["plan_ns_per_member_step_b1024"]
-                                     / row["planar_ns_per_member_step_b1024"])
+    for size, key in ((1, "b1"), (1024, "b1024")):
+        # planar and plan interleaved, round by round: the machine's load changes between
+        # rounds, and a ratio of two runs made side by side cancels most of it
+        times = {"planar": [], "plan": []}
+        for _ in range(args.repeats):
+            for name, run in (("planar", planar), ("plan", plan)):
+                start = time.perf_counter()
+                run(size)
+                times[name].append(time.perf_counter() - start)
+        for name in times:
+            unit = "ns_per_step" if size == 1 else "ns_per_member_step"
+            row[f"{name}_{unit}_{key}"] = statistics.median(times[name]) / (size * steps) * 1e9
+        row[f"plan_over_planar_{key}"] = statistics.median(
+            p / q for p, q in zip(times["plan"], times["planar"]))
     print(f"{PAIR}, {SECONDS:g} s at {DT * 1e3:g} ms ({steps} steps), linear walls at "
           f"{GAP * 100:g} cm, the paper's building, one thread")
     print(f"{'':>8} {'B=1 ns/step':>12} {'B=1024 ns/member-step':>22}")

@@ -41,9 +41,23 @@ from .compiled import (
     radial_return,
     slip_limit,
 )
-from .numba_support import install_cache_locator, run_members, stack_doubles
+from .numba_support import (
+    add2,
+    data_pointer,
+    div2,
+    install_cache_locator,
+    load_pair,
+    max2,
+    mul2,
+    run_members,
+    stack_doubles,
+    store_pair,
+    sub2,
+)
 
 install_cache_locator(Path(__file__), [compiled.__file__, *PHYSICS_FILES])
+
+
 
 # Per-member scalars, and per wall direction: the clear gap, then the law's arguments.
 (_COMPLIANCE, _COMPLIANCE_Y, _ANISOTROPIC, _MU_WALL, _K_ELASTIC, _K_SLIP, _F_LIMIT, _SLOW_DROP,
@@ -53,8 +67,8 @@ _N_WALL_PAR = _LAW_ARGS + len(LAW_ARGUMENTS)
 # State carried between chunks: the isolator's slip force (x, y), then per wall direction its
 # impact velocity, previous indentation and contact flag.
 _FPX, _FPY, _WALL_STATE = 0, 1, 2
-# Scalar float peaks: resultant isolator displacement (squared while running), indentation,
-# force, energy.
+# Scalar float peaks: resultant isolator displacement (squared while running, as every
+# displacement and acceleration peak: run_plan roots them), indentation, force, energy.
 _P_ISO, _P_INDENT, _P_FORCE, _P_ENERGY = range(4)
 
 
@@ -95,12 +109,14 @@ def _member(levels, pairs, circular, b, s0, s1, ag, dt, op, wall, story_k, mass,
     """Steps s0 <= step < s1 of member b (see the module docstring). Like the planar kernel,
     the member's state lives in scalars and arrays on the stack while it runs, each level's x
     and y side by side (a last axis of 2, as the operators: op (2L, L, 2), the operator along
-    x and along y transposed, wall (L, 2), story_k (L - 1, 2)), so that the compiler pairs the
-    two directions' identical arithmetic; resultant peaks are kept squared (the square root of
-    the largest square is the largest root, bit for bit; run_plan roots them at the end)."""
+    x and along y transposed, wall (L, 2), story_k (L - 1, 2)), and the two directions'
+    identical arithmetic done on pairs, both lanes at once (numba_support.add2 and kin). Peaks
+    are kept squared, per direction and resultant: the square root of the largest square is
+    the largest magnitude, bit for bit (sqrt(x * x) == |x| in binary floating point), and
+    run_plan roots them at the end."""
     n_levels = len(levels)
     n_st = n_levels - 1
-    ot = op[b]
+    ot = carray(data_pointer(op[b]), (2 * n_levels, n_levels, 2))
     w = wall[b]
     ks = story_k[b]
     m = mass[b]
@@ -152,7 +168,6 @@ def _member(levels, pairs, circular, b, s0, s1, ag, dt, op, wall, story_k, mass,
     fs = carray(stack_doubles(pairs), (n_levels, 2))
     pd2 = carray(stack_doubles(levels), (n_levels,))
     pd = carray(stack_doubles(pairs), (n_levels, 2))
-    a = carray(stack_doubles(pairs), (2,))
     for i in range(n_levels):
         for e in range(2):
             u[i, e], v[i, e] = u_all[b, i, e], v_all[b, i, e]
@@ -165,37 +180,28 @@ def _member(levels, pairs, circular, b, s0, s1, ag, dt, op, wall, story_k, mass,
         pd2[i] = peak_story[b, i]
 
     for step in range(s0, s1):
-        a[0] = cs * ag[step, 0] - sn * ag[step, 1]
-        a[1] = sn * ag[step, 0] + cs * ag[step, 1]
-        c[0, 0] = k_el * u[0, 0] + fpx
-        c[0, 1] = k_el * u[0, 1] + fpy
+        acc = (cs * ag[step, 0] - sn * ag[step, 1], sn * ag[step, 0] + cs * ag[step, 1])
+        store_pair(c, 0, add2(mul2((k_el, k_el), load_pair(u, 0)), (fpx, fpy)))
         for i in range(n_st):
-            for e in range(2):
-                dr[i, e] = u[i + 1, e] - u[i, e]
+            drift = sub2(load_pair(u, i + 1), load_pair(u, i))
+            store_pair(dr, i, drift)
             if stories_yield:
-                for e in range(2):
-                    c[i + 1, e] = k_post[i] * dr[i, e] + fs[i, e]
+                store_pair(c, i + 1, add2(mul2((k_post[i], k_post[i]), drift), load_pair(fs, i)))
             else:
-                for e in range(2):
-                    c[i + 1, e] = ks[i, e] * dr[i, e]
+                store_pair(c, i + 1, mul2(load_pair(ks, i), drift))
         for i in range(n_st):
-            for e in range(2):
-                r[i, e] = (c[i + 1, e] - c[i, e]) - m[i] * a[e]
-        for e in range(2):
-            r[n_st, e] = (0.0 - c[n_st, e]) - m[n_st] * a[e]
+            store_pair(r, i, sub2(sub2(load_pair(c, i + 1), load_pair(c, i)), mul2((m[i], m[i]), acc)))
+        store_pair(r, n_st, sub2(sub2((0.0, 0.0), load_pair(c, n_st)), mul2((m[n_st], m[n_st]), acc)))
         # Both directions through their operators (ot: transposed, by column, x and y side by
         # side), in the order of the planar kernel's sums.
         for i in range(n_levels):
-            for e in range(2):
-                nx[i, e] = ot[0, i, e] * r[0, e]
+            store_pair(nx, i, mul2(load_pair(ot[0], i), load_pair(r, 0)))
         for j in range(1, n_levels):
             for i in range(n_levels):
-                for e in range(2):
-                    nx[i, e] += ot[j, i, e] * r[j, e]
+                store_pair(nx, i, add2(load_pair(nx, i), mul2(load_pair(ot[j], i), load_pair(r, j))))
         for j in range(n_levels):
             for i in range(n_levels):
-                for e in range(2):
-                    nx[i, e] += ot[n_levels + j, i, e] * v[j, e]
+                store_pair(nx, i, add2(load_pair(nx, i), mul2(load_pair(ot[n_levels + j], i), load_pair(v, j))))
 
         # The moat: the force on the slab (wfx, wfy), towards the centre; one wall direction
         # (the circle's radius) or two (x, then y), each the same code, the law's once.
@@ -261,22 +267,21 @@ def _member(levels, pairs, circular, b, s0, s1, ag, dt, op, wall, story_k, mass,
             h_u[hrow, t, 0], h_u[hrow, t, 1] = u[0, 0], u[0, 1]
             h_f[hrow, t] = math.hypot(wfx, wfy)
             h_d[hrow, t] = max(deepest, 0.0)
-            for i in range(n_levels):
-                for e in range(2):
-                    h_acc[hrow, t, i, e] = (nx[i, e] - v[i, e]) / dt + a[e]
         for i in range(n_levels):
-            tx = (nx[i, 0] - v[i, 0]) / dt + a[0]
-            ty = (nx[i, 1] - v[i, 1]) / dt + a[1]
-            pa2[i] = max(pa2[i], tx * tx + ty * ty)
-            pa[i, 0] = max(pa[i, 0], abs(tx))
-            pa[i, 1] = max(pa[i, 1], abs(ty))
+            total = add2(div2(sub2(load_pair(nx, i), load_pair(v, i)), (dt, dt)), acc)
+            if keep:
+                h_acc[hrow, step // every, i, 0], h_acc[hrow, step // every, i, 1] = total
+            square = mul2(total, total)
+            store_pair(pa, i, max2(load_pair(pa, i), square))
+            pa2[i] = max(pa2[i], square[0] + square[1])
         for i in range(n_st):
-            pd2[i] = max(pd2[i], dr[i, 0] * dr[i, 0] + dr[i, 1] * dr[i, 1])
-            for e in range(2):
-                pd[i, e] = max(pd[i, e], abs(dr[i, e]))
-        p_iso2 = max(p_iso2, u[0, 0] * u[0, 0] + u[0, 1] * u[0, 1])
-        p_iso_x = max(p_iso_x, abs(u[0, 0]))
-        p_iso_y = max(p_iso_y, abs(u[0, 1]))
+            square = mul2(load_pair(dr, i), load_pair(dr, i))
+            store_pair(pd, i, max2(load_pair(pd, i), square))
+            pd2[i] = max(pd2[i], square[0] + square[1])
+        square = mul2(load_pair(u, 0), load_pair(u, 0))
+        p_iso2 = max(p_iso2, square[0] + square[1])
+        p_iso_x = max(p_iso_x, square[0])
+        p_iso_y = max(p_iso_y, square[1])
 
         # Advance: the slip elements see this step's increments, the isolator's limit at this
         # step's sliding speed |v|.
@@ -289,9 +294,8 @@ def _member(levels, pairs, circular, b, s0, s1, ag, dt, op, wall, story_k, mass,
                     fs[i, 0], fs[i, 1], dt * (nx[i + 1, 0] - nx[i, 0]),
                     dt * (nx[i + 1, 1] - nx[i, 1]), k_slip_story[i], f_limit_story[i])
         for i in range(n_levels):
-            for e in range(2):
-                v[i, e] = nx[i, e]
-                u[i, e] = u[i, e] + dt * nx[i, e]
+            store_pair(v, i, load_pair(nx, i))
+            store_pair(u, i, add2(load_pair(u, i), mul2((dt, dt), load_pair(nx, i))))
 
     for i in range(n_levels):
         for e in range(2):
@@ -396,7 +400,8 @@ def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, histor
     for i, name in enumerate(("peak_isolator_disp", "max_indentation", "max_impact_force",
                               "impact_energy")):
         peaks[name] = scalar[:, i].copy()
-    for name in ("peak_total_accel", "peak_interstory_drift", "peak_isolator_disp"):
+    for name in ("peak_total_accel", "peak_interstory_drift", "peak_isolator_disp",
+                 "peak_total_accel_xy", "peak_interstory_drift_xy", "peak_isolator_disp_xy"):
         peaks[name] = np.sqrt(peaks[name])  # kept squared by the kernel
     if history is None:
         return peaks, None

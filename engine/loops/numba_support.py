@@ -1,11 +1,14 @@
 """What the compiled loops need of numba beyond @njit: a disk cache keyed on the physics they
-compile, small arrays on the stack, and members run on threads. Nothing here is physics."""
+compile, small arrays on the stack (and views of a shape known when they compile), x and y in
+one register (lane-wise arithmetic on pairs), and members run on threads. Nothing here is
+physics."""
 from __future__ import annotations
 
 import hashlib
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
+from llvmlite import ir
 from numba.core import cgutils, types
 from numba.extending import intrinsic
 
@@ -54,6 +57,97 @@ def stack_doubles(typingctx, levels):
         return cgutils.alloca_once(builder, context.get_value_type(types.float64),
                                    size=context.get_constant(types.intp, count))
     return types.CPointer(types.float64)(levels), codegen
+
+
+@intrinsic
+def data_pointer(typingctx, arr):
+    """The address of a float64 array's first element: carray(data_pointer(a), shape) views a
+    contiguous `a` with a shape known when the kernel compiles, so that its elements sit at
+    constant offsets (an array's own shape is a run-time value, its strides held in
+    registers or reloaded from the stack)."""
+    if not isinstance(arr, types.Array) or arr.dtype != types.float64 or arr.layout != "C":
+        return None
+
+    def codegen(context, builder, signature, args):
+        return context.make_array(signature.args[0])(context, builder, args[0]).data
+    return types.CPointer(types.float64)(arr), codegen
+
+
+# Pairs: (x, y) as a tuple of two float64, the plan kernel's two directions. The operations
+# below act on both lanes in one instruction of the processor's vector unit: the same IEEE
+# operation per lane as the scalar expression, so the same bits, at half the instructions.
+# (numba switches LLVM's SLP vectoriser off, which would otherwise pair such code itself.)
+_PAIR = types.UniTuple(types.float64, 2)
+_LANES = (ir.Constant(ir.IntType(32), 0), ir.Constant(ir.IntType(32), 1))
+_VECTOR = ir.VectorType(ir.DoubleType(), 2)
+
+
+def _vector(builder, pair):
+    """The <2 x double> of a pair (LLVM folds the round trips between vectors and lanes)."""
+    vec = ir.Constant(_VECTOR, ir.Undefined)
+    for k, lane in enumerate(_LANES):
+        vec = builder.insert_element(vec, builder.extract_value(pair, k), lane)
+    return vec
+
+
+def _lanes(builder, vec):
+    return [builder.extract_element(vec, lane) for lane in _LANES]
+
+
+def _lanewise(name, operation, doc):
+    def typer(typingctx, p, q):
+        if p != _PAIR or q != _PAIR:
+            return None
+
+        def codegen(context, builder, signature, args):
+            out = operation(builder, *(_vector(builder, pair) for pair in args))
+            return context.make_tuple(builder, _PAIR, _lanes(builder, out))
+        return _PAIR(_PAIR, _PAIR), codegen
+    typer.__name__ = typer.__qualname__ = name
+    typer.__doc__ = doc
+    return intrinsic(typer)
+
+
+add2 = _lanewise("add2", lambda b, p, q: b.fadd(p, q), "(p[0] + q[0], p[1] + q[1]).")
+sub2 = _lanewise("sub2", lambda b, p, q: b.fsub(p, q), "(p[0] - q[0], p[1] - q[1]).")
+mul2 = _lanewise("mul2", lambda b, p, q: b.fmul(p, q), "(p[0] * q[0], p[1] * q[1]).")
+div2 = _lanewise("div2", lambda b, p, q: b.fdiv(p, q), "(p[0] / q[0], p[1] / q[1]).")
+max2 = _lanewise("max2", lambda b, p, q: b.select(b.fcmp_ordered(">", q, p), q, p),
+                 "(max(p[0], q[0]), max(p[1], q[1])), as numba's max(acc, value) decides: the "
+                 "value where it is greater, else the accumulator (a NaN value is passed over).")
+
+
+@intrinsic
+def load_pair(typingctx, arr, i):
+    """Row i of a C-contiguous (n, 2) float64 array as a pair, in one load (no bounds check)."""
+    if not (isinstance(arr, types.Array) and arr.dtype == types.float64 and arr.ndim == 2
+            and arr.layout == "C" and isinstance(i, types.Integer)):
+        return None
+
+    def codegen(context, builder, signature, args):
+        return context.make_tuple(builder, _PAIR, _lanes(builder, builder.load(
+            _row_address(context, builder, signature.args[0], *args))))
+    return _PAIR(arr, i), codegen
+
+
+@intrinsic
+def store_pair(typingctx, arr, i, pair):
+    """Row i of a C-contiguous (n, 2) float64 array set to a pair, in one store."""
+    if not (isinstance(arr, types.Array) and arr.dtype == types.float64 and arr.ndim == 2
+            and arr.layout == "C" and isinstance(i, types.Integer) and pair == _PAIR):
+        return None
+
+    def codegen(context, builder, signature, args):
+        builder.store(_vector(builder, args[2]),
+                      _row_address(context, builder, signature.args[0], args[0], args[1]))
+        return context.get_dummy_value()
+    return types.none(arr, i, pair), codegen
+
+
+def _row_address(context, builder, array_type, arr, i):
+    data = context.make_array(array_type)(context, builder, arr).data
+    first = builder.gep(data, [builder.mul(i, ir.Constant(i.type, 2))])
+    return builder.bitcast(first, _VECTOR.as_pointer())
 
 
 def run_members(size: int, n_steps: int, progress, steps) -> None:
