@@ -72,7 +72,7 @@ def main(argv=None) -> int:
             unit = "ns_per_step" if size == 1 else "ns_per_member_step"
             row[f"{name}_{unit}_{key}"] = statistics.median(times[name]) / (size * steps) * 1e9
         row[f"plan_over_planar_{key}"] = statistics.median(
-            p / q for p, q in zip(times["plan"], times["planar"]))
+            p / q for p, q in zip(times["plan"], times["planar"], strict=True))
     print(f"{PAIR}, {SECONDS:g} s at {DT * 1e3:g} ms ({steps} steps), linear walls at "
           f"{GAP * 100:g} cm, the paper's building, one thread")
     print(f"{'':>8} {'B=1 ns/step':>12} {'B=1024 ns/member-step':>22}")

@@ -1,16 +1,18 @@
 """The compiled time loop in plan (numba): numpy_plan.py's step, member by member.
 
-The building moves in x and y (state arrays with a last axis of directions), with its step
-operator along x and along y (the same arrays for isotropic stories); the isolator's and the
-yielding stories' slip elements return radially (isolators/hysteresis.radial_return, the same
-function the NumPy loop calls); the moat is two wall directions (rectangular: x and y, each
-wall on the side the slab moves towards) or one (circular: along the slab's radius), every
-impact law along the wall's normal through the laws' own `force_terms` (the planar kernel's
-dispatch), and the slab-wall friction along the wall, solved as numpy_plan._friction solves it.
-The dense step operator serves every height here (the planar kernel's banded solve above 12
-levels is not used in plan yet). Agrees with the NumPy plan loop to round-off; like the planar
-kernel, a member's result never depends on its batch or on threads. Members run on threads of
-this process (the kernel releases the GIL; numba_support.run_members), as the planar kernel's.
+The building moves in x and y (state arrays with a last axis of directions, the two directions'
+identical arithmetic on pairs, both in one vector register: numba_support.add2 and kin, the
+same bits as two scalar operations), with its step operator along x and along y (the same
+arrays for isotropic stories); the isolator's and the yielding stories' slip elements return
+radially (isolators/hysteresis.radial_return, the same function the NumPy loop calls); the moat
+is two wall directions (rectangular: x and y, each wall on the side the slab moves towards) or
+one (circular: along the slab's radius), every impact law along the wall's normal through the
+laws' own `force_terms` (the planar kernel's dispatch), and the slab-wall friction along the
+wall, solved as numpy_plan._friction solves it. The dense step operator serves every height
+here (the planar kernel's banded solve above 12 levels is not used in plan yet). Agrees with
+the NumPy plan loop to round-off; like the planar kernel, a member's result never depends on
+its batch or on threads. Members run on threads of this process (the kernel releases the GIL;
+numba_support.run_members), as the planar kernel's.
 """
 from __future__ import annotations
 
@@ -56,8 +58,6 @@ from .numba_support import (
 )
 
 install_cache_locator(Path(__file__), [compiled.__file__, *PHYSICS_FILES])
-
-
 
 # Per-member scalars, and per wall direction: the clear gap, then the law's arguments.
 (_COMPLIANCE, _COMPLIANCE_Y, _ANISOTROPIC, _MU_WALL, _K_ELASTIC, _K_SLIP, _F_LIMIT, _SLOW_DROP,
@@ -186,22 +186,27 @@ def _member(levels, pairs, circular, b, s0, s1, ag, dt, op, wall, story_k, mass,
             drift = sub2(load_pair(u, i + 1), load_pair(u, i))
             store_pair(dr, i, drift)
             if stories_yield:
-                store_pair(c, i + 1, add2(mul2((k_post[i], k_post[i]), drift), load_pair(fs, i)))
+                store_pair(c, i + 1, add2(mul2((k_post[i], k_post[i]), drift),
+                                          load_pair(fs, i)))
             else:
                 store_pair(c, i + 1, mul2(load_pair(ks, i), drift))
         for i in range(n_st):
-            store_pair(r, i, sub2(sub2(load_pair(c, i + 1), load_pair(c, i)), mul2((m[i], m[i]), acc)))
-        store_pair(r, n_st, sub2(sub2((0.0, 0.0), load_pair(c, n_st)), mul2((m[n_st], m[n_st]), acc)))
+            store_pair(r, i, sub2(sub2(load_pair(c, i + 1), load_pair(c, i)),
+                                  mul2((m[i], m[i]), acc)))
+        store_pair(r, n_st, sub2(sub2((0.0, 0.0), load_pair(c, n_st)),
+                                 mul2((m[n_st], m[n_st]), acc)))  # the free roof
         # Both directions through their operators (ot: transposed, by column, x and y side by
         # side), in the order of the planar kernel's sums.
         for i in range(n_levels):
             store_pair(nx, i, mul2(load_pair(ot[0], i), load_pair(r, 0)))
         for j in range(1, n_levels):
             for i in range(n_levels):
-                store_pair(nx, i, add2(load_pair(nx, i), mul2(load_pair(ot[j], i), load_pair(r, j))))
+                store_pair(nx, i, add2(load_pair(nx, i),
+                                       mul2(load_pair(ot[j], i), load_pair(r, j))))
         for j in range(n_levels):
             for i in range(n_levels):
-                store_pair(nx, i, add2(load_pair(nx, i), mul2(load_pair(ot[n_levels + j], i), load_pair(v, j))))
+                store_pair(nx, i, add2(load_pair(nx, i),
+                                       mul2(load_pair(ot[n_levels + j], i), load_pair(v, j))))
 
         # The moat: the force on the slab (wfx, wfy), towards the centre; one wall direction
         # (the circle's radius) or two (x, then y), each the same code, the law's once.
