@@ -135,7 +135,8 @@ def law_blocks(contact: Contact):
     """Order members by law so that each law runs on a contiguous view.
 
     Returns (order, blocks): `contact[order]` is the sorted batch and `blocks` lists
-    (slice into the sorted batch, law module, that block's Contact).
+    (slice into the sorted batch, law module, that block's law_arguments), the arguments
+    gathered once rather than at every step of a time loop.
     """
     order = np.argsort(contact.law, kind="stable")
     law = contact.law[order]
@@ -144,7 +145,7 @@ def law_blocks(contact: Contact):
         idx = np.flatnonzero(law == code)
         if idx.size:
             block = slice(idx[0], idx[-1] + 1)
-            blocks.append((block, module, contact[order[block]]))
+            blocks.append((block, module, law_arguments(contact[order[block]])))
     return order, blocks
 
 
@@ -155,6 +156,6 @@ def law_arguments(p: Contact) -> tuple:
 
 def fill_force_terms(blocks, delta, delta_dot, v_imp, elastic, dashpot):
     """Evaluate every law on its block of the sorted batch into elastic and dashpot, (B,)."""
-    for block, module, params in blocks:
+    for block, module, arguments in blocks:
         elastic[block], dashpot[block] = module.force_terms(
-            delta[block], delta_dot[block], v_imp[block], *law_arguments(params))
+            delta[block], delta_dot[block], v_imp[block], *arguments)
