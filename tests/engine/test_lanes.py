@@ -64,6 +64,20 @@ def test_rows_load_and_store_whole_through_a_compile_time_view():
     np.testing.assert_array_equal(run(a), a[1] * [2.0, 3.0])
 
 
+def test_rows_need_no_more_than_a_float64s_alignment():
+    @njit
+    def run(a):
+        for i in range(a.shape[0]):
+            store_pair(a, i, add2(load_pair(a, i), (1.0, 2.0)))
+
+    buffer = np.zeros(7)
+    start = 1 if buffer.ctypes.data % 16 == 0 else 0
+    shifted = buffer[start:start + 6].reshape(3, 2)
+    assert shifted.ctypes.data % 16 == 8 and shifted.flags.c_contiguous  # not 16-aligned
+    run(shifted)
+    np.testing.assert_array_equal(shifted, [[1.0, 2.0]] * 3)
+
+
 def test_pairs_refuse_what_they_do_not_hold():
     @njit
     def wrong(a):
