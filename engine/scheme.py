@@ -101,8 +101,9 @@ def banded_operators(b: BuildingArrays, dt: float) -> np.ndarray | None:
 
 
 def checked_record(accel, accel_dt: float, dt: float) -> tuple[np.ndarray, int]:
-    """The record as a float array, and the number of steps of dt it spans."""
-    accel = np.ascontiguousarray(accel, dtype=float)
+    """The record as a float array, and the number of steps of dt it spans. Always writable:
+    the compiled loop types a read-only array apart and would compile once more for it."""
+    accel = np.require(accel, dtype=float, requirements=["C", "W"])
     if accel.ndim != 1 or accel.size < 2:
         raise EngineError(f"accel must be a 1-D record with at least 2 samples, got {accel.shape}")
     if not np.all(np.isfinite(accel)):

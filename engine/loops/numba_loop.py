@@ -414,7 +414,9 @@ def run_two_body(contact, v, dt, m_eff, max_steps):
     size = len(contact)
     law = np.ascontiguousarray(contact.law, dtype=np.int64)
     par = np.ascontiguousarray(np.column_stack([getattr(contact, f) for f in LAW_ARGUMENTS]))
-    v, dt, m_eff = (np.ascontiguousarray(x, dtype=np.float64) for x in (v, dt, m_eff))
+    # writable copies: a read-only array is another type to numba, another compilation
+    v, dt, m_eff = (np.require(x, dtype=np.float64, requirements=["C", "W"])
+                    for x in (v, dt, m_eff))
     out = np.zeros((size, 4))
     stops = np.zeros(size, dtype=np.int64)
     _two_body(law, par, v, dt, m_eff, -max_steps, np.zeros((size, 0)), np.zeros((size, 0)),
