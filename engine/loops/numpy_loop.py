@@ -64,6 +64,7 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
     v_imp = np.ones(size)
     delta_prev = np.zeros(size)
     in_contact = np.zeros(size, dtype=bool)
+    no_force = np.zeros(size)  # read only
 
     peaks = empty_peaks(size, n_levels)
     peak_accel, peak_drift = peaks["peak_total_accel"], peaks["peak_interstory_drift"]
@@ -109,14 +110,17 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
         # The impact velocity is the approach rate just before the contact force acts.
         v_imp = np.where(new, side * v_half[:, 0], v_imp)
         in_contact = touching
-        rate_free = side * 0.5 * (v_half[:, 0] + v_next[:, 0])
-        fill_force_terms(blocks, delta, rate_free, v_imp, elastic, dashpot)
-        # A dashpot that is already loaded at first touch (Kelvin-Voigt) would push for the
-        # whole step; weight it by the part after the touch (impact.onset_weight).
-        np.multiply(dashpot, onset_weight(delta, delta_prev), out=dashpot, where=new)
+        force = no_force  # most steps nobody touches: the laws need not run
+        if touching.any():
+            rate_free = side * 0.5 * (v_half[:, 0] + v_next[:, 0])
+            fill_force_terms(blocks, delta, rate_free, v_imp, elastic, dashpot)
+            # A dashpot that is already loaded at first touch (Kelvin-Voigt) would push for
+            # the whole step; weight it by the part after the touch (impact.onset_weight).
+            np.multiply(dashpot, onset_weight(delta, delta_prev), out=dashpot, where=new)
+            force = np.where(touching, implicit_force(elastic, dashpot, rate_free, compliance),
+                             0.0)
+            v_next -= wall_response * (side * force)[:, None]
         delta_prev = delta
-        force = np.where(touching, implicit_force(elastic, dashpot, rate_free, compliance), 0.0)
-        v_next -= wall_response * (side * force)[:, None]
 
         total_accel = (v_next - v_half) / dt + a[:, None]
         np.maximum(peak_accel, np.abs(total_accel), out=peak_accel)

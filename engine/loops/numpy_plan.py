@@ -64,13 +64,15 @@ class _Wall:
         new = touching & ~self.in_contact
         self.v_imp = np.where(new, rate_before[o], self.v_imp)
         self.in_contact = touching
-        fill_force_terms(self.blocks, delta, rate_free[o], self.v_imp, self.elastic,
-                         self.dashpot)
-        np.multiply(self.dashpot, onset_weight(delta, self.delta_prev), out=self.dashpot,
-                    where=new)
+        force = np.zeros_like(delta)
+        if touching.any():  # most steps nobody touches: the laws need not run
+            fill_force_terms(self.blocks, delta, rate_free[o], self.v_imp, self.elastic,
+                             self.dashpot)
+            np.multiply(self.dashpot, onset_weight(delta, self.delta_prev), out=self.dashpot,
+                        where=new)
+            force = np.where(touching, implicit_force(self.elastic, self.dashpot,
+                                                      rate_free[o], compliance[o]), 0.0)
         self.delta_prev = delta
-        force = np.where(touching, implicit_force(self.elastic, self.dashpot, rate_free[o],
-                                                  compliance[o]), 0.0)
         i = self.inverse
         return force[i], delta[i], new[i]
 
