@@ -188,6 +188,12 @@ class Building:
         return float(np.sum(self.masses))
 
     @property
+    def isolation_dashpot(self) -> float:
+        """N s/m: the isolation level's dashpot under damping="paper", 2 zeta_iso sqrt(k_0 M)."""
+        return float(2 * self.isolation_zeta * np.sqrt(self.isolator_stiffness
+                                                        * self.total_mass))
+
+    @property
     def yield_displacement(self) -> float:
         """Isolator displacement at which it starts to yield or slide (m): u_y = Fy / K1 for
         the bilinear law, Fy = fy_ratio * g * total mass."""
@@ -220,8 +226,7 @@ class Building:
     def damping_matrix(self) -> np.ndarray:
         """(L, L) viscous damping matrix, N*s/m, per the `damping` choice."""
         if self.damping == "paper":
-            c_iso = 2 * self.isolation_zeta * np.sqrt(self.isolator_stiffness
-                                                      * self.total_mass)
+            c_iso = self.isolation_dashpot
             omega_1 = self.fixed_base_omega1()
             c_story = 2 * self.zeta_sup * np.asarray(self.story_stiffness) / omega_1
             return _chain_matrix(np.concatenate([[c_iso], c_story]))

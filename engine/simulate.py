@@ -134,8 +134,8 @@ def _simulate_plan(accel, accel_dt, contact, building, dt, history, progress, ba
     arrays_y = _arrays_along_y(building, size)
     contacts = (contact, contact if contact_y is None else contact_y) \
         if moat == "rectangular" else (contact,)
-    limit = np.min([stability_limit(a, c) for c in contacts
-                    for a in (arrays, *([arrays_y] if arrays_y is not None else []))], axis=0)
+    directions = (arrays,) if arrays_y is None else (arrays, arrays_y)
+    limit = np.min([stability_limit(a, c) for c in contacts for a in directions], axis=0)
     worst = int(np.argmin(limit))
     if dt >= limit[worst]:
         raise UnstableTimeStep(f"dt = {dt:g} s is unstable: the central-difference limit is "

@@ -277,8 +277,7 @@ def _dashpot(building) -> float:
     if building.damping != "paper":
         raise ValueError("dashpot=True needs damping='paper' (one isolation dashpot); with "
                          "modal damping there is none to count")
-    return 2 * building.isolation_zeta * math.sqrt(building.isolator_stiffness
-                                                   * building.total_mass)
+    return building.isolation_dashpot
 
 
 def _positive(**values) -> None:

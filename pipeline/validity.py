@@ -25,10 +25,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from engine.impact.laws import rubber_bumper
 from engine.units import G
 
-RUBBER_STRESS_LIMIT = 0.2e3 / 1e-3**2.65 * (0.8 * 0.010) ** 2.65 / 0.040**2
-"""Pa: the calibration test's stress at its crush strain (see the module docstring), 30.9 MPa."""
+_RUBBER = rubber_bumper.PARAMETERS
+RUBBER_STRESS_LIMIT = _RUBBER["k_r"].default * _RUBBER["strain"].default ** _RUBBER["n"].default
+"""Pa: the calibration test's static stress at its crush strain, K_r 0.8^n (the bumper law's
+declared rubber; see the module docstring), 30.9 MPa."""
 ACCEL_LIMIT = 5.0 * G
 """m/s^2: the largest floor acceleration the rigid-floor shear building represents."""
 
@@ -59,7 +62,7 @@ def code_story_capacity(design, building, r_i: float = 2.0, overstrength: float 
     Applied to every story (the first carries the most)."""
     v_b = design.k_m * design.d_m
     masses = np.asarray(building.masses, float)
-    share = (masses[1:].sum() / masses.sum()) ** (1 - 2.5 * design.beta_m)
+    share = (masses[1:].sum() / building.total_mass) ** (1 - 2.5 * design.beta_m)
     return float(overstrength * v_b * share / r_i)
 
 

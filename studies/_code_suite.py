@@ -73,10 +73,6 @@ class CodeSuite:
     rule: str
     site: dict
 
-    def factors_at(self, level: float) -> np.ndarray:
-        """(R,) factors at a fraction of the MCE_R."""
-        return self.factors * level
-
 
 def code_suite(pairs, names, building, rule: str = "asce7", s_ms: float = SITE["s_ms"],
                s_m1: float = SITE["s_m1"], t_long: float = SITE["t_long"],

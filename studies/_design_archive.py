@@ -74,7 +74,7 @@ def dataset(search: Search, references: dict, rounds: int, args):
                                  "peak floor acceleration at the MCE_R")
     data["rank"] = variable("candidate", judged["rank"], "1", "rank among the feasible "
                             "candidates (1 = chosen; 0 = infeasible)")
-    best = search.best()
+    best = search.best(judged)
     chosen = best if judged["feasible"][best] else -1
     found = nature(table, best, search.bounds, fails=_fails(judged),
                    scores=np.column_stack([judged["objective"], judged["secondary"]]))

@@ -28,12 +28,6 @@ from ._design_space import (
 assert tuple(LEVELS) == ("service", "design", "MCE_R")
 
 
-# ----------------------------------------------------------------------------- command line
-
-
-# ------------------------------------------------------------------------ the search's bounds
-
-
 # ---------------------------------------------------------------------- running the members
 
 
@@ -281,10 +275,10 @@ class Search:
         return {"stats": stats, **judge(stats, self.criteria, self.table["n_bumpers"],
                                         self.table["wall_k"])}
 
-    def best(self) -> int:
+    def best(self, judged: dict | None = None) -> int:
         """The best feasible candidate, else the closest to feasible (least total shortfall,
-        then the objective)."""
-        j = self.judged()
+        then the objective); judged: self.judged() if already at hand."""
+        j = self.judged() if judged is None else judged
         if np.any(j["rank"] == 1):
             return int(np.flatnonzero(j["rank"] == 1)[0])
         return int(np.lexsort((j["objective"], j["shortfall"]))[0])

@@ -13,11 +13,7 @@ from pipeline.outcomes import ALMOST_EVERY
 from ._paper import THICKNESS
 
 _BUMPER = LAWS["bumper"].PARAMETERS  # the paper's bumpers: the law's own area and strain
-
-
 AREA, STRAIN = _BUMPER.area.default, _BUMPER.strain.default
-
-
 DELTA_U = STRAIN * THICKNESS
 """m: the crush limit of the paper's bumpers, 0.8 x 5 cm (no cavity)."""
 

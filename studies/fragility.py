@@ -24,13 +24,13 @@ import json
 
 import numpy as np
 
-from engine.impact import LAWS
 from engine.units import CM, G
 
 from ._code_suite import archive_variables, code_suite, describe, site_options
 from ._paper import N_BUMPERS, THICKNESS
 from ._plot import plt
 from ._recipe import Recipe, Verdict
+from ._suite_archive import AREA, STRAIN
 
 LEVELS = (0.5, 0.75, 1.0, 1.25, 1.5, 1.75, 2.0, 2.5)
 """Intensity levels, fractions of the MCE_R target (1 = MCE_R, 2/3 = the design level)."""
@@ -41,8 +41,6 @@ BUMPER_COUNTS = (N_BUMPERS, 32)
 """Bumpers per wall of the configurations (the paper's 4, and Fig. 19's 32, which section 5.4
 says stay within the crush limit), each 5 cm thick."""
 BARRIERS = ("bare wall", *(f"{n} bumpers" for n in BUMPER_COUNTS))
-_BUMPER = LAWS["bumper"].PARAMETERS  # the paper's bumpers: the law's area and crush strain
-AREA, STRAIN = _BUMPER.area.default, _BUMPER.strain.default
 ACCEL_THRESHOLD = 1.0 * G
 """m/s^2: a floor acceleration an isolated building is not designed for (isolation keeps its
 floors near 0.3-0.5 g at the MCE_R: the paper's building, 0.51 g median without wall) and that
@@ -124,7 +122,14 @@ def _dataset(suite, levels, fractions, gaps, peaks, args):
     from engine.results import quantity
     from pipeline.archive import labelled_dataset, variable
     from pipeline.fragility_outcomes import fit_outcomes
-    from pipeline.validity import FLAGS, Limits, code_story_capacity, flags, shape_factor
+    from pipeline.validity import (
+        FLAGS,
+        Limits,
+        bumper_stress,
+        code_story_capacity,
+        flags,
+        shape_factor,
+    )
 
     building = args.building
     capacity = code_story_capacity(suite.design, building)
@@ -166,7 +171,7 @@ def _dataset(suite, levels, fractions, gaps, peaks, args):
     for name, value in flagged.items():
         data[name] = variable(dims, by_config(value).astype(np.int8), "1",
                               f"1 where {FLAGS[name]} ({limits.describe()})")
-    stress = by_config(peaks["max_impact_force"] / (_bumper_counts(n_gaps) * AREA))
+    stress = by_config(bumper_stress(peaks["max_impact_force"], _bumper_counts(n_gaps), AREA))
     stress[..., 0] = np.nan  # the bare wall has no bumpers
     data["bumper_stress"] = variable(dims, stress, "Pa", "mean contact stress on each bumper "
                                      "at the largest impact force (NaN: no bumpers)")

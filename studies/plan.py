@@ -316,12 +316,6 @@ def underestimates(ds) -> dict:
     return summary
 
 
-
-
-# Each rule: (holds, counted, amplification) over (record, angle, gap_fraction), counted only
-# where the bumpers were run (`fit`) and the walls are hit as the claim says.
-
-
 def check(ds) -> list[Verdict]:
     """Section 4 / 5.1 at the paper's gap (bumpers can reduce the peak floor acceleration
     against the bare wall), then the paper's conclusions on the gap size over every gap

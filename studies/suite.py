@@ -234,7 +234,7 @@ def assemble(grid: Grid, peaks: dict, names, weights, building, limits):
     bumpers' contact stress and the statistics (add_statistics)."""
     from engine.results import quantity
     from pipeline.archive import labelled_dataset, variable
-    from pipeline.validity import FLAGS, flags, shape_factor
+    from pipeline.validity import FLAGS, bumper_stress, flags, shape_factor
 
     data = {}
     for config, prefix in PREFIX.items():
@@ -254,8 +254,8 @@ def assemble(grid: Grid, peaks: dict, names, weights, building, limits):
             data[prefix + name] = variable(DIMS[config], value.astype(np.int8), "1",
                                            f"1 where {FLAGS[name]} ({CONFIG_TEXT[config]})")
     data["bumper_stress"] = variable(
-        DIMS["bumpers"], peaks["bumpers"]["max_impact_force"]
-        / (np.array(grid.counts, float)[:, None] * AREA), "Pa",
+        DIMS["bumpers"], bumper_stress(peaks["bumpers"]["max_impact_force"],
+                                       np.array(grid.counts, float)[:, None], AREA), "Pa",
         f"mean contact stress on each bumper ({AREA * 1e6:g} mm2) at the largest impact force")
     data["record_weight"] = variable("record", np.asarray(weights, float), "1",
                                      "the pair's weight: 1 / the pairs of the same earthquake, "
@@ -388,12 +388,6 @@ def _quantiles(amp, keep, w) -> np.ndarray:
             out[(r, slice(None), *cell)] = weighted_quantiles(
                 amp[(r, slice(None), *cell)][k], np.asarray(w)[k], QUANTILES)
     return out
-
-
-# --- The paper's conclusions, each with its quantifier. ---
-
-
-# --- The figure. ---
 
 
 recipe = Recipe(

@@ -42,7 +42,7 @@ def _brute_rotd(ux: np.ndarray, uy: np.ndarray, period: float) -> tuple[float, f
 
 def test_displacement_matches_lsim(pair):
     """The batched recurrence equals scipy.signal.lsim (first-order hold, state space) at
-    short to long periods, both components, to 1e-6 of the peak (it is ~1e-13)."""
+    short to long periods, both components, to 1e-10 of the peak (measured: 8e-13 at 8 s)."""
     accel, dt = pair
     periods = np.array([0.04, 0.3, 1.0, 3.0, 8.0])
     u = spectra.response(accel, dt, periods)
@@ -51,7 +51,7 @@ def test_displacement_matches_lsim(pair):
         for c in range(2):
             ref = sdof_displacement(accel[:, c], dt, period)
             np.testing.assert_allclose(u[p, :, c], ref, rtol=0,
-                                       atol=1e-6 * np.max(np.abs(ref)))
+                                       atol=1e-10 * np.max(np.abs(ref)))
 
 
 def test_starts_from_rest_under_a_jump():
