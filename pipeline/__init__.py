@@ -33,7 +33,7 @@ def _sweep(records, *, impact: str = "bumper", dt: float | None = None, workers:
            scheduler=None, out=None, baseline: bool = False, unconstrained: bool = False,
            building=None, m_eff: float | None = None, batch_size: int | None = None,
            records_dir=None, quiet: bool = False, work_dir=None, force: bool = False,
-           moat: str | None = None, **parameters):
+           moat: str | None = None, factors=None, **parameters):
     """Simulate every combination of the parameters under every record; label the peaks.
 
     records: paper keys ("kobe", "sylmar_converter", "olive_view", "pacoima"), library names,
@@ -87,6 +87,12 @@ def _sweep(records, *, impact: str = "bumper", dt: float | None = None, workers:
         between slab and wall. The archive then also holds the per-direction peaks (*_xy,
         dimension `direction`) and the largest force per wall (`wall`); peak_* are
         resultants. The same walls on every side (a square or circular moat).
+    level (-, any run; swept like any parameter): the intensity, a factor multiplying every
+        record's ground acceleration (engine.simulate's scale); the baseline and unconstrained
+        blocks repeat per level. factors: None, or (R,) positive factors (-), one per record,
+        multiplying each record's acceleration on top of the level (a code suite's MCE_R
+        factors): a member runs at factor x level (level 1 when not given). The archive then
+        has a `level` coordinate and `record_factor` along record.
     force: replace an existing `out` that holds another sweep. Without it such an archive is
         kept and SweepError raised before any compute; an archive of this very sweep (the
         same records, dt, building, members and engine: its `configuration_key` attribute)
@@ -115,11 +121,13 @@ def _sweep(records, *, impact: str = "bumper", dt: float | None = None, workers:
             raise SweepError(f"moat must be one of {MOATS} (or None: planar), got {moat!r}")
     grid = make_grid(impact=impact, isolator=building.isolation.law, m_eff=m_eff,
                      baseline=baseline, unconstrained=unconstrained, plan=moat is not None,
-                     **given)
+                     intensity=factors is not None, **given)
     arguments = {**given, "impact": impact, "baseline": baseline,
                  "unconstrained": unconstrained, "m_eff": grid.m_eff, "moat": moat}
-    return _execute(grid, records, dt, workers, scheduler, out, building, batch_size,
-                    records_dir, quiet, arguments, work_dir, force, moat)
+    return _execute(grid, records, arguments, dt=dt, workers=workers, scheduler=scheduler,
+                    out=out, building=building, batch_size=batch_size,
+                    records_dir=records_dir, quiet=quiet, work_dir=work_dir, force=force,
+                    moat=moat, factors=factors)
 
 
 def _completed_sweep():
@@ -151,21 +159,25 @@ def unconstrained_peaks(records, dt: float | None = None, building=None, workers
     from .grid import make_grid
 
     grid = make_grid(None, unconstrained=True)
-    ds = _execute(grid, records, dt, workers, scheduler, None, building, None, records_dir,
-                  quiet, {"unconstrained_only": True}, work_dir)
+    ds = _execute(grid, records, {"unconstrained_only": True}, dt=dt, workers=workers,
+                  scheduler=scheduler, building=building, records_dir=records_dir, quiet=quiet,
+                  work_dir=work_dir)
     prefix = "unconstrained_"
     return ds.rename({name: name[len(prefix):] for name in ds.data_vars
                       if name.startswith(prefix)})
 
 
-def _execute(grid, records, dt, workers, scheduler, out, building, batch_size, records_dir,
-             quiet, arguments, work_dir=None, force=False, moat=None):
-    """Check the rest of the input, open the store (.zarr: Zarr; else NetCDF), run, finish."""
+def _execute(grid, records, arguments: dict, *, dt=None, workers: int = 1, scheduler=None,
+             out=None, building=None, batch_size=None, records_dir=None, quiet: bool = False,
+             work_dir=None, force: bool = False, moat: str | None = None, factors=None):
+    """Check the rest of the input, open the store (.zarr: Zarr; else NetCDF), run, finish.
+    arguments: the call's, stored in the archive; the rest as `sweep` takes them."""
     import engine
 
     from .errors import SweepError, check_building, check_count, resolve_pairs, resolve_records
     from .execute.batches import default_batch_size
     from .execute.executor import execute
+    from .execute.run import Run
     from .grid import check_dt
     from .provenance import plain
     from .writing import check_out, guard
@@ -181,23 +193,25 @@ def _execute(grid, records, dt, workers, scheduler, out, building, batch_size, r
         recs, names = resolve_records(records, records_dir)
     else:
         recs, names = resolve_pairs(records, records_dir)
+    factors = _factors(factors, len(recs))
     if batch_size is None:
         batch_size = default_batch_size(grid.n_members, len(recs), workers)
     batch_size = check_count("batch_size", batch_size, minimum=1)
     out = check_out(out)
-    arguments = plain({**arguments, "records": names, "dt": dt})
+    arguments = plain({**arguments, "records": names, "dt": dt,
+                       **({} if factors is None else {"factors": factors})})
+    run = Run(recs, names, dt, building, moat, factors, arguments)
     new_store = None
     if out is not None and out.suffix == ".zarr":
         from .execute.zarr_store import ZarrStore
 
         # the outermost folder this run creates, removed again if no batch runs
         new_store = next((p for p in reversed((out, *out.parents)) if not p.exists()), None)
-        store = ZarrStore(grid, recs, names, dt, building, arguments, out, batch_size, force,
-                          moat)
+        store = ZarrStore(grid, run, out, batch_size, force)
     else:
         from .execute.netcdf_store import NetCDFStore
 
-        store = NetCDFStore(grid, recs, names, dt, building, arguments, out, work_dir, moat)
+        store = NetCDFStore(grid, run, out, work_dir)
         if out is not None:
             guard(out, store.key, force, "force=True (--force)")
     try:
@@ -210,6 +224,28 @@ def _execute(grid, records, dt, workers, scheduler, out, building, batch_size, r
             shutil.rmtree(new_store, ignore_errors=True)
         raise
     return store.finish()
+
+
+def _factors(factors, n_records: int):
+    """(R,) float intensity factors of the records, or None; SweepError for anything but R
+    positive finite numbers."""
+    import numpy as np
+
+    from .errors import SweepError
+
+    if factors is None:
+        return None
+    try:
+        array = np.asarray(factors, dtype=float)
+    except (TypeError, ValueError):
+        raise SweepError(f"factors must be {n_records} numbers, one per record, got "
+                         f"{factors!r}") from None
+    if array.shape != (n_records,):
+        raise SweepError(f"factors must be {n_records} numbers, one per record, got shape "
+                         f"{array.shape}")
+    if not np.all(np.isfinite(array) & (array > 0)):
+        raise SweepError(f"factors must be positive and finite (-), got {array.tolist()}")
+    return array
 
 
 def scale_to_displacement(records, displacement: float | None = None,

@@ -18,10 +18,9 @@ import xarray as xr
 import engine
 from engine.impact import LAWS
 from engine.isolators import LAWS as ISOLATOR_LAWS
-from engine.plan import PLAN_PARAMETERS
 from engine.results import DIRECTIONS, PEAKS, PLAN_PEAKS, WALLS, Quantity, level_axes
 
-from .grid import ISOLATOR_PARAMS, Grid, baseline_text, swept_parameter
+from .grid import EXCITATION_PARAMETERS, ISOLATOR_PARAMS, Grid, baseline_text, swept_parameter
 from .provenance import attributes, plan_attributes
 from .writing import Staged
 
@@ -187,8 +186,8 @@ def parameter_coords(grid: Grid) -> dict:
         if name in ISOLATOR_PARAMS:  # replaces the building's own value (building_isolator_*)
             param = ISOLATOR_LAWS[grid.isolator].PARAMETERS.swept()[name]
             units, long_name = param.units, f"{param.meaning} ({param.equation})"
-        elif name in PLAN_PARAMETERS:
-            param = PLAN_PARAMETERS[name]
+        elif name in EXCITATION_PARAMETERS:
+            param = EXCITATION_PARAMETERS[name]
             units, long_name = param.units, param.meaning
         else:
             units, long_name = parameter_meta(grid.impact, name)
@@ -199,19 +198,20 @@ def parameter_coords(grid: Grid) -> dict:
     return coords
 
 
-def build_dataset(grid: Grid, records, results: list[dict[str, np.ndarray]] | None, dt: float,
-                  building: engine.Building, names: list[str],
-                  arguments: dict | None = None, chunks=None,
-                  moat: str | None = None) -> xr.Dataset:
+def build_dataset(grid: Grid, run, results: list[dict[str, np.ndarray]] | None,
+                  chunks=None) -> xr.Dataset:
     """Label the per-record peak arrays of a sweep (each (M, ...), the grid's member order)
     as its Dataset.
 
-    records: the Record objects run, named `names` in the record coordinate. results=None
-    builds a template instead (pipeline.execute.zarr_store): every peak a lazy dask array of
-    fill values (NaN, -1 for counts), chunks(block) giving the chunk sizes over its swept
-    dims, and no amplification ratios. moat: the moat of a run in plan (records are then
-    pipeline.records.RecordPair): PLAN_PEAKS too, with direction and wall coordinates.
+    run: what the members ran under (pipeline.execute.run.Run: the records, named in the
+    record coordinate, their factors, dt, the building, the moat). results=None builds a
+    template instead (pipeline.execute.zarr_store): every peak a lazy dask array of fill
+    values (NaN, -1 for counts), chunks(block) giving the chunk sizes over its swept dims, and
+    no amplification ratios. A run in plan (records are then pipeline.records.RecordPair):
+    PLAN_PEAKS too, with direction and wall coordinates. Records with intensity factors: the
+    coordinate record_factor.
     """
+    records, building, moat = run.records, run.building, run.moat
     quantities = PEAKS if moat is None else (*PEAKS, *PLAN_PEAKS)
     data_vars = {}
     start = 0
@@ -233,9 +233,13 @@ def build_dataset(grid: Grid, records, results: list[dict[str, np.ndarray]] | No
             peaks[q.name] = values.reshape(len(records), *block.shape, *values.shape[2:])
         data_vars.update(peak_variables(peaks, ("record", *block.dims), block.prefix,
                                         quantities))
-    coords = {**record_coords(records, names), **level_coords(building.n_levels),
+    coords = {**record_coords(records, run.names), **level_coords(building.n_levels),
               **parameter_coords(grid), **({} if moat is None else plan_coords(moat))}
-    attrs = attributes(grid, records, names, dt, building, arguments)
+    if run.factors is not None:
+        coords["record_factor"] = variable(
+            "record", np.asarray(run.factors, dtype=float), "1", "the record's intensity "
+            "factor: a member's ground acceleration is the record's times this times its level")
+    attrs = attributes(grid, records, run.names, run.dt, building, run.arguments)
     if moat is not None:
         attrs.update(plan_attributes(moat))
     ds = labelled_dataset(data_vars, coords, attrs)

@@ -37,6 +37,7 @@ import numpy as np
 import engine
 from engine.impact import LAWS, M_EFF, NO_WALL
 from engine.isolators import LAWS as ISOLATOR_LAWS
+from engine.parameters import Parameter
 from engine.plan import PLAN_PARAMETERS
 
 from .errors import PlausibilityWarning, SweepError
@@ -60,7 +61,18 @@ assert not set(ISOLATOR_PARAMS) & set(PARAMS), "isolator and wall parameters sha
 PLAN_PARAMS = tuple(PLAN_PARAMETERS)
 """The parameters of runs in plan only: the record pair's incidence angle (degrees) and the
 slab-wall friction coefficient mu_wall (engine.plan.PLAN_PARAMETERS)."""
-DIMENSIONS = (*PLAN_PARAMS, *PARAMS, *ISOLATOR_PARAMS)
+LEVEL = Parameter("level", "1", "intensity level: the factor multiplying every record's "
+                  "ground acceleration (times the record's own factor when the sweep is given "
+                  "factors, e.g. a code suite's MCE_R factors)", 1.0, "(0, inf)",
+                  sweep="level", plausible="(0, 50]")
+"""A member's intensity (engine.simulate's scale, divided by its record's factor): swept like
+the angle, the baseline and unconstrained blocks repeated per level. Members carry it only
+when the sweep is given levels or record factors (NaN otherwise: the record as it is)."""
+EXCITATION_PARAMETERS = {"level": LEVEL, **PLAN_PARAMETERS}
+"""What excites a member beside its record, by sweep name: the intensity level (any run), the
+incidence angle and the wall friction (runs in plan)."""
+EXCITATION_PARAMS = tuple(EXCITATION_PARAMETERS)
+DIMENSIONS = (*EXCITATION_PARAMS, *PARAMS, *ISOLATOR_PARAMS)
 """Every sweep parameter, in the archive's dimension order (after record): the excitation's,
 the wall's, the isolator's."""
 
@@ -69,9 +81,9 @@ def declarations(name: str) -> dict:
     """Law -> its declaration (engine.parameters.Parameter) of sweep parameter `name`, for
     every law that takes it: the impact laws (IMPACT_LAWS order) for a wall parameter, the
     isolator laws for an isolator parameter; {"plan": its declaration} for a parameter of runs
-    in plan (angle, mu_wall)."""
-    if name in PLAN_PARAMS:
-        return {"plan": PLAN_PARAMETERS[name]}
+    in plan (angle, mu_wall); {"excitation": its declaration} for the level."""
+    if name in EXCITATION_PARAMS:
+        return {"plan" if name in PLAN_PARAMS else "excitation": EXCITATION_PARAMETERS[name]}
     laws = ISOLATOR_LAWS if name in ISOLATOR_PARAMS else {law: LAWS[law] for law in IMPACT_LAWS}
     return {law: module.PARAMETERS.swept()[name] for law, module in laws.items()
             if name in module.PARAMETERS.swept()}
@@ -86,10 +98,11 @@ UNIT_SLIPS = {"m": ("cm", 1e-2, "cm"), "N m-1": ("kN/mm", 1e6, "kn-mm"),
 
 MEMBER_DTYPE = np.dtype([("law", "U16"),
                          *((name, "f8") for name in (*PARAMS, "m_eff", *ISOLATOR_PARAMS,
-                                                     *PLAN_PARAMS))])
+                                                     *PLAN_PARAMS, "level"))])
 """One member: its wall law's name, the wall's sweep parameters (SI; NaN: unused by the law),
 m_eff kg, the isolator parameters that replace the building's (SI; NaN: the building's own),
-the parameters of a run in plan (angle degrees, mu_wall; NaN: a planar run)."""
+the parameters of a run in plan (angle degrees, mu_wall; NaN: a planar run), its intensity
+level (NaN: the record as it is)."""
 
 # The paper's bare wall, the reference of the amplification ratios (SPEC section 2 decision).
 BASELINE_LAW = "linear"
@@ -155,7 +168,7 @@ def swept_parameter(law: str, name: str):
 
 def make_grid(gap=None, *, impact: str = "bumper", isolator: str = "bilinear",
               m_eff: float | None = None, baseline: bool = False, unconstrained: bool = False,
-              plan: bool = False, **parameters) -> Grid:
+              plan: bool = False, intensity: bool = False, **parameters) -> Grid:
     """Validate the parameters and build the member blocks (see module docstring).
 
     gap and the other wall parameters (PARAMS: thickness, cavity, strain, n_bumpers, wall_k,
@@ -166,7 +179,10 @@ def make_grid(gap=None, *, impact: str = "bumper", isolator: str = "bilinear",
     it declares, SI) given here replace the building's, fixed or swept alike, None keeping the
     building's. plan: the members run in plan, under record pairs; angle (degrees, default 0)
     is then their incidence angle and mu_wall (default 0) the slab-wall friction, each fixed
-    or swept, and the baseline and unconstrained blocks repeat per value. gap=None with
+    or swept, and the baseline and unconstrained blocks repeat per value. level (-, default
+    1; any run) is the members' intensity, fixed or swept alike, its blocks repeated per value
+    too; it is carried by the members when given or when `intensity` (the records have
+    factors), else NaN (the records as they are). gap=None with
     unconstrained=True builds only the no-wall block. Raises SweepError naming the parameter
     (an unknown name too).
     """
@@ -176,19 +192,22 @@ def make_grid(gap=None, *, impact: str = "bumper", isolator: str = "bilinear",
     m_eff = M_EFF.default if m_eff is None else _scalar("m_eff", m_eff)
     plausible("m_eff", M_EFF, _checked(M_EFF, np.asarray(m_eff), "m_eff"))
     iso_values, iso_swept = _isolator_values(isolator, given)
-    if plan:  # the excitation's parameters lead the isolator's
-        in_plan, plan_swept = {}, []
-        for name, param in PLAN_PARAMETERS.items():
-            array, is_swept = _values(name, param.default if given[name] is None
-                                      else given[name])
-            in_plan[name] = plausible(name, param, _checked(param, array, name))
-            plan_swept += [name] * is_swept
-        iso_values, iso_swept = {**in_plan, **iso_values}, plan_swept + iso_swept
-    else:
-        for name in PLAN_PARAMS:
+    # The excitation's parameters lead the isolator's: the level when given (or when the
+    # records carry factors), the angle and friction in plan.
+    excitation, excitation_swept = {}, []
+    for name, param in EXCITATION_PARAMETERS.items():
+        if name in PLAN_PARAMS and not plan:
             if given[name] is not None:
                 raise SweepError(f"{name} applies to runs in plan, under record pairs (moat="
                                  "'rectangular' or 'circular')")
+            continue
+        if name == "level" and given[name] is None and not intensity:
+            continue
+        array, is_swept = _values(name, param.default if given[name] is None
+                                  else given[name])
+        excitation[name] = plausible(name, param, _checked(param, array, name))
+        excitation_swept += [name] * is_swept
+    iso_values, iso_swept = {**excitation, **iso_values}, excitation_swept + iso_swept
     if gap is None:
         if not unconstrained or any(given[p] is not None for p in PARAMS) or baseline:
             raise SweepError("gap is required (m); only an unconstrained-only run may omit it")
@@ -234,9 +253,10 @@ def make_grid(gap=None, *, impact: str = "bumper", isolator: str = "bilinear",
 
 
 def _excitation_first(values: dict, extra: dict) -> dict:
-    """A block's columns in DIMENSIONS order: the angle, the wall's, the isolator's."""
-    return {**{k: v for k, v in extra.items() if k in PLAN_PARAMS}, **values,
-            **{k: v for k, v in extra.items() if k not in PLAN_PARAMS}}
+    """A block's columns in DIMENSIONS order: the excitation's (level, angle, mu_wall), the
+    wall's, the isolator's."""
+    return {**{k: v for k, v in extra.items() if k in EXCITATION_PARAMS}, **values,
+            **{k: v for k, v in extra.items() if k not in EXCITATION_PARAMS}}
 
 
 def _isolator_values(isolator: str, given: dict) -> tuple[dict[str, np.ndarray], list[str]]:
@@ -294,7 +314,7 @@ def _members_block(prefix: str, law: str, values: dict, swept, m_eff: float) -> 
     dims = tuple(name for name in values if name in swept)
     shape = tuple(values[d].size for d in dims)
     members = np.zeros(math.prod(shape), dtype=MEMBER_DTYPE)
-    for name in (*PARAMS, *ISOLATOR_PARAMS, *PLAN_PARAMS):
+    for name in (*PARAMS, *ISOLATOR_PARAMS, *EXCITATION_PARAMS):
         members[name] = np.nan
     for name, column in zip(values, mesh, strict=True):
         members[name] = column.ravel()
@@ -425,6 +445,6 @@ def check_dt(grid: Grid, dt: float, building: engine.Building) -> float:
 def describe_member(member) -> str:
     """One member's parameters as text, e.g. 'bumper(gap=0.2, thickness=0.05, ...)'."""
     params = ", ".join(f"{name}={member[name]:g}" for name in
-                       (*PLAN_PARAMS, *PARAMS, "m_eff", *ISOLATOR_PARAMS)
+                       (*EXCITATION_PARAMS, *PARAMS, "m_eff", *ISOLATOR_PARAMS)
                        if not np.isnan(member[name]))
     return f"{member['law']}({params})"

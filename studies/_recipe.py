@@ -338,12 +338,28 @@ def verdicts(ds) -> list[dict]:
 
 
 def sweep_options(args) -> dict:
-    """The pipeline.sweep keywords every record-based recipe passes through: its work folder
-    (set by Recipe.main: <archive>.work, shared by all the recipe's sweeps) and its building
-    (resolved by Recipe.main from --building) included."""
-    return dict(records=args.records, records_dir=args.records_dir, workers=args.workers,
-                scheduler=args.scheduler, dt=args.dt, quiet=args.quiet,
+    """The pipeline.sweep keywords every record-based recipe passes through: its records and
+    run_options."""
+    return dict(records=args.records, records_dir=args.records_dir, **run_options(args))
+
+
+def run_options(args) -> dict:
+    """The pipeline.sweep keywords of how and where a recipe runs: its building (resolved by
+    Recipe.main from --building), dt, workers, scheduler, quiet and its work folder (set by
+    Recipe.main: <archive>.work, shared by all the recipe's sweeps)."""
+    return dict(workers=args.workers, scheduler=args.scheduler, dt=args.dt, quiet=args.quiet,
                 building=args.building, work_dir=getattr(args, "work_dir", None))
+
+
+NOT_PROVENANCE = frozenset({"title", "configuration_key"})
+"""Attributes of a recipe's sweep that are the recipe's own to set in its archive."""
+
+
+def provenance(swept) -> dict:
+    """The provenance of a recipe's sweep (a pipeline.sweep Dataset: versions, commit, dt,
+    building, records and their hashes, the sweep's arguments), for an archive the recipe
+    builds from it; its title and configuration key are the recipe's own."""
+    return {k: v for k, v in swept.attrs.items() if k not in NOT_PROVENANCE}
 
 
 @contextmanager

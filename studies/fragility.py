@@ -29,7 +29,7 @@ from engine.units import CM, G
 from ._code_suite import archive_variables, code_suite, describe, site_options
 from ._paper import N_BUMPERS, THICKNESS
 from ._plot import plt
-from ._recipe import Recipe, Verdict
+from ._recipe import Recipe, Verdict, provenance, run_options
 from ._suite_archive import AREA, STRAIN
 
 LEVELS = (0.5, 0.75, 1.0, 1.25, 1.5, 1.75, 2.0, 2.5)
@@ -86,7 +86,6 @@ def default_pairs(quick: bool) -> list[str]:
 
 
 def compute(args):
-    import engine
     from pipeline.errors import resolve_pairs
 
     pairs, names = resolve_pairs(args.records or default_pairs(args.quick), args.records_dir)
@@ -95,24 +94,29 @@ def compute(args):
     levels = np.array(QUICK_LEVELS if args.quick else LEVELS)
     fractions = np.array([*GAPS, suite.design.d_tm / suite.design.d_m])
     gaps = fractions * suite.design.d_m
-    dt = engine.DEFAULT_DT if args.dt is None else args.dt
-    walls = engine.Contact.concat([engine.Contact.none(1), engine.Contact.linear(gaps), *(
-        engine.Contact.bumper(gaps, thickness=THICKNESS, n_bumpers=n) for n in BUMPER_COUNTS)])
-    shape = (len(suite.pairs), levels.size, len(walls))
-    peaks = {name: np.zeros(shape) for name in PEAK_NAMES}
-    peaks["peak_total_accel"] = np.zeros((*shape, args.building.n_levels))
-    peaks["peak_interstory_drift"] = np.zeros((*shape, args.building.n_stories))
-    for r, pair in enumerate(suite.pairs):
-        if not args.quiet:
-            print(f"fragility: {r + 1}/{len(suite.pairs)} {suite.names[r]}", flush=True)
-        members = engine.Contact.concat([walls] * levels.size)
-        factors = np.repeat(suite.factors[r] * levels, len(walls))
-        result = engine.simulate(pair.accel, pair.dt, members, args.building, dt,
-                                 scale=factors, moat=args.moat)
-        for name in peaks:
-            value = np.asarray(getattr(result, name))
-            peaks[name][r] = value.reshape(levels.size, len(walls), *value.shape[1:])
-    return _dataset(suite, levels, fractions, gaps, peaks, args)
+    peaks, swept = run(suite, levels, gaps, args)
+    ds = _dataset(suite, levels, fractions, gaps, peaks, args)
+    return ds.assign_attrs({**provenance(swept), **ds.attrs})
+
+
+def run(suite, levels, gaps, args):
+    """Every pair at every level (x its MCE_R factor) without wall, against the bare wall and
+    with each count of bumpers at every gap (m), on the pipeline's executor (pipeline.sweep:
+    resumable, here or on dask). Returns (peak name -> (R, L, W, ...) float arrays, the walls
+    W in the order: no wall, the bare wall at each gap, then each BUMPER_COUNTS' gaps; the
+    sweep's Dataset, whose provenance the archive keeps)."""
+    import pipeline
+
+    ds = pipeline.sweep(suite.pairs, moat=args.moat, gap=gaps, thickness=THICKNESS,
+                        n_bumpers=list(BUMPER_COUNTS), baseline=True, unconstrained=True,
+                        level=levels, factors=suite.factors, **run_options(args))
+    peaks = {}
+    for name in (*PEAK_NAMES, "peak_total_accel", "peak_interstory_drift"):
+        free, bare = ds["unconstrained_" + name], ds["baseline_" + name]
+        bumpers = [ds[name].sel(n_bumpers=n) for n in BUMPER_COUNTS]
+        walls = [free.expand_dims("wall", 2), *(b.rename(gap="wall") for b in (bare, *bumpers))]
+        peaks[name] = np.concatenate([w.values for w in walls], axis=2).astype(float)
+    return peaks, ds
 
 
 PEAK_NAMES = ("peak_isolator_disp", "max_impact_force", "max_indentation", "n_impacts")

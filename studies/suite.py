@@ -58,7 +58,7 @@ from pipeline.outcomes import (
 
 from ._code_suite import LEVELS, archive_variables, code_suite, describe, site_options
 from ._paper import FIG19_COUNTS, FIG21_WALL_KS, THICKNESS
-from ._recipe import Recipe
+from ._recipe import Recipe, provenance, run_options
 from ._suite_archive import (
     AREA,
     DELTA_U,
@@ -170,52 +170,32 @@ def compute(args):
     suite = code_suite(pairs, names, args.building, args.rule, args.sms_g, args.sm1_g, args.tl,
                        args.dt)
     grid = make_grid(suite.design, args.quick)
-    peaks = run(suite, grid, args)
+    peaks, swept = run(suite, grid, args)
     wall = None if args.wall_capacity_mn is None else args.wall_capacity_mn * 1e6
     limits = Limits(story_shear=code_story_capacity(suite.design, args.building),
                     wall_force=wall)
     ds = assemble(grid, peaks, suite.names, suite.weights, args.building, limits)
     data, coords, attrs = archive_variables(suite)
     attrs.update(moat=args.moat, suite=describe(suite))
-    return ds.assign_coords(coords).assign(data).assign_attrs(attrs)
+    return ds.assign_coords(coords).assign(data).assign_attrs({**provenance(swept), **attrs})
 
 
-def run(suite, grid: Grid, args) -> dict:
-    """Every pair at every level and configuration: one engine call per pair, its members the
-    levels x `grid.block`, each scaled by the pair's MCE_R factor x the level; in this process
-    (the kernel's threads on every core), or one task per pair on dask with --workers N >= 2 or
-    --scheduler. Returns configuration -> peak name -> array (see Grid.split)."""
-    import engine
+def run(suite, grid: Grid, args):
+    """Every pair at every level and configuration, on the pipeline's executor
+    (pipeline.sweep: resumable from the recipe's work folder, in this process or on dask with
+    --workers N >= 2 or --scheduler): the bumpers over (gap, n_bumpers, wall_k), the bare wall
+    per gap and the building without wall, each at every level, a pair's members scaled by its
+    MCE_R factor x the level. Returns (configuration -> peak name -> array, see Grid.split;
+    the sweep's Dataset, whose provenance the archive keeps)."""
+    import pipeline
 
-    dt = engine.DEFAULT_DT if args.dt is None else args.dt
-    members = engine.Contact.concat([grid.members()] * grid.levels.size)
-    tasks = [(pair.accel, pair.dt, members, args.building, dt,
-              np.repeat(factor * grid.levels, grid.block), args.moat)
-             for pair, factor in zip(suite.pairs, suite.factors, strict=True)]
-    if args.scheduler is None and args.workers <= 1:
-        done = []
-        for r, task in enumerate(tasks):
-            if not args.quiet:
-                print(f"suite: {r + 1}/{len(tasks)} {suite.names[r]}", flush=True)
-            done.append(pair_peaks(*task))
-    else:
-        from pipeline.execute.dask_client import client
-
-        if not args.quiet:
-            print(f"suite: {len(tasks)} pairs on dask", flush=True)
-        with client(args.workers, args.scheduler) as dask:
-            done = dask.gather([dask.submit(pair_peaks, *task, pure=False) for task in tasks])
-    split = {name: grid.split(np.stack([d[name] for d in done])) for name in PEAKS}
-    return {config: {name: split[name][config] for name in PEAKS} for config in PREFIX}
-
-
-def pair_peaks(accel, accel_dt, members, building, dt, scale, moat) -> dict:
-    """PEAKS name -> (B, ...) of one pair (accel (N, 2) m/s^2 every accel_dt s) run in plan
-    with the members (engine.Contact), each scaled by `scale` (B,)."""
-    import engine
-
-    result = engine.simulate(accel, accel_dt, members, building, dt, scale=scale, moat=moat)
-    return {name: np.asarray(getattr(result, name)) for name in PEAKS}
+    ds = pipeline.sweep(suite.pairs, moat=args.moat, gap=grid.gaps, thickness=THICKNESS,
+                        n_bumpers=list(grid.counts), wall_k=list(grid.wall_ks),
+                        baseline=True, unconstrained=True, level=grid.levels,
+                        factors=suite.factors, **run_options(args))
+    blocks = {"free": "unconstrained_", "bare": "baseline_", "bumpers": ""}
+    return {config: {name: ds[prefix + name].values for name in PEAKS}
+            for config, prefix in blocks.items()}, ds
 
 
 # --- The archive: peaks, validity flags and statistics, from peaks (also hand-made ones). ---
@@ -404,7 +384,7 @@ recipe = Recipe(
             f"quick: {QUICK_PAIRS} pairs, levels {', '.join(QUICK_LEVELS)}, gaps "
             f"{', '.join(map(str, QUICK_GAPS))} D_M and D_TM, {QUICK_COUNTS[0]} and "
             f"{QUICK_COUNTS[1]} bumpers"),
-    resumable=False)
+)
 main = recipe.main
 
 if __name__ == "__main__":

@@ -32,13 +32,15 @@ class Batch:
 
 def simulate_batch(accel: np.ndarray, accel_dt: float, members: np.ndarray,
                    building: engine.Building, dt: float, moat: str | None = None,
-                   progress=None, report: tuple[str, str] | None = None
-                   ) -> dict[str, np.ndarray]:
+                   factor: float | None = None, progress=None,
+                   report: tuple[str, str] | None = None) -> dict[str, np.ndarray]:
     """Peaks of (b,) members (grid.MEMBER_DTYPE) under one record (m/s^2 every accel_dt s):
     peak name -> (b, ...) array (engine.results.PEAKS). building: the sweep's; a member's
     isolator parameters replace its own (grid.buildings_for). moat: None for a planar run
     (accel (N,)), else the moat of a run in plan under a record pair (accel (N, 2), each
-    member at its angle): PEAKS as resultants, then PLAN_PEAKS.
+    member at its angle): PEAKS as resultants, then PLAN_PEAKS. factor: the record's
+    intensity factor (None: 1); members carrying a level run at factor x level (engine's
+    scale), those without (NaN) at the record as it is.
 
     progress(step, n_steps) is called as the engine goes; on a dask worker, report =
     (topic, tag) sends [tag, step / n_steps] to the client's event topic instead.
@@ -55,9 +57,21 @@ def simulate_batch(accel: np.ndarray, accel_dt: float, members: np.ndarray,
                                     "mu_wall": members["mu_wall"]}
     result = engine.simulate(accel, accel_dt, contact_for(members),
                              building=buildings_for(members, building), dt=dt,
-                             progress=progress, **plan)
+                             progress=progress, scale=member_scale(members, factor), **plan)
     return {q.name: np.asarray(getattr(result, q.name), dtype=q.dtype)
             for q in (PEAKS if moat is None else (*PEAKS, *PLAN_PEAKS))}
+
+
+def member_scale(members: np.ndarray, factor: float | None) -> np.ndarray | None:
+    """(b,) factors multiplying the record for each member (engine.simulate's scale): the
+    record's factor times the member's level; None when the members carry no level (a grid
+    without intensity: the record as it is, bit for bit)."""
+    level = members["level"]
+    if np.all(np.isnan(level)):
+        return None
+    # factor * level, in this order and nothing else: the product a study computes by hand
+    # (a pair's MCE_R factor times the level) gives the same bits.
+    return level.copy() if factor is None else factor * level
 
 
 def default_batch_size(n_members: int, n_records: int, workers: int,

@@ -1,8 +1,8 @@
 """Every key of a resumable run, made here and nowhere else.
 
 - context_key: what besides a member's own record (grid.MEMBER_DTYPE) decides its result: the
-  record's content, dt, the building, the moat in plan, the engine (its fingerprint) and
-  CACHE_FORMAT;
+  record's content and intensity factor, dt, the building, the moat in plan, the engine (its
+  fingerprint) and CACHE_FORMAT;
 - batch_key: one batch of members under one context (a work folder's file name; NetCDF);
 - sweep_key: a whole sweep, every context and every member (a Zarr store's identity);
 - region_key: one chunk region of a Zarr store.
@@ -19,15 +19,18 @@ import numpy as np
 
 from ..provenance import engine_fingerprint, record_hash
 
-CACHE_FORMAT = 6  # bump when the work-folder layout, the member record or the peak set change
+CACHE_FORMAT = 7  # bump when the work-folder layout, the member record or the peak set change
 
 
-def context_key(record, dt: float, building, moat: str | None = None) -> str:
+def context_key(record, dt: float, building, moat: str | None = None,
+                factor: float | None = None) -> str:
     """Everything besides the member record that determines a member's result (the moat of a
-    run in plan, whose record is a pair)."""
+    run in plan, whose record is a pair; the record's intensity factor, None for none)."""
     text = json.dumps({"format": CACHE_FORMAT, "engine": engine_fingerprint(),
                        "record": record_hash(record.accel, record.dt), "dt": float(dt).hex(),
-                       "building": repr(building), "moat": moat}, sort_keys=True)
+                       "building": repr(building), "moat": moat,
+                       "factor": None if factor is None else float(factor).hex()},
+                      sort_keys=True)
     return hashlib.sha256(text.encode()).hexdigest()
 
 

@@ -24,7 +24,7 @@ from ..errors import SweepError
 from ..grid import MEMBER_DTYPE
 from ..writing import KEY_ATTRIBUTE, check_writable_folder
 from . import batches
-from .keys import batch_key, context_key, sweep_key
+from .keys import batch_key, sweep_key
 
 
 class WorkFolder:
@@ -92,27 +92,26 @@ class NetCDFStore:
     """A sweep's peaks in memory, its finished batches in a work folder (pipeline.execute's
     Store interface); `finish` labels them and writes the archive.
 
-    out: the NetCDF path, or None (the Dataset is only returned); work_dir: the work folder
-    (None: `<out>.work` when out is given, removed once out is written; an explicit one is
-    kept, and may be shared by several sweeps; no out and no work_dir: nothing is kept). key:
-    the sweep's resume key (keys.sweep_key), stored as the archive's configuration_key.
+    grid: the members (pipeline.grid.Grid); run: what they run under (run.Run); out: the NetCDF
+    path, or None (the Dataset is only returned); work_dir: the work folder (None: `<out>.work`
+    when out is given, removed once out is written; an explicit one is kept, and may be shared
+    by several sweeps; no out and no work_dir: nothing is kept). key: the sweep's resume key
+    (keys.sweep_key), stored as the archive's configuration_key.
     """
 
-    def __init__(self, grid, records, names, dt, building, arguments, out=None,
-                 work_dir=None, moat=None):
-        self.grid, self.records, self.names = grid, records, names
-        self.dt, self.building, self.arguments, self.out = dt, building, arguments, out
+    def __init__(self, grid, run, out=None, work_dir=None):
+        self.grid, self.run, self.records, self.out = grid, run, run.records, out
         self.own_work_dir = work_dir is None and out is not None
         if self.own_work_dir:
             work_dir = out.with_name(out.name + ".work")
         self.kept_in = check_work_dir(work_dir)
         self.work = WorkFolder(self.kept_in) if self.kept_in is not None else None
-        self.moat = moat
-        self.contexts = [context_key(rec, dt, building, moat) for rec in records]
+        self.contexts = run.contexts()
         self.members = grid.members
         self.key = sweep_key(self.members, self.contexts)
-        self.total = len(records) * grid.n_members
-        self.results = [empty_peaks(grid.n_members, building.n_levels, moat) for _ in records]
+        self.total = len(run.records) * grid.n_members
+        self.results = [empty_peaks(grid.n_members, run.building.n_levels, run.moat)
+                        for _ in run.records]
 
     def pending(self, sizes: list[int]) -> list[batches.Batch]:
         """Fill in the members the work folder holds; the rest in batches of sizes[r]."""
@@ -135,9 +134,10 @@ class NetCDFStore:
 
     def task(self, batch: batches.Batch) -> tuple:
         """The peaks of the batch: batches.simulate_batch."""
+        run = self.run
         return batches.simulate_batch, (self.records[batch.record].dt,
-                                        self.members[batch.members], self.building, self.dt,
-                                        self.moat)
+                                        self.members[batch.members], run.building, run.dt,
+                                        run.moat, run.factor(batch.record))
 
     def accept(self, batch: batches.Batch, peaks: dict[str, np.ndarray]) -> None:
         """Keep the batch in the work folder, and its peaks here."""
@@ -149,8 +149,7 @@ class NetCDFStore:
 
     def finish(self):
         """The labelled Dataset, written to out when given (the own work folder then goes)."""
-        ds = build_dataset(self.grid, self.records, self.results, self.dt, self.building,
-                           self.names, self.arguments, moat=self.moat)
+        ds = build_dataset(self.grid, self.run, self.results)
         ds.attrs[KEY_ATTRIBUTE] = self.key
         if self.out is not None:
             write_netcdf(ds, self.out)

@@ -29,7 +29,7 @@ import numpy as np
 from ..errors import SweepError
 from ..writing import archive_key
 from . import batches
-from .keys import context_key, region_key, sweep_key
+from .keys import region_key, sweep_key
 
 TARGET_CHUNK = 4096  # members per chunk (= per batch) at most
 ZARR_FORMAT = 2
@@ -87,8 +87,7 @@ def regions_for(grid, n_records: int, target: int) -> list[Region]:
     return out
 
 
-def write_template(path: Path, grid, records, names, dt, building, arguments, key,
-                   n_batches: int, target: int, moat: str | None = None) -> None:
+def write_template(path: Path, grid, run, key, n_batches: int, target: int) -> None:
     """Create the store: labelled variables (lazy), coordinates, attributes, batch_done."""
     import dask.array as da
     import xarray as xr
@@ -101,8 +100,7 @@ def write_template(path: Path, grid, records, names, dt, building, arguments, ke
 
     # The labels of the NetCDF archive, its data lazy fill values: nothing of the size of the
     # results is ever held here.
-    ds = build_dataset(grid, records, None, dt, building, names, arguments, chunks=chunks,
-                       moat=moat)
+    ds = build_dataset(grid, run, None, chunks=chunks)
     encoding = {name: {"chunks": var.data.chunksize} for name, var in ds.data_vars.items()}
     ds["batch_done"] = xr.Variable("batch", da.zeros(n_batches, dtype=np.int8, chunks=1),
                                    {"units": "1", "long_name": "1 once the batch's chunk "
@@ -119,14 +117,15 @@ def write_template(path: Path, grid, records, names, dt, building, arguments, ke
 
 
 def write_batch(accel, accel_dt, members, building, dt, path: str, prefix: str, region,
-                index: int, moat: str | None = None, progress=None, report=None) -> int:
+                index: int, moat: str | None = None, factor: float | None = None,
+                progress=None, report=None) -> int:
     """A worker's task: simulate one batch (batches.simulate_batch; in plan under a record
-    pair when `moat` is given) and write its peaks into its chunk region, then mark it done;
-    returns its size."""
+    pair when `moat` is given, at the record's intensity factor) and write its peaks into its
+    chunk region, then mark it done; returns its size."""
     import zarr
 
     peaks = batches.simulate_batch(accel, accel_dt, members, building, dt, moat=moat,
-                                   progress=progress, report=report)
+                                   factor=factor, progress=progress, report=report)
     group = zarr.open_group(path, mode="r+")
     for name, values in peaks.items():
         target = group[prefix + name]
@@ -145,19 +144,16 @@ class ZarrStore:
     keeps its own chunks.
     """
 
-    def __init__(self, grid, records, names, dt, building, arguments, out: Path,
-                 batch_size: int, force: bool = False, moat: str | None = None):
+    def __init__(self, grid, run, out: Path, batch_size: int, force: bool = False):
         import shutil
 
         import zarr
 
-        self.grid, self.records, self.dt, self.building = grid, records, dt, building
-        self.moat = moat
+        self.grid, self.run, self.records = grid, run, run.records
         self.out = self.kept_in = out
         self.members = grid.members
-        self.total = len(records) * grid.n_members
-        self.key = sweep_key(self.members, [context_key(rec, dt, building, moat)
-                                            for rec in records])
+        self.total = len(run.records) * grid.n_members
+        self.key = sweep_key(self.members, run.contexts())
         target = max(1, min(batch_size, TARGET_CHUNK))
         if force and out.exists() and archive_key(out) != self.key:  # asked to replace it
             if out.is_dir():
@@ -175,13 +171,12 @@ class ZarrStore:
                 raise SweepError(f"out: {out} holds another sweep (or no store): it is kept. "
                                  "Give --force (force=True) to replace it, or another path")
             target = int(group.attrs["members_per_chunk"])  # the store's chunks, not batch_size
-        self.regions = regions_for(grid, len(records), target)
+        self.regions = regions_for(grid, len(run.records), target)
         if resuming:
             self.done = group["batch_done"][:].astype(bool)
         else:
             self.done = np.zeros(len(self.regions), dtype=bool)
-            write_template(out, grid, records, names, dt, building, arguments, self.key,
-                           len(self.regions), target, moat)
+            write_template(out, grid, run, self.key, len(self.regions), target)
 
     def pending(self, sizes: list[int]) -> list[batches.Batch]:
         """The regions not marked done (their size is the store's chunk, whatever `sizes`)."""
@@ -191,10 +186,10 @@ class ZarrStore:
 
     def task(self, batch: batches.Batch) -> tuple:
         """Simulate the batch and write its region: write_batch."""
-        r = batch.place
+        r, run = batch.place, self.run
         return write_batch, (self.records[batch.record].dt, self.members[batch.members],
-                             self.building, self.dt, str(self.out), r.prefix, r.region,
-                             r.index, self.moat)
+                             run.building, run.dt, str(self.out), r.prefix, r.region,
+                             r.index, run.moat, run.factor(batch.record))
 
     def accept(self, batch: batches.Batch, size: int) -> None:
         """Nothing to do: the worker wrote the region."""
@@ -208,7 +203,7 @@ class ZarrStore:
         from ..archive import derived_variables
 
         ds = xr.open_zarr(self.out, consolidated=False)
-        derived = {name: pair for name, pair in derived_variables(ds, self.building).items()
+        derived = {name: pair for name, pair in derived_variables(ds, self.run.building).items()
                    if name not in ds}
         if derived:
             variables = {}

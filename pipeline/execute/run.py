@@ -1,0 +1,37 @@
+"""What every member of a sweep runs under, besides its own member record: the records, their
+names and intensity factors, the step, the building, the moat; and the keys that identify it.
+One value that the stores, the batches and the archive's builders all read."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .keys import context_key
+
+
+@dataclass(frozen=True)
+class Run:
+    """records: the Record objects run (RecordPair in plan); names (R,): their labels in the
+    archive; dt: integration step, s; building: the sweep's engine.Building; moat: None for a
+    planar run, else the moat of a run in plan; factors: None, or (R,) intensity factors (-)
+    multiplying each record's ground acceleration, times each member's level (a code suite's
+    MCE_R factors); arguments: the call's arguments, stored in the archive."""
+
+    records: list
+    names: list
+    dt: float
+    building: object
+    moat: str | None = None
+    factors: np.ndarray | None = None
+    arguments: dict = field(default_factory=dict)
+
+    def factor(self, r: int) -> float | None:
+        """Record r's intensity factor (None: the record as it is)."""
+        return None if self.factors is None else self.factors[r]
+
+    def contexts(self) -> list[str]:
+        """Each record's context key (keys.context_key): what decides a member's result
+        besides its member record."""
+        return [context_key(rec, self.dt, self.building, self.moat, self.factor(r))
+                for r, rec in enumerate(self.records)]
