@@ -33,7 +33,7 @@ def _sweep(records, *, impact: str = "bumper", dt: float | None = None, workers:
            scheduler=None, out=None, baseline: bool = False, unconstrained: bool = False,
            building=None, m_eff: float | None = None, batch_size: int | None = None,
            records_dir=None, quiet: bool = False, work_dir=None, force: bool = False,
-           moat: str | None = None, factors=None, **parameters):
+           moat: str | None = None, factors=None, members=None, **parameters):
     """Simulate every combination of the parameters under every record; label the peaks.
 
     records: paper keys ("kobe", "sylmar_converter", "olive_view", "pacoima"), library names,
@@ -93,6 +93,9 @@ def _sweep(records, *, impact: str = "bumper", dt: float | None = None, workers:
         multiplying each record's acceleration on top of the level (a code suite's MCE_R
         factors): a member runs at factor x level (level 1 when not given). The archive then
         has a `level` coordinate and `record_factor` along record.
+    members: instead of a grid, a table of members listed one by one (pipeline.listed: column
+        "law" and parameters by name, (K,) for every record or (R, K) per record); the
+        archive's dims are then (record, member). No other sweep parameter is given then.
     force: replace an existing `out` that holds another sweep. Without it such an archive is
         kept and SweepError raised before any compute; an archive of this very sweep (the
         same records, dt, building, members and engine: its `configuration_key` attribute)
@@ -111,19 +114,30 @@ def _sweep(records, *, impact: str = "bumper", dt: float | None = None, workers:
     from .grid import make_grid, sweep_parameters
 
     given = sweep_parameters(parameters)
-    if given["gap"] is None:
-        raise SweepError("gap is required (m)")
     building = check_building(building)
     if moat is not None:
         from engine.plan import MOATS
 
         if moat not in MOATS:
             raise SweepError(f"moat must be one of {MOATS} (or None: planar), got {moat!r}")
-    grid = make_grid(impact=impact, isolator=building.isolation.law, m_eff=m_eff,
-                     baseline=baseline, unconstrained=unconstrained, plan=moat is not None,
-                     intensity=factors is not None, **given)
-    arguments = {**given, "impact": impact, "baseline": baseline,
-                 "unconstrained": unconstrained, "m_eff": grid.m_eff, "moat": moat}
+    if members is not None:
+        from .listed import listed_grid
+
+        given = {k: v for k, v in given.items() if v is not None}
+        if given or baseline or unconstrained or m_eff is not None:
+            raise SweepError("members lists every member: give its parameters as its columns, "
+                             f"not as {', '.join(given) or 'baseline/unconstrained/m_eff'}")
+        grid = listed_grid(members, isolator=building.isolation.law, plan=moat is not None,
+                           intensity=factors is not None)
+    elif given["gap"] is None:
+        raise SweepError("gap is required (m)")
+    else:
+        grid = make_grid(impact=impact, isolator=building.isolation.law, m_eff=m_eff,
+                         baseline=baseline, unconstrained=unconstrained,
+                         plan=moat is not None, intensity=factors is not None, **given)
+    arguments = {"members": members, "moat": moat} if members is not None else {
+        **given, "impact": impact, "baseline": baseline, "unconstrained": unconstrained,
+        "m_eff": grid.m_eff, "moat": moat}
     return _execute(grid, records, arguments, dt=dt, workers=workers, scheduler=scheduler,
                     out=out, building=building, batch_size=batch_size,
                     records_dir=records_dir, quiet=quiet, work_dir=work_dir, force=force,
@@ -194,6 +208,10 @@ def _execute(grid, records, arguments: dict, *, dt=None, workers: int = 1, sched
     else:
         recs, names = resolve_pairs(records, records_dir)
     factors = _factors(factors, len(recs))
+    if grid.table is not None:
+        from .listed import check_records
+
+        check_records(grid, len(recs))
     if batch_size is None:
         batch_size = default_batch_size(grid.n_members, len(recs), workers)
     batch_size = check_count("batch_size", batch_size, minimum=1)

@@ -198,6 +198,31 @@ def parameter_coords(grid: Grid) -> dict:
     return coords
 
 
+def listed_coords(grid: Grid) -> dict:
+    """The columns of a grid of listed members (pipeline.listed) as coordinates along member
+    (or record and member), labelled with their declarations."""
+    if grid.listed is None:
+        return {}
+    coords = {"member": variable("member", np.arange(np.shape(grid.listed["law"])[-1]), "1",
+                                 "the member's row in the listed table")}
+    for name, values in grid.listed.items():
+        dims = ("record", "member") if np.ndim(values) == 2 else ("member",)
+        if name == "law":
+            coords["law"] = variable(dims, np.asarray(values, dtype=str), "1",
+                                     "the member's wall law (none: no wall)")
+            continue
+        if name in EXCITATION_PARAMETERS:
+            param = EXCITATION_PARAMETERS[name]
+            units, long_name = param.units, param.meaning
+        elif name == "m_eff":
+            units, long_name = "kg", "effective impact mass"
+        else:
+            units, long_name = parameter_meta(np.unique(grid.listed["law"]).tolist(), name)
+        coords[name] = variable(dims, np.asarray(values, dtype=float), units,
+                                long_name + " (NaN: not a parameter of the member's law)")
+    return coords
+
+
 def build_dataset(grid: Grid, run, results: list[dict[str, np.ndarray]] | None,
                   chunks=None) -> xr.Dataset:
     """Label the per-record peak arrays of a sweep (each (M, ...), the grid's member order)
@@ -234,7 +259,8 @@ def build_dataset(grid: Grid, run, results: list[dict[str, np.ndarray]] | None,
         data_vars.update(peak_variables(peaks, ("record", *block.dims), block.prefix,
                                         quantities))
     coords = {**record_coords(records, run.names), **level_coords(building.n_levels),
-              **parameter_coords(grid), **({} if moat is None else plan_coords(moat))}
+              **parameter_coords(grid), **listed_coords(grid),
+              **({} if moat is None else plan_coords(moat))}
     if run.factors is not None:
         coords["record_factor"] = variable(
             "record", np.asarray(run.factors, dtype=float), "1", "the record's intensity "

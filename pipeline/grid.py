@@ -136,7 +136,9 @@ class Grid:
     impact: the law of the main block; coords: swept parameter -> (n,) values, in DIMENSIONS
     order; fixed: fixed parameter -> scalar; blocks: main first, then baseline and
     unconstrained when asked for; m_eff kg; isolator: the law of the building's isolator,
-    whose parameters in coords and fixed replace the building's.
+    whose parameters in coords and fixed replace the building's. A grid of members listed
+    one by one (pipeline.listed) has one block along `member`, `listed` its columns for the
+    archive, and `table` (R, M) when each record runs members of its own.
     """
 
     impact: str
@@ -146,11 +148,25 @@ class Grid:
     m_eff: float
     isolator: str = "bilinear"
     plan: bool = False
+    listed: dict | None = None
+    table: np.ndarray | None = None
 
     @functools.cached_property
     def members(self) -> np.ndarray:
-        """(M,) MEMBER_DTYPE: every member run per record, the blocks one after the other."""
+        """(M,) MEMBER_DTYPE: every member run per record, the blocks one after the other
+        (a grid whose records run members of their own: the first record's)."""
+        if self.table is not None:
+            return self.table[0]
         return np.concatenate([b.members for b in self.blocks])
+
+    def members_of(self, record: int) -> np.ndarray:
+        """(M,) MEMBER_DTYPE: the members record `record` runs."""
+        return self.members if self.table is None else self.table[record]
+
+    @property
+    def every_member(self) -> np.ndarray:
+        """MEMBER_DTYPE: every member of every record (each once when records share them)."""
+        return self.members if self.table is None else self.table.ravel()
 
     @property
     def n_members(self) -> int:
@@ -190,7 +206,7 @@ def make_grid(gap=None, *, impact: str = "bumper", isolator: str = "bilinear",
     if impact not in IMPACT_LAWS:
         raise SweepError(f"impact: unknown impact law {impact!r}; choose one of {IMPACT_LAWS}")
     m_eff = M_EFF.default if m_eff is None else _scalar("m_eff", m_eff)
-    plausible("m_eff", M_EFF, _checked(M_EFF, np.asarray(m_eff), "m_eff"))
+    plausible("m_eff", M_EFF, checked_values(M_EFF, np.asarray(m_eff), "m_eff"))
     iso_values, iso_swept = _isolator_values(isolator, given)
     # The excitation's parameters lead the isolator's: the level when given (or when the
     # records carry factors), the angle and friction in plan.
@@ -205,7 +221,7 @@ def make_grid(gap=None, *, impact: str = "bumper", isolator: str = "bilinear",
             continue
         array, is_swept = _values(name, param.default if given[name] is None
                                   else given[name])
-        excitation[name] = plausible(name, param, _checked(param, array, name))
+        excitation[name] = plausible(name, param, checked_values(param, array, name))
         excitation_swept += [name] * is_swept
     iso_values, iso_swept = {**excitation, **iso_values}, excitation_swept + iso_swept
     if gap is None:
@@ -231,7 +247,7 @@ def make_grid(gap=None, *, impact: str = "bumper", isolator: str = "bilinear",
                 raise SweepError(f"{name} is required with impact={impact!r} ({param.units})")
             value = param.default
         array, is_swept = _values(name, value)
-        values[name] = plausible(name, param, _checked(param, array, name))
+        values[name] = plausible(name, param, checked_values(param, array, name))
         if is_swept:
             swept.append(name)
     if baseline and impact != "bumper":
@@ -277,7 +293,7 @@ def _isolator_values(isolator: str, given: dict) -> tuple[dict[str, np.ndarray],
                              f"{', '.join(declared)})")
         array, is_swept = _values(name, given[name])
         param = declared[name]
-        values[name] = plausible(name, param, _checked(param, array, name),
+        values[name] = plausible(name, param, checked_values(param, array, name),
                                  option=param.units == "N m-1")
         if is_swept:
             swept.append(name)
@@ -341,7 +357,7 @@ def plausible(name: str, param, array: np.ndarray, option: bool = True) -> np.nd
     raise SweepError(text)
 
 
-def _checked(param, array: np.ndarray, name: str) -> np.ndarray:
+def checked_values(param, array: np.ndarray, name: str) -> np.ndarray:
     """The declaration's range check, in the sweep's vocabulary."""
     try:
         return param.check(array, name=name)
@@ -418,7 +434,7 @@ def check_dt(grid: Grid, dt: float, building: engine.Building) -> float:
     dt = _scalar("dt", dt)
     if not (dt > 0 and math.isfinite(dt)):
         raise SweepError(f"dt must be positive (s), got {dt}")
-    members = grid.members
+    members = grid.every_member
     worst, limit = 0, math.inf
     # In slices: a million members' contacts and operators at once would take gigabytes.
     for start in range(0, members.size, CHECK_SLICE):

@@ -41,7 +41,7 @@ from ._plan_verdicts import (
     only_bumpers_amplify,
 )
 from ._plot import plt
-from ._recipe import Recipe, Verdict
+from ._recipe import Recipe, Verdict, provenance, run_options
 
 BARRIERS = ("none", "bare wall", "bumpers")
 FRACTIONS = (0.5, 0.7, GAP_FRACTION, 1.1, 1.3)  # gap / the planar peak without wall
@@ -78,46 +78,92 @@ def options(p) -> None:
 
 def compute(args):
     import engine
+    import pipeline
     from pipeline.errors import resolve_pairs
 
     pairs, names = resolve_pairs(args.records or default_pairs(args.quick), args.records_dir)
     thetas, fracs = angles(args.quick), gap_fractions(args.quick)
-    dt = engine.DEFAULT_DT if args.dt is None else args.dt
-    shape = (len(pairs), thetas.size, fracs.size, len(MODELS), len(BARRIERS))
+    n_p, n_a, n_g = len(pairs), thetas.size, fracs.size
+    shape = (n_p, n_a, n_g, len(MODELS), len(BARRIERS))
     out = {name: np.zeros(shape, dtype=np.int64 if name == "n_impacts" else float)
            for name in PEAK_NAMES}
-    gaps = np.zeros(shape[:3])
-    orbit_t, orbits = [], []
-    block = 1 + 2 * fracs.size  # members per angle: no wall, then bare wall and bumpers per gap
-    for p, pair in enumerate(pairs):
-        if not args.quiet:
-            print(f"plan: {p + 1}/{len(pairs)} {names[p]}", flush=True)
-        for a, theta in enumerate(thetas):
-            # The planar model's ground motion differs with the angle: one call per angle,
-            # every gap and barrier its members (the free run first: it sets the gaps).
-            along = component(pair.accel, theta)
-            free = engine.simulate(along, pair.dt, engine.Contact.none(1), args.building, dt)
-            gaps[p, a] = fracs * free.peak_isolator_disp[0]
-            planar = engine.simulate(along, pair.dt, walls(gaps[p, a]), args.building, dt)
-            both = [peaks_of(free), peaks_of(planar)]
-            _store(out, (p, a, slice(None), 0), {k: np.concatenate([f[k] for f in both])
-                                                 for k in PEAK_NAMES}, gaps[p, a])
-        # In plan the pair is the same at every angle: one call, angles x gaps x barriers.
-        f_paper = int(np.flatnonzero(fracs == GAP_FRACTION)[0])
-        history = engine.History([int(layout(fracs.size)[f_paper, 2])], every=10) \
-            if p < ORBITS else None
-        contact = engine.Contact.concat([members(g) for g in gaps[p]])
-        plan = engine.simulate(pair.accel, pair.dt, contact, args.building, dt, history=history,
-                               moat=args.moat, angle=np.repeat(thetas, block))
-        peaks = peaks_of(plan)
-        for a in range(thetas.size):
+    options = run_options(args)
+    # 1. The planar model without wall under the component along each angle: it sets the
+    # gaps, fractions of its peak isolator displacement.
+    along = [along_angle(pair, theta) for pair in pairs for theta in thetas]
+    free = pipeline.unconstrained_peaks(along, **options)
+    free_peaks = peaks_of(free, "record")
+    gaps = fracs * free.peak_isolator_disp.values.reshape(n_p, n_a, 1)
+    # 2. The planar model against the walls at each component's own gaps.
+    planar = pipeline.sweep(along, members=wall_table(gaps.reshape(n_p * n_a, n_g)),
+                            **options)
+    planar_peaks = peaks_of(planar, "member")
+    for p in range(n_p):
+        for a in range(n_a):
+            i = p * n_a + a
+            block = {k: np.concatenate([free_peaks[k][i:i + 1], planar_peaks[k][i]])
+                     for k in PEAK_NAMES}
+            _store(out, (p, a, slice(None), 0), block, gaps[p, a])
+    # 3. In plan: each pair rotated by every angle, against the same walls.
+    plan = pipeline.sweep(pairs, moat=args.moat, members=plan_table(gaps, thetas), **options)
+    plan_peaks = peaks_of(plan, "member")
+    block = 1 + 2 * n_g  # members per angle: no wall, then bare wall and bumpers per gap
+    for p in range(n_p):
+        for a in range(n_a):
             rows = slice(a * block, (a + 1) * block)
-            _store(out, (p, a, slice(None), 1), {k: v[rows] for k, v in peaks.items()},
+            _store(out, (p, a, slice(None), 1), {k: v[p, rows] for k, v in plan_peaks.items()},
                    gaps[p, a])
-        if history is not None:
-            orbit_t.append(plan.history["time"])
-            orbits.append(plan.history["isolator_disp"][0])
-    return _dataset(out, gaps, names, pairs, thetas, fracs, orbit_t, orbits, args)
+    # The orbits the figure draws: bumpers at the paper's gap, angle 0, a few pairs.
+    f_paper = int(np.flatnonzero(fracs == GAP_FRACTION)[0])
+    orbit_t, orbits = [], []
+    for p, pair in enumerate(pairs[:ORBITS]):
+        run = engine.simulate(pair.accel, pair.dt, bumpers(gaps[p, 0, f_paper]),
+                              args.building, engine.DEFAULT_DT if args.dt is None else args.dt,
+                              history=engine.History([0], every=10), moat=args.moat,
+                              angle=thetas[:1])
+        orbit_t.append(run.history["time"])
+        orbits.append(run.history["isolator_disp"][0])
+    ds = _dataset(out, gaps, names, pairs, thetas, fracs, orbit_t, orbits, args)
+    return ds.assign_attrs({**provenance(plan), **ds.attrs})
+
+
+def along_angle(pair, theta):
+    """The planar model's record for a pair at the angle theta (degrees): the component along
+    it (`component`), named <pair>@<theta>."""
+    from pipeline.records import Record
+
+    return Record(name=f"{pair.name}@{theta:g}", rsn=pair.rsn, event=pair.event,
+                  station=pair.station, component=f"{theta:g} degrees", dt=pair.dt,
+                  accel=component(pair.accel, theta), source=pair.source)
+
+
+def wall_table(gaps) -> dict:
+    """The members (pipeline.listed) at each record's gaps (R, G) m: per record and gap, the
+    bare wall (`bare`) then the bumpers (`bumpers`: no wall where they do not fit)."""
+    gaps = np.asarray(gaps, dtype=float)
+    fit = fits(gaps)
+    law = np.stack([np.full(gaps.shape, "linear"), np.where(fit, "bumper", "none")], axis=-1)
+    gap = np.stack([gaps, np.where(fit, gaps, np.nan)], axis=-1)
+    bumper = np.stack([np.full(gaps.shape, np.nan), np.where(fit, 1.0, np.nan)], axis=-1)
+    r = gaps.shape[0]
+    return {"law": law.reshape(r, -1), "gap": gap.reshape(r, -1),
+            "thickness": (THICKNESS * bumper).reshape(r, -1),
+            "n_bumpers": (N_BUMPERS * bumper).reshape(r, -1)}
+
+
+def plan_table(gaps, thetas) -> dict:
+    """The members in plan of each pair (pipeline.listed): per angle (thetas degrees), no wall
+    then `wall_table` at that angle's gaps (R, A, G) m."""
+    n_p, n_a, n_g = gaps.shape
+    walls_ = wall_table(gaps.reshape(n_p * n_a, n_g))
+    table = {}
+    for name, values in walls_.items():
+        first = "none" if name == "law" else np.nan
+        values = values.reshape(n_p, n_a, 2 * n_g)
+        table[name] = np.concatenate([np.full((n_p, n_a, 1), first, dtype=values.dtype),
+                                      values], axis=-1).reshape(n_p, -1)
+    table["angle"] = np.repeat(thetas, 1 + 2 * n_g)
+    return table
 
 
 def component(accel, theta) -> np.ndarray:
@@ -150,22 +196,9 @@ def bumpers(gap):
     return engine.Contact.bumper([gap], thickness=THICKNESS, n_bumpers=N_BUMPERS)
 
 
-def walls(gaps):
-    """The members at the gaps (m, in order): bare wall, bumpers, bare wall, bumpers, ..."""
-    import engine
-
-    return engine.Contact.concat([c for g in gaps for c in (bare(g), bumpers(g))])
-
-
-def members(gaps):
-    """One angle's members in plan: no wall, then `walls(gaps)` (see `layout`)."""
-    import engine
-
-    return engine.Contact.concat([engine.Contact.none(1), walls(gaps)])
-
-
 def layout(n_gaps: int) -> np.ndarray:
-    """(gap, barrier) -> member in a block of `members`: the one free run serves every gap."""
+    """(gap, barrier) -> member in one angle's block (no wall, then the bare wall and the
+    bumpers per gap: plan_table): the one free run serves every gap."""
     rows = np.zeros((n_gaps, len(BARRIERS)), dtype=np.int64)
     rows[:, 1] = 1 + 2 * np.arange(n_gaps)
     rows[:, 2] = 2 + 2 * np.arange(n_gaps)
@@ -176,16 +209,17 @@ PEAK_NAMES = ("peak_isolator_disp", "peak_floor_accel", "peak_base_accel",
               "peak_interstory_drift", "max_impact_force", "n_impacts")
 
 
-def peaks_of(result) -> dict:
-    """The peaks this study keeps, (B,) each: isolator displacement (m), the largest floor and
-    the base's acceleration (m/s^2), the largest interstory drift (m), the largest impact force
+def peaks_of(ds, last: str) -> dict:
+    """The peaks this study keeps from a sweep's Dataset, shaped as its dims up to `last`
+    (record, or record and member): isolator displacement (m), the largest floor and the
+    base's acceleration (m/s^2), the largest interstory drift (m), the largest impact force
     (N) and the impacts (-)."""
-    return {"peak_isolator_disp": result.peak_isolator_disp,
-            "peak_floor_accel": result.peak_total_accel.max(axis=1),
-            "peak_base_accel": result.peak_total_accel[:, 0],
-            "peak_interstory_drift": result.peak_interstory_drift.max(axis=1),
-            "max_impact_force": result.max_impact_force,
-            "n_impacts": result.n_impacts}
+    return {"peak_isolator_disp": ds.peak_isolator_disp.values,
+            "peak_floor_accel": ds.peak_total_accel.max("floor").values,
+            "peak_base_accel": ds.peak_total_accel.isel(floor=0).values,
+            "peak_interstory_drift": ds.peak_interstory_drift.max("story").values,
+            "max_impact_force": ds.max_impact_force.values,
+            "n_impacts": ds.n_impacts.values}
 
 
 def _store(out, where, block, gaps):
@@ -450,8 +484,7 @@ recipe = Recipe(
             f"the component along the angle (the paper's rule: {GAP_FRACTION}); the same walls "
             "on every side; quick: 3 pairs, angles 0 and 90, gaps "
             f"{', '.join(f'{f:g}' for f in QUICK_FRACTIONS)} x"),
-    records=(), options=options,
-    resumable=False)
+    records=(), options=options)
 main = recipe.main
 
 if __name__ == "__main__":

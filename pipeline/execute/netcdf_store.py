@@ -107,8 +107,7 @@ class NetCDFStore:
         self.kept_in = check_work_dir(work_dir)
         self.work = WorkFolder(self.kept_in) if self.kept_in is not None else None
         self.contexts = run.contexts()
-        self.members = grid.members
-        self.key = sweep_key(self.members, self.contexts)
+        self.key = sweep_key(grid.every_member, self.contexts)
         self.total = len(run.records) * grid.n_members
         self.results = [empty_peaks(grid.n_members, run.building.n_levels, run.moat)
                         for _ in run.records]
@@ -119,7 +118,8 @@ class NetCDFStore:
         todo = []
         for r, context in enumerate(self.contexts):
             missing = []
-            for i, member in enumerate(self.members):
+            members = self.grid.members_of(r)
+            for i, member in enumerate(members):
                 peaks = cached.get((context, member.tobytes()))
                 if peaks is None:
                     missing.append(i)
@@ -129,21 +129,22 @@ class NetCDFStore:
             for start in range(0, len(missing), sizes[r]):
                 which = np.array(missing[start:start + sizes[r]])
                 todo.append(batches.Batch(r, which, which.size,
-                                          batch_key(context, self.members[which])))
+                                          batch_key(context, members[which])))
         return todo
 
     def task(self, batch: batches.Batch) -> tuple:
         """The peaks of the batch: batches.simulate_batch."""
         run = self.run
         return batches.simulate_batch, (self.records[batch.record].dt,
-                                        self.members[batch.members], run.building, run.dt,
+                                        self.grid.members_of(batch.record)[batch.members],
+                                        run.building, run.dt,
                                         run.moat, run.factor(batch.record))
 
     def accept(self, batch: batches.Batch, peaks: dict[str, np.ndarray]) -> None:
         """Keep the batch in the work folder, and its peaks here."""
         if self.work is not None:
-            self.work.save(batch.key, self.contexts[batch.record], self.members[batch.members],
-                           peaks)
+            self.work.save(batch.key, self.contexts[batch.record],
+                           self.grid.members_of(batch.record)[batch.members], peaks)
         for name, value in peaks.items():
             self.results[batch.record][name][batch.members] = value
 

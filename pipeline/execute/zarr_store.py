@@ -151,9 +151,8 @@ class ZarrStore:
 
         self.grid, self.run, self.records = grid, run, run.records
         self.out = self.kept_in = out
-        self.members = grid.members
         self.total = len(run.records) * grid.n_members
-        self.key = sweep_key(self.members, run.contexts())
+        self.key = sweep_key(grid.every_member, run.contexts())
         target = max(1, min(batch_size, TARGET_CHUNK))
         if force and out.exists() and archive_key(out) != self.key:  # asked to replace it
             if out.is_dir():
@@ -187,7 +186,8 @@ class ZarrStore:
     def task(self, batch: batches.Batch) -> tuple:
         """Simulate the batch and write its region: write_batch."""
         r, run = batch.place, self.run
-        return write_batch, (self.records[batch.record].dt, self.members[batch.members],
+        return write_batch, (self.records[batch.record].dt,
+                             self.grid.members_of(batch.record)[batch.members],
                              run.building, run.dt, str(self.out), r.prefix, r.region,
                              r.index, run.moat, run.factor(batch.record))
 
