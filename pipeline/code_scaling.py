@@ -13,9 +13,11 @@ tuple (accel, dt) or (accel, dt, name). A target is a target.TargetSpectrum (any
 .at(periods) -> m/s^2). Results are ScaledPairs: the factors (one per pair, the same for both
 components) and the spectra that justify them; nothing is run, written or plotted here.
 
-The alternative kept elsewhere, pipeline.scaling.scale_to_displacement, scales every record
-to the same unconstrained peak isolator displacement: labelled as removing the
-record-to-record scatter (SPEC section 6), it is not a code rule.
+The rules a suite is scaled by are declared one module each in pipeline/scaling_rules/ (asce7
+and p695 apply the functions here; displacement is not a code rule). The alternatives that
+scale every record to the same unconstrained peak isolator displacement
+(pipeline.scaling.scale_to_displacement for planar records, pipeline.scaling_rules.displacement
+for pairs in plan) are labelled as removing the record-to-record scatter (SPEC section 6).
 
 Code values whose wording was not checked against the standard's text are marked so in
 ASCE7_22_ISOLATED.clause; every number is a named field of a ScalingRule, to be changed there.
@@ -125,6 +127,13 @@ class ScaledPairs:
     worst_period: float
     excluded: tuple[tuple[str, float, str], ...]
     enough_pairs: bool
+
+    def factors_of(self, pairs) -> tuple[list[int], np.ndarray]:
+        """(chosen, factors): the indices of the pairs (objects with .name, the pairs scaled)
+        that this scaling kept, in their order, and their factors (K,) -."""
+        keep = {n: f for n, f in zip(self.names, self.factors, strict=True)}
+        chosen = [i for i, p in enumerate(pairs) if p.name in keep]
+        return chosen, np.array([keep[pairs[i].name] for i in chosen])
 
 
 def suite_spectra(pairs, periods, damping: float = DEFAULT_DAMPING,

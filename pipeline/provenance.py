@@ -267,12 +267,8 @@ def building_attributes(building: engine.Building) -> dict:
         attrs["building_units"] += ", story_stiffness_y N/m (along y in plan; story_stiffness " \
             "along x)"
     attrs["building_yield_displacement"] = building.yield_displacement
-    if isolation.law == "bilinear":
-        iso_text = "2 zeta_iso sqrt(k1 M_tot)"
-    else:
-        iso_text = "2 zeta_iso sqrt(k_0 M_tot), k_0 the isolator's initial stiffness"
     attrs["damping_decision"] = (
-        f"paper: isolation dashpot {iso_text}, stiffness-proportional story "
+        f"paper: isolation dashpot {isolation.dashpot_text}, stiffness-proportional story "
         "dashpots 2 zeta_sup k / omega_1 (fixed-base)" if building.damping == "paper" else
         "modal: classical damping, zeta_iso in mode 1, zeta_sup in modes 2-5")
     return attrs

@@ -14,6 +14,10 @@ the building first needs the gap D. Factors are rounded to 6 significant digits,
 scaled record (accel x factor, the record the sweeps run) is run once more to check that it
 reaches D within the tolerance. Records that would need a factor outside the limits, or never
 reach D, are listed in `excluded` with the reason, never silently kept.
+
+Pairs in plan are scaled to the code's D_M by another search, pipeline.scaling_rules.displacement
+(the resultant peak in plan, an unrounded bracket end, every pair kept; its docstring says why
+this one cannot serve there).
 """
 from __future__ import annotations
 

@@ -7,7 +7,8 @@
                               source; `at(T)` log-log interpolation; `from_table` for a user's
     damping_coefficient       B_M of Table 17.5-1 from the effective damping beta_M
     isolation_design          T_M, D_M, beta_M, B_M, k_M and D_TM of section 17.5.3 for an
-                              engine.Building on a bilinear or friction-pendulum isolator
+                              engine.Building on any isolator law that declares the code's
+                              formulas (engine.isolators.registry.CODE_INTERFACE)
 
 Spectral parameters (S_MS, S_M1, S_DS, S_D1) are given in g, as the standard and the USGS
 tools give them; every returned acceleration is in m/s^2, converted with G = engine.units.G
@@ -201,11 +202,8 @@ def isolation_design(s_m1: float, building=None, *, torsion_factor: float = TORS
     = 2 pi sqrt(M / k_M) (Eqs. 17.5-1 and 17.5-2 of ASCE 7-16; W = M G_b the building's
     weight, G_b = building.g), k_M the isolator law's secant stiffness at D_M (the law's
     effective_stiffness), B_M from Table 17.5-1 for the effective damping beta_M =
-    E / (2 pi k_M D_M^2), E the energy dissipated per cycle at D_M: bilinear isolator
-    E = 4 Q_d (D - D_y), Q_d = (K1 - K2) D_y the characteristic strength, D_y = Fy / K1;
-    friction pendulum
-    E = 4 mu W D with mu = mu_fast (the friction the law's effective stiffness uses; the
-    pre-slip displacement neglected, as there). dashpot=True adds the model's isolation
+    E / (2 pi k_M D_M^2), E the energy dissipated per cycle at D_M (the law's
+    energy_per_cycle, where each law states its loop). dashpot=True adds the model's isolation
     dashpot (damping="paper": c = 2 zeta_iso sqrt(k_0 M)): E = pi c w_M D^2, i.e.
     c w_M / (2 k_M) more damping; the code's procedure counts hysteresis only (default).
 
@@ -215,8 +213,9 @@ def isolation_design(s_m1: float, building=None, *, torsion_factor: float = TORS
     clearance) is returned. D_TM = torsion_factor D_M: the code's lower bound of the total
     displacement with torsion (section 17.5.3.3); this model has no torsion.
 
-    s_m1: S_M1 in g; building: engine.Building (default the paper's, bilinear). ValueError
-    for another isolator law or a bad argument.
+    s_m1: S_M1 in g; building: engine.Building (default the paper's). ValueError
+    for a bad argument, or (engine.EngineError, naming it) for an isolator law that does not
+    declare post_yield_stiffness and energy_per_cycle.
     """
     from scipy.optimize import brentq
 
@@ -227,13 +226,14 @@ def isolation_design(s_m1: float, building=None, *, torsion_factor: float = TORS
         raise ValueError(f"torsion_factor must be >= 1, got {torsion_factor!r}")
     b = engine.Building() if building is None else building
     iso, mass = b.isolation, b.total_mass
-    energy, k_inf = _hysteresis(b)
+    k_inf = iso.post_yield_stiffness(mass, b.g)  # the stiffness k_M tends to at large D
     c_iso = _dashpot(b) if dashpot else 0.0
 
     def quantities(d):
         k = float(iso.effective_stiffness(mass, b.g, d))
         t = 2 * math.pi * math.sqrt(mass / k)
-        beta = energy(d) / (2 * math.pi * k * d * d) + c_iso * (2 * math.pi / t) / (2 * k)
+        beta = iso.energy_per_cycle(mass, b.g, d) / (2 * math.pi * k * d * d) \
+            + c_iso * (2 * math.pi / t) / (2 * k)
         return k, t, beta, damping_coefficient(beta)
 
     def excess(d):
@@ -254,22 +254,6 @@ def isolation_design(s_m1: float, building=None, *, torsion_factor: float = TORS
     return IsolationDesign(t_m=t_m, d_m=float(d_m), beta_m=beta_m, b_m=b_m, k_m=k_m,
                            d_tm=torsion_factor * float(d_m), iterations=info.iterations,
                            s_m1=float(s_m1), law=iso.law, dashpot=dashpot)
-
-
-def _hysteresis(building):
-    """(E(D) J per cycle at amplitude D m, the stiffness k_M tends to at large D N/m) of the
-    building's isolator law; ValueError for a law without a code formula here."""
-    iso, mass, g = building.isolation, building.total_mass, building.g
-    v = iso.values
-    if iso.law == "bilinear":
-        d_y = iso.yield_displacement(mass, g)
-        q_d = (v["k1"] - v["k2"]) * d_y  # characteristic strength: the loop's half-height
-        return (lambda d: 4 * q_d * max(d - d_y, 0.0)), v["k2"]
-    if iso.law == "friction_pendulum":
-        weight = mass * g
-        return (lambda d: 4 * v["mu_fast"] * weight * d), weight / v["radius"]
-    raise ValueError(f"isolation_design knows the bilinear and friction_pendulum isolators, "
-                     f"not {iso.law!r}")
 
 
 def _dashpot(building) -> float:

@@ -10,11 +10,12 @@ it (ASCE 7-22 section 11.4.5), the service level a third (a stated choice, about
 level's fraction: the shape of the suite's spectrum is kept and its amplitude scaled, as an
 incremental dynamic analysis does.
 
-Rules (--rule): "asce7" (default; ASCE 7-22 chapter 17, pipeline.code_scaling.asce7_isolated:
-the mean maximum-direction spectrum not below the fraction of the target over the period range
-around T_M), "p695" (FEMA P695: PGV normalisation, the median anchored at T_M) and
-"displacement" (every pair scaled so that the building without wall reaches D_M in plan: kept
-as an explicit option, labelled as removing the record-to-record scatter).
+Rules (--rule), one module each in pipeline/scaling_rules/ and read from its registry: "asce7"
+(default; ASCE 7-22 chapter 17, pipeline.code_scaling.asce7_isolated: the mean
+maximum-direction spectrum not below the fraction of the target over the period range around
+T_M), "p695" (FEMA P695: PGV normalisation, the median anchored at T_M) and "displacement"
+(every pair scaled so that the building without wall reaches D_M in plan: kept as an explicit
+option, labelled as removing the record-to-record scatter).
 
 Pairs that share an earthquake are weighted 1 / (their number) in every statistic
 (pipeline.fragility.event_weights): no event dominates, every pair still runs.
@@ -25,20 +26,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from pipeline import scaling_rules
+
 SITE = {"s_ms": 1.5, "s_m1": 0.9, "t_long": 8.0}
 """The default site: S_MS g, S_M1 g, T_L s."""
 LEVELS = {"service": 1 / 3, "design": 2 / 3, "MCE_R": 1.0}
 """Intensity levels as fractions of the MCE_R target."""
-RULES = ("asce7", "p695", "displacement")
-RULE_TEXT = {
-    "asce7": "ASCE 7-22 chapter 17 (section 17.3.3): the suite's mean maximum-direction "
-             "(RotD100) spectrum not below the stated fraction of the target over the stated "
-             "period range around T_M",
-    "p695": "FEMA P695 (appendix A.8): each pair normalised by its PGV to the set's median, "
-            "then one factor anchoring the set's median spectrum at T_M",
-    "displacement": "each pair scaled so that the building without wall reaches D_M in plan: "
-                    "REMOVES the record-to-record scatter by construction (not a code rule)",
-}
+RULES = tuple(scaling_rules.RULES)
+"""The scaling rules' names (--rule), from pipeline.scaling_rules."""
+RULE_TEXT = {name: module.TEXT for name, module in scaling_rules.RULES.items()}
+"""Rule name -> its one line (the --rule help and the archives' scaling_rule_text)."""
 
 
 def site_options(p) -> None:
@@ -80,53 +77,21 @@ def code_suite(pairs, names, building, rule: str = "asce7", s_ms: float = SITE["
     """Scale the pairs (RecordPair) to the site's MCE_R by the rule (see the module
     docstring). Pairs the rule excludes (factor limits) are dropped and listed in
     .scaled.excluded."""
-    from pipeline.code_scaling import asce7_isolated, fema_p695
     from pipeline.fragility_outcomes import event_weights
     from pipeline.target import asce7_target, isolation_design
 
-    if rule not in RULES:
-        raise ValueError(f"rule must be one of {RULES}, got {rule!r}")
+    scaling = scaling_rules.rule(rule)  # ValueError listing the rules for another name
     # The model's isolation dashpot is part of its isolation system: the code's effective
     # damping beta_M counts every energy the system dissipates (section 17.5.3), so D_M and
     # T_M are those of the building that is run.
     design = isolation_design(s_m1, building, dashpot=True)
     target = asce7_target(s_ms, s_m1, t_long, level="MCE_R")
-    scaled = None
-    if rule == "asce7":
-        scaled = asce7_isolated(pairs, target, design.t_m)
-    elif rule == "p695":
-        scaled = fema_p695(pairs, target, design.t_m)
-    if scaled is not None:
-        keep = {n: f for n, f in zip(scaled.names, scaled.factors, strict=True)}
-        chosen = [i for i, p in enumerate(pairs) if p.name in keep]
-        factors = np.array([keep[pairs[i].name] for i in chosen])
-    else:
-        chosen = list(range(len(pairs)))
-        factors = np.array([_to_displacement(p, design.d_m, building, dt) for p in pairs])
+    chosen, factors, scaled = scaling.factors(pairs, target, design, building, dt)
     pairs = [pairs[i] for i in chosen]
     names = [names[i] for i in chosen]
     events = [str(p.event) for p in pairs]
     return CodeSuite(pairs, names, factors, event_weights(events), events, target, design,
                      scaled, rule, {"s_ms": s_ms, "s_m1": s_m1, "t_long": t_long})
-
-
-def _to_displacement(pair, displacement: float, building, dt) -> float:
-    """The factor bringing the pair's resultant peak isolator displacement without wall, in
-    plan, to `displacement` (m): bisection in log over [0.05, 20] on batched engine runs."""
-    import engine
-
-    dt = engine.DEFAULT_DT if dt is None else dt
-    low, high = np.log(0.05), np.log(20.0)
-    for _ in range(4):  # 4 passes of 16 trial factors: a bracket 16^-4 of the range wide
-        trial = np.exp(np.linspace(low, high, 16))
-        peaks = engine.simulate(pair.accel, pair.dt, engine.Contact.none(trial.size),
-                                building, dt, scale=trial, moat="circular").peak_isolator_disp
-        above = np.flatnonzero(peaks >= displacement)
-        if above.size == 0:
-            return float(trial[-1])
-        k = max(int(above[0]), 1)
-        low, high = np.log(trial[k - 1]), np.log(trial[k])
-    return float(np.exp(high))
 
 
 def archive_variables(suite: CodeSuite) -> tuple[dict, dict, dict]:

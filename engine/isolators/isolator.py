@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 from ..errors import EngineError
 from ..parameters import Option, law_constructor
-from .registry import LAWS
+from .registry import LAWS, law_function
 
 
 @dataclass(frozen=True)
@@ -66,6 +66,21 @@ class Isolator:
     def effective_stiffness(self, mass: float, g: float, displacement):
         """Secant stiffness, N/m, at a displacement (m; scalar or array)."""
         return LAWS[self.law].effective_stiffness(mass, g, displacement, **self.values)
+
+    def post_yield_stiffness(self, mass: float, g: float) -> float:
+        """The secant stiffness's limit at large displacements, N/m (the code's design; an
+        EngineError names a law that does not declare it)."""
+        return law_function(self.law, "post_yield_stiffness")(mass, g, **self.values)
+
+    def energy_per_cycle(self, mass: float, g: float, displacement: float) -> float:
+        """Energy dissipated per cycle at a displacement amplitude (m, one number), J (the
+        code's design; an EngineError names a law that does not declare it)."""
+        return law_function(self.law, "energy_per_cycle")(mass, g, displacement, **self.values)
+
+    @property
+    def dashpot_text(self) -> str:
+        """The isolation dashpot of damping="paper" in the law's symbols (provenance)."""
+        return LAWS[self.law].DASHPOT_TEXT
 
     def describe(self) -> str:
         """'bilinear(k1 = 2e+08 N m-1, k2 = 2.5e+07 N m-1, fy_ratio = 0.1)'."""

@@ -3,11 +3,27 @@ from __future__ import annotations
 
 from types import ModuleType
 
+from ..errors import EngineError
 from ..registry import discover
 from . import laws as _laws_package
 
-LAW_INTERFACE = ("NAME", "ORDER", "PARAMETERS", "DEFAULT_ZETA", "check", "fields",
-                 "initial_stiffness", "yield_displacement", "effective_stiffness")
+LAW_INTERFACE = ("NAME", "ORDER", "PARAMETERS", "DEFAULT_ZETA", "DASHPOT_TEXT", "check",
+                 "fields", "initial_stiffness", "yield_displacement", "effective_stiffness")
+CODE_INTERFACE = ("post_yield_stiffness", "energy_per_cycle")
+"""What a law gives the code's equivalent-linear design (pipeline.target.isolation_design):
+optional, so that a law can be run without them; law_function says which is missing."""
 
 LAWS: dict[str, ModuleType] = discover(_laws_package, LAW_INTERFACE)
 """Isolator law name -> its module, in ORDER."""
+
+
+def law_function(law: str, name: str):
+    """The function `name` of the isolator law `law` (a name of LAWS). EngineError (a
+    ValueError) naming the law and its module when the law does not declare it, e.g. a
+    law without CODE_INTERFACE asked for the code's design."""
+    module = LAWS[law]
+    function = getattr(module, name, None)
+    if function is None:
+        raise EngineError(f"the {law} isolator law declares no {name} (declare it in "
+                          f"{module.__name__} to use the law here)")
+    return function

@@ -95,6 +95,28 @@ def test_records_out_of_range_are_reported_not_kept():
     assert low.excluded[0][1] < 2.0
 
 
+def test_displacement_rule_brings_a_pair_in_plan_to_d_m():
+    """pipeline.scaling_rules.displacement, the pairs' search (not this module's): the factor
+    is the upper end of its last bracket, so the pair reaches D_M in plan there and not
+    2e-4 lower; every pair is kept, with no spectra to show."""
+    from types import SimpleNamespace
+
+    from pipeline.records import load_pair
+    from pipeline.scaling_rules import displacement
+
+    x, y = load_pair("RSN953")
+    n = int(round(15.0 / x.dt))
+    pair = SimpleNamespace(accel=np.column_stack([x.accel, y.accel])[:n], dt=x.dt, name="x")
+    building = engine.Building()
+    chosen, factors, scaled = displacement.factors([pair], None, SimpleNamespace(d_m=0.25),
+                                                   building, None)
+    assert chosen == [0] and scaled is None and factors.shape == (1,)
+    peaks = engine.simulate(pair.accel, pair.dt, engine.Contact.none(2), building,
+                            engine.DEFAULT_DT, scale=factors[0] * np.array([1 - 2e-4, 1.0]),
+                            moat="circular").peak_isolator_disp
+    assert peaks[0] < 0.25 <= peaks[1] < 0.25 * (1 + 1e-3)
+
+
 @pytest.mark.parametrize("kwargs", [{"displacement": -0.3}, {"displacement": float("nan")},
                                     {"limits": (5.0, 0.2)}, {"limits": (0.0, 1.0)},
                                     {"limits": 3}])

@@ -13,6 +13,8 @@ ORDER = 1
 """Its place in listings."""
 DEFAULT_ZETA = 0.05
 """Isolation damping ratio on K1 unless one is given (SPEC decision, the paper's 5%)."""
+DASHPOT_TEXT = "2 zeta_iso sqrt(k1 M_tot)"
+"""The isolation dashpot of damping="paper" in this law's symbols (the archives' provenance)."""
 
 PARAMETERS = Declaration(
     Parameter("k1", "N m-1", "isolator initial stiffness K1", 200e6, "(0, inf)",
@@ -46,6 +48,21 @@ def effective_stiffness(mass, g, displacement, k1, k2, fy_ratio):
     u_y = yield_displacement(mass, g, k1, k2, fy_ratio)
     return (k1 * np.minimum(displacement, u_y) + k2 * np.maximum(displacement - u_y, 0.0)) \
         / displacement
+
+
+def post_yield_stiffness(mass, g, k1, k2, fy_ratio):
+    """K2 (N/m): the stiffness the secant stiffness tends to at large displacements."""
+    return k2
+
+
+def energy_per_cycle(mass, g, displacement, k1, k2, fy_ratio):
+    """Energy (J) dissipated per cycle at displacement amplitude D (m, one number): the area of
+    the loop, 4 Q_d (D - D_y) past yield and 0 before, Q_d = (K1 - K2) D_y the characteristic
+    strength (the loop's half-height), D_y = u_y (ASCE 7 chapter 17's E_M of a bilinear
+    isolator)."""
+    d_y = yield_displacement(mass, g, k1, k2, fy_ratio)
+    q_d = (k1 - k2) * d_y  # characteristic strength: the loop's half-height
+    return 4 * q_d * max(displacement - d_y, 0.0)
 
 
 def fields(mass, g, k1, k2, fy_ratio):

@@ -16,6 +16,8 @@ ORDER = 2
 """Its place in listings."""
 DEFAULT_ZETA = 0.0
 """No viscous isolation damping unless one is given: friction is the damping."""
+DASHPOT_TEXT = "2 zeta_iso sqrt(k_0 M_tot), k_0 the isolator's initial stiffness"
+"""The isolation dashpot of damping="paper" in this law's symbols (the archives' provenance)."""
 
 PARAMETERS = Declaration(
     Parameter("radius", "m", "radius R of the concave sliding surface", REQUIRED, "(0, inf)",
@@ -55,6 +57,21 @@ def effective_stiffness(mass, g, displacement, radius, mu_slow, mu_fast, rate, y
     (the friction at the speeds of a design-level motion; ASCE 7 chapter 17's k_eff)."""
     weight = g * mass
     return weight / radius + mu_fast * weight / displacement
+
+
+def post_yield_stiffness(mass, g, radius, mu_slow, mu_fast, rate, yield_disp):
+    """W / R (N/m), W = g M: the pendulum's stiffness, which the secant stiffness tends to at
+    large displacements."""
+    weight = g * mass
+    return weight / radius
+
+
+def energy_per_cycle(mass, g, displacement, radius, mu_slow, mu_fast, rate, yield_disp):
+    """Energy (J) dissipated per cycle at displacement amplitude D (m): 4 mu W D with
+    mu = mu_fast, W = g M (the friction effective_stiffness uses; the pre-slip displacement
+    neglected, as there: ASCE 7 chapter 17's E_M of a sliding isolator)."""
+    weight = g * mass
+    return 4 * mu_fast * weight * displacement
 
 
 def fields(mass, g, radius, mu_slow, mu_fast, rate, yield_disp):

@@ -1,0 +1,28 @@
+"""ASCE 7-22 chapter 17 (section 17.3.3; pairs and maximum-direction spectra as in section
+16.2.3): every pair scaled by one factor, so that the suite's mean RotD100 spectrum is not below
+the stated fraction of the MCE_R target over the stated period range around T_M
+(pipeline.code_scaling.asce7_isolated with ASCE7_22_ISOLATED, which holds the numbers and the
+clause; pairs whose factor falls outside its limits are left out and listed there).
+"""
+from __future__ import annotations
+
+from ..code_scaling import ASCE7_22_ISOLATED, asce7_isolated
+
+NAME = "asce7"
+"""The rule's name in --rule and the archives."""
+ORDER = 1
+"""Its place in listings: the default rule first."""
+TEXT = ("ASCE 7-22 chapter 17 (section 17.3.3): the suite's mean maximum-direction (RotD100) "
+        "spectrum not below the stated fraction of the target over the stated period range "
+        "around T_M")
+"""What it does, in one line."""
+CLAUSE = ASCE7_22_ISOLATED.clause
+"""The clause it implements (pipeline.code_scaling.ASCE7_22_ISOLATED)."""
+
+
+def factors(pairs, target, design, building, dt):
+    """(chosen, factors (K,), ScaledPairs): the pairs scaled at T_M = design.t_m (s) to the
+    target (see the package's docstring); building and dt are not needed."""
+    scaled = asce7_isolated(pairs, target, design.t_m)
+    chosen, kept = scaled.factors_of(pairs)
+    return chosen, kept, scaled
