@@ -20,7 +20,14 @@ from engine.impact import LAWS
 from engine.isolators import LAWS as ISOLATOR_LAWS
 from engine.results import DIRECTIONS, PEAKS, PLAN_PEAKS, WALLS, Quantity, level_axes
 
-from .grid import EXCITATION_PARAMETERS, ISOLATOR_PARAMS, Grid, baseline_text, swept_parameter
+from .grid import (
+    EXCITATION_PARAMETERS,
+    ISOLATOR_PARAMS,
+    LISTED_PARAMS,
+    Grid,
+    baseline_text,
+    swept_parameter,
+)
 from .provenance import attributes, plan_attributes
 from .writing import Staged
 
@@ -216,10 +223,17 @@ def listed_coords(grid: Grid) -> dict:
             units, long_name = param.units, param.meaning
         elif name == "m_eff":
             units, long_name = "kg", "effective impact mass"
+        elif name in LISTED_PARAMS:
+            param = next(LAWS[law].PARAMETERS.numeric[name] for law in LAWS
+                         if name in LAWS[law].PARAMETERS.numeric
+                         and law in np.unique(grid.listed["law"]))
+            units, long_name = param.units, param.meaning
         else:
             units, long_name = parameter_meta(np.unique(grid.listed["law"]).tolist(), name)
+        unset = "the law's default" if name in LISTED_PARAMS else \
+            "not a parameter of the member's law"
         coords[name] = variable(dims, np.asarray(values, dtype=float), units,
-                                long_name + " (NaN: not a parameter of the member's law)")
+                                f"{long_name} (NaN: {unset})")
     return coords
 
 

@@ -96,13 +96,20 @@ CHECK_SLICE = 65_536  # members checked at once by check_dt
 UNIT_SLIPS = {"m": ("cm", 1e-2, "cm"), "N m-1": ("kN/mm", 1e6, "kn-mm"),
               "kg": ("t", 1e3, "t")}
 
+LISTED_PARAMS = tuple(dict.fromkeys(
+    p.name for law in IMPACT_LAWS for p in LAWS[law].PARAMETERS.numeric.values()
+    if p.sweep is None and p.name != "m_eff" and isinstance(p.default, float)))
+"""The wall laws' parameters a grid keeps at their defaults and a table of listed members
+(pipeline.listed) may set, by their names in the laws (area, k_r, n, alpha: a bumper of its
+own area, say, in a design search)."""
+
 MEMBER_DTYPE = np.dtype([("law", "U16"),
                          *((name, "f8") for name in (*PARAMS, "m_eff", *ISOLATOR_PARAMS,
-                                                     *PLAN_PARAMS, "level"))])
+                                                     *PLAN_PARAMS, "level", *LISTED_PARAMS))])
 """One member: its wall law's name, the wall's sweep parameters (SI; NaN: unused by the law),
 m_eff kg, the isolator parameters that replace the building's (SI; NaN: the building's own),
 the parameters of a run in plan (angle degrees, mu_wall; NaN: a planar run), its intensity
-level (NaN: the record as it is)."""
+level (NaN: the record as it is), the wall law's LISTED_PARAMS (NaN: the law's defaults)."""
 
 # The paper's bare wall, the reference of the amplification ratios (SPEC section 2 decision).
 BASELINE_LAW = "linear"
@@ -330,7 +337,7 @@ def _members_block(prefix: str, law: str, values: dict, swept, m_eff: float) -> 
     dims = tuple(name for name in values if name in swept)
     shape = tuple(values[d].size for d in dims)
     members = np.zeros(math.prod(shape), dtype=MEMBER_DTYPE)
-    for name in (*PARAMS, *ISOLATOR_PARAMS, *EXCITATION_PARAMS):
+    for name in (*PARAMS, *ISOLATOR_PARAMS, *EXCITATION_PARAMS, *LISTED_PARAMS):
         members[name] = np.nan
     for name, column in zip(values, mesh, strict=True):
         members[name] = column.ravel()
@@ -402,7 +409,12 @@ def contact_for(members: np.ndarray) -> engine.Contact:
         if law == NO_WALL:
             parts.append(engine.Contact.none(idx.size))
         else:
-            params = {p.name: rows[sweep] for sweep, p in LAWS[law].PARAMETERS.swept().items()}
+            declared = LAWS[law].PARAMETERS
+            params = {p.name: rows[sweep] for sweep, p in declared.swept().items()}
+            for name in LISTED_PARAMS:  # set by listed members only: else the law's default
+                if name in declared.numeric and not np.all(np.isnan(rows[name])):
+                    params[name] = np.where(np.isnan(rows[name]), declared.numeric[name].default,
+                                            rows[name])
             parts.append(engine.Contact.of(str(law), m_eff=rows["m_eff"], **params))
         where.append(idx)
     contact = engine.Contact.concat(parts)
@@ -461,6 +473,7 @@ def check_dt(grid: Grid, dt: float, building: engine.Building) -> float:
 def describe_member(member) -> str:
     """One member's parameters as text, e.g. 'bumper(gap=0.2, thickness=0.05, ...)'."""
     params = ", ".join(f"{name}={member[name]:g}" for name in
-                       (*EXCITATION_PARAMS, *PARAMS, "m_eff", *ISOLATOR_PARAMS)
+                       (*EXCITATION_PARAMS, *PARAMS, "m_eff", *ISOLATOR_PARAMS,
+                        *LISTED_PARAMS)
                        if not np.isnan(member[name]))
     return f"{member['law']}({params})"

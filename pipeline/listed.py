@@ -10,7 +10,9 @@ A design search's candidates (bumpers of different thickness, count and wall), o
 depend on each record (the plan study's fractions of each record's own peak), are such tables.
 Column "law" names each member's wall law (engine.impact.LAWS, or "none" for no wall); every
 other column is a sweep parameter (pipeline.grid.DIMENSIONS: the wall's, the excitation's
-level, angle and mu_wall) or m_eff, in SI units. A column is (K,), the same for every record,
+level, angle and mu_wall), a law's parameter that grids keep at its default
+(pipeline.grid.LISTED_PARAMS: a bumper's area, say) or m_eff, in SI units. A column is (K,),
+the same for every record,
 or (R, K), one row per record (the records' order). NaN where a member's law does not take the
 parameter; a parameter its law takes and the table leaves out (or NaN) takes the law's
 declared default. Every value is checked against its law's declaration, as a sweep's are.
@@ -31,6 +33,7 @@ from .errors import SweepError
 from .grid import (
     EXCITATION_PARAMETERS,
     EXCITATION_PARAMS,
+    LISTED_PARAMS,
     MEMBER_DTYPE,
     PARAMS,
     PLAN_PARAMS,
@@ -40,7 +43,7 @@ from .grid import (
     plausible,
 )
 
-COLUMNS = ("law", *EXCITATION_PARAMS, *PARAMS, "m_eff")
+COLUMNS = ("law", *EXCITATION_PARAMS, *PARAMS, *LISTED_PARAMS, "m_eff")
 """What a table of members may hold."""
 
 
@@ -117,6 +120,15 @@ def _fill(rows: np.ndarray, where: np.ndarray, law: str) -> None:
     else:
         raise SweepError(f"members: unknown law {law!r}; choose one of "
                          f"{(NO_WALL, *LAWS)}")
+    numeric = {} if law == NO_WALL else LAWS[law].PARAMETERS.numeric
+    for name in LISTED_PARAMS:  # left NaN where not given: the law's default (contact_for)
+        values = rows[name][where]
+        given = ~np.isnan(values)
+        if np.any(given) and name not in numeric:
+            raise SweepError(f"members: {name} does not apply to the {law!r} members "
+                             f"(NaN there)")
+        if np.any(given):
+            checked_values(numeric[name], values[given], name)
     for name in PARAMS:
         values = rows[name][where]
         given = ~np.isnan(values)

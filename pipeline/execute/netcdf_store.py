@@ -109,23 +109,31 @@ class NetCDFStore:
         self.contexts = run.contexts()
         self.key = sweep_key(grid.every_member, self.contexts)
         self.total = len(run.records) * grid.n_members
+        self.copies: dict = {}  # see pending
         self.results = [empty_peaks(grid.n_members, run.building.n_levels, run.moat)
                         for _ in run.records]
 
     def pending(self, sizes: list[int]) -> list[batches.Batch]:
-        """Fill in the members the work folder holds; the rest in batches of sizes[r]."""
+        """Fill in the members the work folder holds; the rest in batches of sizes[r]. A
+        member listed twice for one record (pipeline.listed) runs once: its copies take its
+        peaks when its batch is accepted."""
         cached = self.work.load() if self.work is not None else {}
         todo = []
+        self.copies = {}  # (record, member index run) -> the indices of its copies
         for r, context in enumerate(self.contexts):
-            missing = []
+            missing, first = [], {}
             members = self.grid.members_of(r)
             for i, member in enumerate(members):
-                peaks = cached.get((context, member.tobytes()))
-                if peaks is None:
-                    missing.append(i)
-                else:
+                key = member.tobytes()
+                peaks = cached.get((context, key))
+                if peaks is not None:
                     for name, value in peaks.items():
                         self.results[r][name][i] = value
+                elif key in first:
+                    self.copies.setdefault((r, first[key]), []).append(i)
+                else:
+                    first[key] = i
+                    missing.append(i)
             for start in range(0, len(missing), sizes[r]):
                 which = np.array(missing[start:start + sizes[r]])
                 todo.append(batches.Batch(r, which, which.size,
@@ -147,6 +155,10 @@ class NetCDFStore:
                            self.grid.members_of(batch.record)[batch.members], peaks)
         for name, value in peaks.items():
             self.results[batch.record][name][batch.members] = value
+        for k, i in enumerate(batch.members):
+            for copy in self.copies.get((batch.record, int(i)), ()):
+                for name, value in peaks.items():
+                    self.results[batch.record][name][copy] = value[k]
 
     def finish(self):
         """The labelled Dataset, written to out when given (the own work folder then goes)."""

@@ -58,3 +58,22 @@ def test_bad_tables_are_refused_in_one_line(table, words):
 def test_a_table_excludes_grid_parameters():
     with pytest.raises(SweepError, match="members lists every member"):
         pipeline.sweep(RECORDS, members=SHARED, gap=0.1, dt=DT, quiet=True)
+
+
+def test_a_member_listed_twice_runs_once(monkeypatch):
+    from pipeline.execute import batches
+
+    ran = []
+    real = batches.simulate_batch
+
+    def counting(accel, accel_dt, rows, *args, **kwargs):
+        ran.append(len(rows))
+        return real(accel, accel_dt, rows, *args, **kwargs)
+
+    monkeypatch.setattr(batches, "simulate_batch", counting)
+    table = {"law": ["linear", "none", "linear", "none"], "gap": [0.10, NAN, 0.10, NAN]}
+    ds = pipeline.sweep(RECORDS[:1], members=table, dt=DT, quiet=True)
+    assert sum(ran) == 2
+    values = ds.peak_total_accel.isel(record=0).values
+    assert values[0].tobytes() == values[2].tobytes() and values[1].tobytes() == values[3].tobytes()
+    assert not np.array_equal(values[0], values[1])
