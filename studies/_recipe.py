@@ -33,9 +33,9 @@ class Recipe:
     the archive); records: the paper's records for this figure (None: no records, e.g. the
     two-body studies); compute(args) -> Dataset; plot(ds) -> matplotlib Figure;
     check(ds) -> list of Verdict, one per conclusion of the paper against what was computed;
-    options(parser): adds the recipe's own command-line options (None: none); resumable: its
-    simulations go through pipeline.sweep's work folder, so that a Ctrl-C keeps them (False:
-    the recipe runs the engine itself, and an interrupted run starts over)."""
+    options(parser): adds the recipe's own command-line options (None: none); not_resumable:
+    "" when its simulations go through pipeline.sweep's work folder, so that a Ctrl-C keeps
+    them; else why an interrupted run starts over (shown in --help)."""
 
     name: str
     figure: str
@@ -46,7 +46,11 @@ class Recipe:
     chosen: str = ""
     records: tuple[str, ...] | None = PAPER_KEYS
     options: Callable | None = None
-    resumable: bool = True
+    not_resumable: str = ""
+
+    @property
+    def resumable(self) -> bool:
+        return not self.not_resumable
 
     def parser(self) -> argparse.ArgumentParser:
         epilog = f"Values the paper does not state: {self.chosen}" if self.chosen else None
@@ -56,7 +60,7 @@ class Recipe:
                         f"{self.name}.png and {self.name}.pdf into --out. " + (
                             "Ctrl-C keeps the finished simulations: the same command again "
                             "resumes." if self.resumable else "Ctrl-C stops it and keeps "
-                            "nothing: the same command again starts over."),
+                            f"nothing: the same command again starts over ({self.not_resumable})."),
             epilog=epilog)
         accept_negative_numbers(p)
         if self.records is None:

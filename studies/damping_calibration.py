@@ -249,7 +249,8 @@ recipe = Recipe(
            "a 1.0 x 1.0 m, 0.2 m thick pad of the paper's rubber (K_r 55,835 kN/m^2, n 2.65, "
            "alpha 2.25), strain 1.0 so delta_u = 0.2 m (never reached); two equal bodies of "
            "2 m_eff; a1 by bisection to 1e-6 relative (1e-4 with --quick)",
-    resumable=False)
+    not_resumable="it runs the two-body simulator itself, a few seconds of batched "
+                  "impacts, not the sweep executor")
 main = recipe.main
 
 if __name__ == "__main__":

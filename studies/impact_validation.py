@@ -240,7 +240,8 @@ recipe = Recipe(
            "apparatus; peak forces 17-47 kN); k_w = 8200 kN/mm past delta_u = 8 mm (axial "
            "E A / L of one 1000 x 200 x 200 mm steel rod; not reached); Hertzdamp with "
            "k = k_imp, n = 2.65, chi = 3(1-COR^2)/4",
-    resumable=False)
+    not_resumable="it runs the two-body simulator itself, one batch of a few impacts, "
+                  "not the sweep executor")
 main = recipe.main
 
 if __name__ == "__main__":
