@@ -9,6 +9,8 @@
   1 by construction, not a finding.
 - `judged`: a claim with the paper's quantifier ("every", "almost every", "most", "some")
   held at `held` of `counted` points; None when nothing was counted (not tested).
+- `weighted_quantiles`: quantiles over the records weighted per earthquake; QUANTILES, the
+  ones the studies report.
 """
 from __future__ import annotations
 
@@ -72,6 +74,11 @@ def judged(quantifier: str, held: float, counted: float) -> bool | None:
         return None
     return {"every": held == counted, "some": held > 0, "most": held > counted / 2,
             "almost every": held >= ALMOST_EVERY * counted}[quantifier]
+
+
+QUANTILES = (0.16, 0.5, 0.84)
+"""The quantiles the studies report over the records: the 16th, 50th and 84th percentiles (a
+lognormal's median and one standard deviation either side)."""
 
 
 def weighted_quantiles(values, weights, qs) -> np.ndarray:

@@ -1,9 +1,10 @@
 """Where a result leaves the model's range: the bumpers' contact stress and shape factor, floor
 accelerations a shear building with rigid floors cannot carry, a linear story's shear above its
 capacity, the wall's force above its capacity. Pure functions of peaks (engine.results.PEAKS,
-SI) and of the bumper and building parameters; the studies store the flags per member in
-their archives (variables `invalid_*`, 1 where the member is outside the range) and count them
-in every summary.
+SI) and of the bumper and building parameters (the largest floor acceleration and the bumpers'
+stress as pipeline.derived declares them); `flags_of` takes the peaks as the engine names them
+with the building. The studies store the flags per member in their archives (variables
+`invalid_*`, 1 where the member is outside the range) and count them in every summary.
 
 The limits are stated defaults, each replaceable by the user:
 - RUBBER_STRESS_LIMIT, 30.9 MPa: the largest compressive stress of the rubber tests the bumper
@@ -28,19 +29,14 @@ import numpy as np
 from engine.impact.laws import rubber_bumper
 from engine.units import G
 
+from .derived import bumper_stress, largest_floor_accel, peaks_of
+
 _RUBBER = rubber_bumper.PARAMETERS
 RUBBER_STRESS_LIMIT = _RUBBER["k_r"].default * _RUBBER["strain"].default ** _RUBBER["n"].default
 """Pa: the calibration test's static stress at its crush strain, K_r 0.8^n (the bumper law's
 declared rubber; see the module docstring), 30.9 MPa."""
 ACCEL_LIMIT = 5.0 * G
 """m/s^2: the largest floor acceleration the rigid-floor shear building represents."""
-
-
-def bumper_stress(max_impact_force, n_bumpers, area) -> np.ndarray:
-    """Mean contact stress (Pa) on each bumper at the largest impact force (N): force / (n A),
-    n bumpers of contact area A (m^2) sharing it. Broadcast over arrays."""
-    return np.asarray(max_impact_force, float) / (np.asarray(n_bumpers, float)
-                                                 * np.asarray(area, float))
 
 
 def shape_factor(area, thickness) -> np.ndarray:
@@ -107,7 +103,7 @@ def flags(peak_total_accel, peak_interstory_drift, max_impact_force, story_k, li
     """
     accel = np.asarray(peak_total_accel, float)
     force = np.asarray(max_impact_force, float)
-    out = {"invalid_floor_accel": accel.max(axis=-1) > limits.floor_accel}
+    out = {"invalid_floor_accel": largest_floor_accel(accel) > limits.floor_accel}
     if n_bumpers is None:
         out["invalid_bumper_stress"] = np.zeros(force.shape, dtype=bool)
     else:
@@ -120,6 +116,20 @@ def flags(peak_total_accel, peak_interstory_drift, max_impact_force, story_k, li
     out["invalid_wall_force"] = np.zeros(force.shape, dtype=bool) \
         if limits.wall_force is None else force > limits.wall_force
     return {name: out[name] for name in FLAGS}
+
+
+def flags_of(peaks, building, limits: Limits, n_bumpers=None,
+             area=None) -> dict[str, np.ndarray]:
+    """`flags` of the engine's peaks for a building: peaks, an engine Result or a dict with
+    peak_total_accel (..., levels), peak_interstory_drift (..., stories) and max_impact_force
+    (...,) as engine.results.PEAKS names them (a sweep's blocks: their peaks without the
+    prefix); building: the engine.Building run (its story stiffness; stories with a yield
+    force bound their own shear); n_bumpers, area: the bumpers (None: a bare wall)."""
+    found = peaks_of(peaks)
+    return flags(found["peak_total_accel"], found["peak_interstory_drift"],
+                 found["max_impact_force"], building.story_stiffness, limits,
+                 n_bumpers=n_bumpers, area=area,
+                 stories_yield=building.story_yield_force is not None)
 
 
 def any_flag(flagged: dict[str, np.ndarray]) -> np.ndarray:

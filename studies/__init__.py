@@ -19,8 +19,6 @@ Shared modules (underscored, imported by the recipes, never run):
     _recipe.py         what every recipe shares: command line, archive, figure, paper check.
     _plot.py           the figure style and record labels.
     _peaks_vs_gap.py   the gap grid, figure and check helpers of Figs. 16-21.
-    _suite_records.py  the record library scaled to a displacement (the first suite's rule,
-                       `--records all`).
     _code_suite.py     record pairs scaled to a site's spectrum by a code's rule, and the
                        intensity levels (suite, design, fragility).
     _design_search.py  design's search: bounds, constraints, statistics, the optimum's nature.

@@ -8,10 +8,12 @@ import json
 import numpy as np
 
 from engine.units import CM, G
+from pipeline import derived
 
 from ._code_suite import LEVELS
 from ._design_search import STAT_TEXT, Search, bumper_members, describe, nature, statistics
 from ._design_space import CRITERIA, OBJECTIVES, PEAKS, REFERENCES, VARIABLES
+from ._options import bare_wall_text
 
 
 def dataset(search: Search, references: dict, rounds: int, args):
@@ -36,12 +38,12 @@ def dataset(search: Search, references: dict, rounds: int, args):
         "level_name": variable("level", np.array(list(LEVELS)), "1", "intensity level"),
         "reference": variable("reference", np.array(REFERENCES), "1",
                               "reference designs: the building without wall; the bare wall "
-                              "(linear law, k 2500 kN/mm, COR 0.5) at the gap; the code's "
-                              "design, the bare wall at the clearance D_TM"),
+                              f"({bare_wall_text()}) at the gap; the code's design, the bare "
+                              "wall at the clearance D_TM"),
     })
     for name, (units, long_name) in VARIABLES.items():
         coords[name] = variable("candidate", table[name], units, long_name)
-    derived = {
+    per_candidate = {
         "cavity": ("m", "depth of the wall cavity holding each bumper", table["cavity_ratio"] * t),
         "side": ("m", "side of the square bumper, 4 S t", 4 * table["shape_factor"] * t),
         "bumper_area": ("m2", "contact area of one bumper", members.area),
@@ -50,7 +52,7 @@ def dataset(search: Search, references: dict, rounds: int, args):
         "delta_u": ("m", "crush limit min(strain t, t - c)", members.contact.delta_u),
         "stage": ("1", "0: the coarse grid; i: round i of the pattern search", search.stage),
     }
-    for name, (units, long_name, values) in derived.items():
+    for name, (units, long_name, values) in per_candidate.items():
         data[name] = variable("candidate", values, units, long_name)
     dims = ("record", "level", "candidate")
     for name, values in search.peaks.items():
@@ -69,9 +71,10 @@ def dataset(search: Search, references: dict, rounds: int, args):
                                           "pairs' weight")
     data["feasible"] = variable("candidate", judged["feasible"].astype(np.int8), "1",
                                 "1 where every constraint is met")
-    data["objective"] = variable("candidate", judged["objective"], "m s-2",
-                                 f"{OBJECTIVES[search.criteria.objective]} of the largest "
-                                 "peak floor acceleration at the MCE_R")
+    floor = derived.quantity("peak_floor_accel")
+    data["objective"] = variable("candidate", judged["objective"], floor.units,
+                                 f"{OBJECTIVES[search.criteria.objective]} of the "
+                                 f"{floor.long_name} at the MCE_R")
     data["rank"] = variable("candidate", judged["rank"], "1", "rank among the feasible "
                             "candidates (1 = chosen; 0 = infeasible)")
     best = search.best(judged)
@@ -113,9 +116,9 @@ def _peak_variable(dims, name, values):
     if name in PEAKS:
         units, long_name = PEAKS[name]
         return variable(dims, values, units, long_name)
-    if name == "crushed":
-        return variable(dims, values.astype(np.int8), "1",
-                        "1 where the bumpers are crushed beyond delta_u")
+    if name == "crushed":  # a bool, stored as 0 / 1
+        q = derived.quantity(name)
+        return variable(dims, values.astype(np.int8), q.units, q.long_name)
     return variable(dims, values.astype(np.int8), "1", f"1 where {validity.FLAGS[name]}")
 
 

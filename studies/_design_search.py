@@ -10,14 +10,15 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from engine.units import CM, KN_PER_MM
-from pipeline.outcomes import weighted_quantiles
+from pipeline.derived import crushed, largest_floor_accel, largest_story_drift
+from pipeline.derived import quantity as derived_quantity
+from pipeline.outcomes import QUANTILES, weighted_quantiles
 
 from ._code_suite import LEVELS
 from ._design_space import (
     FINEST,
     MCE,
     OTHER_FLAGS,
-    QUANTILES,
     VARIABLES,
     Bounds,
     Criteria,
@@ -33,10 +34,12 @@ assert tuple(LEVELS) == ("service", "design", "MCE_R")
 
 @dataclass(frozen=True)
 class Members:
-    """Walls to run, K of them: contact (engine.Contact); n_bumpers, area (K,) for the stress
-    (inf and 1 for a bare wall: no bumper stress)."""
+    """Walls to run, K of them: contact (engine.Contact, for their clear gaps); columns: the
+    same walls as a table of listed members (pipeline.listed: law and parameters, (K,) each);
+    n_bumpers, area (K,) for the stress (inf and 1 for a bare wall: no bumper stress)."""
 
     contact: object
+    columns: dict
     n_bumpers: np.ndarray
     area: np.ndarray
 
@@ -47,10 +50,15 @@ def bumper_members(table: dict, gap: float, strain: float) -> Members:
 
     t = table["thickness"]
     side = 4 * table["shape_factor"] * t
-    contact = engine.Contact.bumper(gap, thickness=t, cavity=table["cavity_ratio"] * t,
+    cavity = table["cavity_ratio"] * t
+    contact = engine.Contact.bumper(gap, thickness=t, cavity=cavity,
                                     n_bumpers=table["n_bumpers"].astype(int),
                                     k_w=table["wall_k"], strain=strain, area=side ** 2)
-    return Members(contact, table["n_bumpers"].astype(float), side ** 2)
+    k = t.size
+    columns = {"law": np.full(k, "bumper"), "gap": np.full(k, gap, dtype=float),
+               "thickness": t, "cavity": cavity, "n_bumpers": table["n_bumpers"],
+               "wall_k": table["wall_k"], "strain": np.full(k, strain), "area": side ** 2}
+    return Members(contact, columns, table["n_bumpers"].astype(float), side ** 2)
 
 
 def reference_members(gap: float, d_tm: float) -> Members:
@@ -59,14 +67,18 @@ def reference_members(gap: float, d_tm: float) -> Members:
     import engine
 
     contact = engine.Contact.concat([engine.Contact.none(1), engine.Contact.linear([gap, d_tm])])
-    return Members(contact, np.full(3, np.inf), np.ones(3))
+    columns = {"law": np.array(["none", "linear", "linear"]),
+               "gap": np.array([np.nan, gap, d_tm])}
+    return Members(contact, columns, np.full(3, np.inf), np.ones(3))
 
 
 @dataclass
 class Problem:
     """What every run shares: the scaled suite (studies._code_suite.CodeSuite), the building,
-    dt s, the moat, the validity limits (pipeline.validity.Limits); `free` holds the building
-    without wall per pair and level (filled by `run_free`)."""
+    dt s, the moat, the validity limits (pipeline.validity.Limits), how and where the runs go
+    (options: pipeline.sweep's workers, scheduler, quiet, work_dir); `free` holds the building
+    without wall per pair and level (filled by `run_free`), `swept` its sweep's Dataset (whose
+    provenance the archive keeps)."""
 
     suite: object
     building: object
@@ -75,71 +87,74 @@ class Problem:
     limits: object
     levels: np.ndarray = field(default_factory=lambda: np.array(list(LEVELS.values())))
     free: dict | None = None
+    options: dict = field(default_factory=dict)
+    swept: object = None
 
     def run(self, members: Members) -> dict[str, np.ndarray]:
         """Every member at every level under every pair: PEAKS, `crushed` and the validity
-        flags, (R, L, K) each. One engine call per pair; a member whose clear gap the building
-        without wall never reaches takes the free run's peaks (see the module docstring)."""
-        r, n_l, k = len(self.suite.pairs), self.levels.size, len(members.contact)
-        out = {name: np.zeros((r, n_l, k), dtype=values.dtype)
-               for name, values in self.free.items() if name != "reach"}
-        for name in out:
-            out[name][...] = self.free[name][:, :, None]
-        reach = self.free["reach"]
-        for p, pair in enumerate(self.suite.pairs):
-            run = members.contact.clear_gap[None, :] <= reach[p][:, None]  # (L, K)
-            lev, mem = np.nonzero(run)
-            if lev.size == 0:
-                continue
-            peaks = self._simulate(pair, members.contact[mem],
-                                   self.suite.factors[p] * self.levels[lev],
-                                   members.n_bumpers[mem], members.area[mem])
-            peaks["crushed"] = peaks["max_indentation"] > members.contact.delta_u[mem]
-            for name, values in peaks.items():
-                out[name][p, lev, mem] = values
-        return out
+        flags, (R, L, K) each, on the pipeline's executor (resumable from the work folder,
+        here or on dask). A member whose clear gap the building without wall never reaches
+        at a level is that level's free run (no wall: the same member as in `run_free`, so
+        the work folder holds it and it is not run again)."""
+        n_l, k = self.levels.size, len(members.contact)
+        reach = members.contact.clear_gap[None, None, :] <= self.free["reach"][:, :, None]
+        ds = self._sweep(_listed(members.columns, reach, self.levels))
+        shape = (len(self.suite.pairs), n_l, k)
+        peaks = _peaks(ds, shape, self.building, self.limits, members.n_bumpers,
+                       members.area)
+        peaks["crushed"] = crushed(peaks["max_indentation"], members.contact.delta_u)
+        return peaks
 
     def run_free(self) -> None:
         """The building without wall per pair and level (`free`, (R, L) each), and `reach`:
         the largest displacement toward a wall (per direction for a rectangular moat), m."""
-        import engine
+        n_l = self.levels.size
+        ds = self._sweep({"law": np.full(n_l, "none"), "level": self.levels})
+        shape = (len(self.suite.pairs), n_l)
+        peaks = _peaks(ds, shape, self.building, self.limits, np.full(n_l, np.inf),
+                       np.ones(n_l))
+        peaks["crushed"] = np.zeros(shape, dtype=bool)
+        peaks["reach"] = (ds.peak_isolator_disp_xy.max("direction").values
+                          if self.moat == "rectangular" else
+                          ds.peak_isolator_disp.values).reshape(shape)
+        self.free, self.swept = peaks, ds
 
-        levels = self.levels
-        rows = []
-        for pair, factor in zip(self.suite.pairs, self.suite.factors, strict=True):
-            res = engine.simulate(pair.accel, pair.dt, engine.Contact.none(levels.size),
-                                  self.building, self.dt, moat=self.moat,
-                                  scale=factor * levels)
-            peaks = _peaks(res, self.building, self.limits, np.full(levels.size, np.inf),
-                           np.ones(levels.size))
-            peaks["crushed"] = np.zeros(levels.size, dtype=bool)
-            peaks["reach"] = (res.peak_isolator_disp_xy.max(axis=1) if self.moat == "rectangular"
-                              else res.peak_isolator_disp)
-            rows.append(peaks)
-        self.free = {name: np.stack([r[name] for r in rows]) for name in rows[0]}
+    def _sweep(self, table: dict):
+        import pipeline
 
-    def _simulate(self, pair, contact, scale, n_bumpers, area) -> dict[str, np.ndarray]:
-        import engine
-
-        res = engine.simulate(pair.accel, pair.dt, contact, self.building, self.dt,
-                              moat=self.moat, scale=scale)
-        return _peaks(res, self.building, self.limits, n_bumpers, area)
+        options = {**self.options, "dt": self.dt, "building": self.building}
+        return pipeline.sweep(self.suite.pairs, moat=self.moat, members=table,
+                              factors=self.suite.factors, **options)
 
 
-def _peaks(res, building, limits, n_bumpers, area) -> dict[str, np.ndarray]:
-    """PEAKS and the validity flags of an engine result, (B,) each."""
+def _listed(columns: dict, reach: np.ndarray, levels: np.ndarray) -> dict:
+    """The table (pipeline.listed) of every member (columns (K,)) at every level, (R, L x K)
+    for reach (R, L, K): where False, no wall at that level instead (the free run)."""
+    r, n_l, k = reach.shape
+    table = {}
+    for name, values in columns.items():
+        values = np.broadcast_to(np.asarray(values)[None, None, :], reach.shape)
+        unset = "none" if name == "law" else np.nan
+        table[name] = np.where(reach, values, unset).reshape(r, n_l * k)
+    table["level"] = np.repeat(levels, k)
+    return table
+
+
+def _peaks(ds, shape: tuple, building, limits, n_bumpers, area) -> dict[str, np.ndarray]:
+    """PEAKS and the validity flags of a sweep's Dataset over (record, member), each shaped
+    `shape` (the members split as the caller listed them)."""
     from pipeline import validity
 
-    flags = validity.flags(res.peak_total_accel, res.peak_interstory_drift,
-                           res.max_impact_force, building.story_stiffness, limits,
-                           n_bumpers=n_bumpers, area=area,
-                           stories_yield=building.story_yield_force is not None)
-    return {"peak_floor_accel": res.peak_total_accel.max(axis=1),
-            "peak_isolator_disp": res.peak_isolator_disp,
-            "peak_interstory_drift": res.peak_interstory_drift.max(axis=1),
-            "max_impact_force": res.max_impact_force,
-            "max_indentation": res.max_indentation,
-            "n_impacts": res.n_impacts.astype(np.int64), **flags}
+    peaks = {name: ds[name].values.reshape(*shape, *ds[name].shape[2:]) for name in
+             ("peak_total_accel", "peak_interstory_drift", "max_impact_force",
+              "peak_isolator_disp", "max_indentation", "n_impacts")}
+    flags = validity.flags_of(peaks, building, limits, n_bumpers=n_bumpers, area=area)
+    return {"peak_floor_accel": largest_floor_accel(peaks["peak_total_accel"]),
+            "peak_isolator_disp": peaks["peak_isolator_disp"],
+            "peak_interstory_drift": largest_story_drift(peaks["peak_interstory_drift"]),
+            "max_impact_force": peaks["max_impact_force"],
+            "max_indentation": peaks["max_indentation"],
+            "n_impacts": peaks["n_impacts"].astype(np.int64), **flags}
 
 
 # ------------------------------------------------------------------------------ statistics
@@ -415,12 +430,13 @@ def _value(name: str, value: float) -> str:
     return f"{value:.4g} m" if units == "m" else f"{value:.4g}"
 
 
+ACCEL = derived_quantity("peak_floor_accel").units  # of the floor acceleration statistics
 STAT_TEXT = {
-    "p16_peak_floor_accel": ("m s-2", "weighted 16th percentile over the pairs of the largest "
+    "p16_peak_floor_accel": (ACCEL, "weighted 16th percentile over the pairs of the largest "
                                       "peak floor acceleration"),
-    "median_peak_floor_accel": ("m s-2", "weighted median over the pairs of the largest peak "
+    "median_peak_floor_accel": (ACCEL, "weighted median over the pairs of the largest peak "
                                          "floor acceleration"),
-    "p84_peak_floor_accel": ("m s-2", "weighted 84th percentile over the pairs of the largest "
+    "p84_peak_floor_accel": (ACCEL, "weighted 84th percentile over the pairs of the largest "
                                       "peak floor acceleration"),
     "fraction_uncrushed": ("1", "weighted fraction of the pairs with the bumpers uncrushed"),
     "fraction_within_stress": ("1", "weighted fraction of the pairs with the bumpers' contact "

@@ -103,7 +103,7 @@ def counts(ds, rule) -> dict:
     return out
 
 
-def _side_by_side(claim: Claim, ds, extra: str = "", numbers: dict | None = None) -> Verdict:
+def side_by_side(claim: Claim, ds, extra: str = "", numbers: dict | None = None) -> Verdict:
     """The claim judged in plan, with the planar model's count beside it."""
     masks = counts(ds, claim.rule)
     fracs = ds.gap_fraction.values

@@ -5,17 +5,18 @@ from __future__ import annotations
 import numpy as np
 
 from engine.units import CM, KN_PER_MM
+from pipeline.outcomes import QUANTILES
 
 from ._paper import THICKNESS
 from ._plot import plt
 from ._suite_archive import OUTCOMES, RESPONSES
-from ._suite_verdicts import _all_outside_numbers, _paper_config
+from ._suite_verdicts import all_outside_numbers, paper_config
 
 
 def plot(ds):
     fig, axes = plt.subplots(2, 3, figsize=(13, 8), layout="constrained")
     top = "MCE_R" if "MCE_R" in ds.level.values else str(ds.level.values[-1])
-    n_p, k_p = _paper_config(ds)
+    n_p, k_p = paper_config(ds)
     for ax, name in zip(axes[0], RESPONSES, strict=True):
         _fan(ax, ds, name, top, n_p)
     axes[0, 0].set_ylabel("amplification (bumpers / bare wall)")
@@ -43,7 +44,7 @@ def plot(ds):
     bar.ax.legend(handles=[no_contact_handle()], loc="upper center",
                   bbox_to_anchor=(0.5, -0.04), frameon=False, handlelength=1.5)
     _outcome_bars(axes[1, 2], ds, n_p, k_p)
-    n = _all_outside_numbers(ds)
+    n = all_outside_numbers(ds)
     fig.suptitle(f"{ds.sizes['record']} record pairs scaled by {ds.attrs.get('scaling_rule', '?')}"
                  f" (T_M {ds.attrs.get('T_M', np.nan):.2f} s, D_M "
                  f"{ds.attrs.get('D_M', np.nan) / CM:.1f} cm), in plan: "
@@ -63,11 +64,12 @@ def _fan(ax, ds, name, level, n_p):
     """Median and 16-84% of the amplification against the gap, one line per wall; hollow
     markers where most of the pairs with contact have a run outside the model's range."""
     x = ds.gap_fraction.values
+    low, middle, high = QUANTILES
     for k, color in zip(ds.wall_k.values, ("C0", "C1", "C2"), strict=False):
         at = {"level": level, "n_bumpers": n_p, "wall_k": k}
         q = ds.amplification_quantile.sel(response=name, **at)
-        median = q.sel(quantile=0.5).values
-        ax.fill_between(x, q.sel(quantile=0.16), q.sel(quantile=0.84), color=color, alpha=0.15,
+        median = q.sel(quantile=middle).values
+        ax.fill_between(x, q.sel(quantile=low), q.sel(quantile=high), color=color, alpha=0.15,
                         lw=0)
         ax.plot(x, median, color=color, label=f"$k_w$ {k / KN_PER_MM:g} kN/mm")
         mostly_outside = ds.counted_outside_range.sel(**at).values > 0.5

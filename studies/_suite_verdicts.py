@@ -8,11 +8,20 @@ from dataclasses import dataclass
 import numpy as np
 
 from engine.units import CM, KN_PER_MM
+from pipeline.derived import crushed
 from pipeline.outcomes import HELPED, HURT, NEUTRAL, TOLERANCE, amplification, effect, judged
 
 from ._paper import N_BUMPERS, THICKNESS, WALL_K
 from ._recipe import Verdict, verdict
-from ._suite_archive import DELTA_U, PREFIX, QUANTIFIER_TEXT, STRAIN, _weights, outside, runs
+from ._suite_archive import (
+    DELTA_U,
+    PREFIX,
+    QUANTIFIER_TEXT,
+    STRAIN,
+    broadcast_weights,
+    outside,
+    runs,
+)
 
 
 @dataclass(frozen=True)
@@ -36,7 +45,7 @@ def judge(conclusion, claim, quantifier, points, case: Case, weights, levels,
     """The Verdict of a claim with the paper's quantifier over the counted cases (those that
     change, for "most" and "almost every"), pairs weighted per earthquake; the runs outside
     the model's range among them counted and stated, and the fraction without them."""
-    weighted = _weights(weights, case.counted.shape)
+    weighted = broadcast_weights(weights, case.counted.shape)
     denominator = case.counted if case.changed is None or quantifier in ("every", "some") \
         else case.counted & case.changed
     flagged = denominator & np.any([r["outside_any"] for r in case.runs], axis=0)
@@ -101,7 +110,7 @@ def _outside_text(case: Case, denominator) -> str:
             + (f" ({kinds})" if kinds else ""))
 
 
-def _paper_config(ds) -> tuple[int, float]:
+def paper_config(ds) -> tuple[int, float]:
     """The paper's bumpers (4) and wall (1500 kN/mm), or the nearest the grid has."""
     n = N_BUMPERS if N_BUMPERS in ds.n_bumpers else int(ds.n_bumpers.min())
     k = WALL_K if WALL_K in ds.wall_k else float(ds.wall_k[0])
@@ -111,7 +120,7 @@ def _paper_config(ds) -> tuple[int, float]:
 def check(ds) -> list[Verdict]:
     """The paper's conclusions 5.1-5.6 and 6, each with the paper's quantifier, counted where
     what it speaks of happens; every verdict states its runs outside the model's range."""
-    n_p, k_p = _paper_config(ds)
+    n_p, k_p = paper_config(ds)
     w, levels = ds.record_weight.values, ds.level.values.tolist()
     paper, bare = runs(ds, n_p, k_p), runs(ds, None)
     touch = paper["hit"] | bare["hit"]
@@ -182,8 +191,8 @@ def _number_of_bumpers(ds, k_p, w, levels) -> list[Verdict]:
         judge("5.4", f"With {many} bumpers the indentation does not exceed the crush limit "
               f"({DELTA_U / CM:g} cm) for all examined excitations", "every",
               f"pairs whose {many} bumpers are hit at some level and gap; a pair holds when "
-              "they are never crushed", Case(a["indentation"] <= DELTA_U, a["hit"], None, (a,),
-                                            by_record=True), w, levels, extra)]
+              "they are never crushed", Case(~crushed(a["indentation"], DELTA_U), a["hit"], None,
+                                            (a,), by_record=True), w, levels, extra)]
 
 
 def _wall_stiffness(ds, n_p, bare, w, levels) -> list[Verdict]:
@@ -196,7 +205,7 @@ def _wall_stiffness(ds, n_p, bare, w, levels) -> list[Verdict]:
     soft, stiff = float(ds.wall_k.min()), float(ds.wall_k.max())
     a, b = runs(ds, n_p, soft), runs(ds, n_p, stiff)
     lower = effect(a["floor"], b["floor"])
-    crushed = (a["indentation"] > DELTA_U) | (b["indentation"] > DELTA_U)
+    either = crushed(a["indentation"], DELTA_U) | crushed(b["indentation"], DELTA_U)
     floor, drift = effect(a["floor"], bare["floor"]), effect(a["drift"], bare["drift"])
     return [
         judge("5.5", "A more flexible moat wall significantly reduces the peak floor "
@@ -204,7 +213,7 @@ def _wall_stiffness(ds, n_p, bare, w, levels) -> list[Verdict]:
               f"{stiff / KN_PER_MM:g} kN/mm; stated without quantifier, read as in most "
               "cases)", "most", f"cases where the {n_p} bumpers are crushed with either wall "
               "(only there does the wall behind them act)",
-              Case(lower == HELPED, crushed, lower != NEUTRAL, (a, b)), w, levels),
+              Case(lower == HELPED, either, lower != NEUTRAL, (a, b)), w, levels),
         judge("6", "With a relatively flexible moat wall both floor accelerations and "
               "interstory deflections are reduced compared with no bumpers (here: k_w "
               f"{soft / KN_PER_MM:g} kN/mm against the bare wall; read as in most cases)",
@@ -252,10 +261,10 @@ def _expand(value) -> np.ndarray:
 def _not_tested(ds, conclusion, claim, why) -> Verdict:
     """A conclusion the suite does not vary, with the count of all runs outside the range."""
     return Verdict(conclusion, claim, f"not tested: {why}; {_all_outside(ds)}", None,
-                   {"all_runs_outside_range": _all_outside_numbers(ds)})
+                   {"all_runs_outside_range": all_outside_numbers(ds)})
 
 
-def _all_outside_numbers(ds) -> dict:
+def all_outside_numbers(ds) -> dict:
     """Runs of the whole archive (every configuration) and those outside the model's range."""
     total, bad = 0, 0
     for config in PREFIX:
@@ -265,5 +274,5 @@ def _all_outside_numbers(ds) -> dict:
 
 
 def _all_outside(ds) -> str:
-    n = _all_outside_numbers(ds)
+    n = all_outside_numbers(ds)
     return f"of all runs, {n['runs_outside_range']} of {n['runs']} outside the model's range"

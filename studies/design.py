@@ -101,11 +101,14 @@ from ._design_space import (
     grid,
     usable_strain,
 )
+from ._options import add_moat, add_wall_capacity, chosen_pairs, wall_capacity
 from ._plot import plt
-from ._recipe import Recipe, Verdict
+from ._recipe import Recipe, Verdict, provenance, run_options
 
 GAP_FRACTION = 0.8
 """Default gap / D_M: short of the code's clearance D_TM (1.15 D_M), where bumpers matter."""
+
+
 def options(p) -> None:
     site_options(p)
     gap = p.add_mutually_exclusive_group()
@@ -114,8 +117,7 @@ def options(p) -> None:
                           f"{GAP_FRACTION:g} D_M)")
     gap.add_argument("--gap-dm", type=float, default=None, metavar="RATIO",
                      help=f"the gap as a ratio to the code's D_M (default {GAP_FRACTION:g})")
-    p.add_argument("--moat", choices=("rectangular", "circular"), default="rectangular",
-                   help="the moat in plan (default rectangular: walls normal to x and y)")
+    add_moat(p)
     p.add_argument("--objective", choices=tuple(OBJECTIVES), default="p84",
                    help="what is minimised: the weighted 84th percentile (p84, default) or "
                         "median over the pairs of the largest peak floor acceleration at the "
@@ -148,18 +150,10 @@ def options(p) -> None:
     p.add_argument("--wall-length-m", type=float, default=WALL_LENGTH, metavar="M",
                    help=f"length of each moat wall, m, bounding the count (default "
                         f"{WALL_LENGTH:g})")
-    p.add_argument("--wall-capacity-mn", type=float, default=None, metavar="MN",
-                   help="the wall's force capacity, MN, for the validity flags (default: not "
-                        "checked)")
+    add_wall_capacity(p, "the validity flags")
 
 
 # ------------------------------------------------------------------------------ compute
-
-
-def default_pairs(quick: bool) -> list[str]:
-    from pipeline.records import pair_names
-
-    return list(QUICK_PAIRS) if quick else pair_names("far-field")
 
 
 def shape_range(args) -> tuple[float, float]:
@@ -188,14 +182,14 @@ def design_gap(args, design) -> float:
 def compute(args):
     import engine
     from pipeline import validity
-    from pipeline.errors import SweepError, resolve_pairs
+    from pipeline.errors import SweepError
     from pipeline.target import isolation_design
 
     from ._code_suite import code_suite
     from ._code_suite import describe as describe_suite
 
     crit = criteria(args)
-    pairs, names = resolve_pairs(args.records or default_pairs(args.quick), args.records_dir)
+    pairs, names = chosen_pairs(args, QUICK_PAIRS)
     building = args.building
     try:
         suite = code_suite(pairs, names, building, args.rule, args.sms_g, args.sm1_g, args.tl,
@@ -210,10 +204,11 @@ def compute(args):
     strain = engine.impact.LAWS["bumper"].PARAMETERS.strain.default
     stress = validity.RUBBER_STRESS_LIMIT if args.stress_limit_mpa is None \
         else args.stress_limit_mpa * 1e6
-    for name in ("stress_limit_mpa", "wall_length_m", "wall_capacity_mn"):
+    for name in ("stress_limit_mpa", "wall_length_m"):
         value = getattr(args, name)
         if value is not None and not value > 0:
             raise SweepError(f"--{name.replace('_', '-')} must be positive, got {value:g}")
+    wall_force = wall_capacity(args)
     # the code's displacement at the service level, by the procedure that gave D_M
     service = isolation_design(suite.site["s_m1"] * LEVELS["service"], building,
                                dashpot=suite.design.dashpot)
@@ -229,9 +224,9 @@ def compute(args):
     limits = validity.Limits(
         bumper_stress=stress,
         story_shear=validity.code_story_capacity(suite.design, building) if linear else None,
-        wall_force=None if args.wall_capacity_mn is None else args.wall_capacity_mn * 1e6)
+        wall_force=wall_force)
     problem = Problem(suite, building, engine.DEFAULT_DT if args.dt is None else args.dt,
-                      args.moat, limits)
+                      args.moat, limits, options=run_options(args))
     problem.run_free()
     references = problem.run(reference_members(gap, suite.design.d_tm))
     bare = {name: values[:, :, 1] for name, values in references.items()}
@@ -243,7 +238,8 @@ def compute(args):
     if not args.quiet:
         print(f"design: coarse grid, {search.stage.size} candidates", flush=True)
     rounds = search.refine(QUICK_ROUNDS if args.quick else ROUNDS, quiet=args.quiet)
-    return dataset(search, references, rounds, args)
+    ds = dataset(search, references, rounds, args)
+    return ds.assign_attrs({**provenance(problem.swept), **ds.attrs})
 
 
 # ------------------------------------------------------------------------------ reporting
@@ -414,7 +410,7 @@ recipe = Recipe(
             f"{', '.join(QUICK_PAIRS)}); coarse grid t 4-20 cm, c/t 0-0.4, 4-32 bumpers, S "
             "0.5-1.5, k_w 500 and 2500 kN/mm, then a pattern search; strain and COR the "
             f"law's defaults; wall length {WALL_LENGTH:g} m"),
-    resumable=False)
+)
 main = recipe.main
 
 if __name__ == "__main__":

@@ -16,7 +16,10 @@ and, if a capacity is given, the wall's force above it. For each event and confi
 lognormal fragility P(event | IM) = Phi(ln(IM / theta) / beta) is fitted by maximum likelihood
 over the stripes (Baker 2015; pipeline.fragility), pairs weighted per earthquake; IM is the
 level as a fraction of the MCE_R (and, equivalently, the target's Sa(T_M)). Runs outside the
-model's range (pipeline.validity) are flagged (`invalid_*`) and counted in the summary.
+model's range (pipeline.validity) are flagged (`invalid_*`) and counted in the summary. The
+largest floor acceleration and interstory drift, the bumpers' stress and "crushed" are
+pipeline.derived's (names, units, long names, formulas); --moat, --wall-capacity-mn and the
+default pairs are studies._options'.
 """
 from __future__ import annotations
 
@@ -25,12 +28,21 @@ import json
 import numpy as np
 
 from engine.units import CM, G
+from pipeline import derived
 
 from ._code_suite import archive_variables, code_suite, describe, site_options
+from ._options import (
+    QUICK_PAIRS,
+    add_moat,
+    add_wall_capacity,
+    bare_wall_text,
+    chosen_pairs,
+    wall_capacity,
+)
 from ._paper import N_BUMPERS, THICKNESS
 from ._plot import plt
 from ._recipe import Recipe, Verdict, provenance, run_options
-from ._suite_archive import AREA, STRAIN
+from ._suite_archive import AREA, DELTA_U
 
 LEVELS = (0.5, 0.75, 1.0, 1.25, 1.5, 1.75, 2.0, 2.5)
 """Intensity levels, fractions of the MCE_R target (1 = MCE_R, 2/3 = the design level)."""
@@ -67,28 +79,16 @@ def options(p) -> None:
     p.add_argument("--drift-threshold-cm", type=float, default=DRIFT_THRESHOLD / CM,
                    metavar="CM", help=f"interstory drift event threshold in cm (default "
                                       f"{DRIFT_THRESHOLD / CM:g})")
-    p.add_argument("--wall-capacity-mn", type=float, default=None, metavar="MN",
-                   help="the moat wall's lateral capacity in MN: its event and validity flag "
-                        "(default: none, not checked)")
-    p.add_argument("--moat", choices=("rectangular", "circular"), default="rectangular",
-                   help="the moat in plan (default: rectangular, the same walls on every side)")
+    add_wall_capacity(p, "its event and the validity flag invalid_wall_force")
+    add_moat(p)
     p.add_argument("--method", choices=("stripes", "ida"), default="stripes",
                    help="the fit (Baker 2015): stripes (default), the binomial likelihood of "
                         "the events per level; ida, each pair's first level with the event as "
                         "its capacity (censored above the highest level)")
 
 
-def default_pairs(quick: bool) -> list[str]:
-    from pipeline.records import pair_names
-
-    names = pair_names("far-field")
-    return names[:4] if quick else names
-
-
 def compute(args):
-    from pipeline.errors import resolve_pairs
-
-    pairs, names = resolve_pairs(args.records or default_pairs(args.quick), args.records_dir)
+    pairs, names = chosen_pairs(args, QUICK_PAIRS)
     suite = code_suite(pairs, names, args.building, args.rule, args.sms_g, args.sm1_g, args.tl,
                        args.dt)
     levels = np.array(QUICK_LEVELS if args.quick else LEVELS)
@@ -126,19 +126,12 @@ def _dataset(suite, levels, fractions, gaps, peaks, args):
     from engine.results import quantity
     from pipeline.archive import labelled_dataset, variable
     from pipeline.fragility_outcomes import fit_outcomes
-    from pipeline.validity import (
-        FLAGS,
-        Limits,
-        bumper_stress,
-        code_story_capacity,
-        flags,
-        shape_factor,
-    )
+    from pipeline.validity import FLAGS, Limits, code_story_capacity, flags_of, shape_factor
 
     building = args.building
     capacity = code_story_capacity(suite.design, building)
-    wall_capacity = None if args.wall_capacity_mn is None else args.wall_capacity_mn * 1e6
-    limits = Limits(story_shear=capacity, wall_force=wall_capacity)
+    wall_force = wall_capacity(args)
+    limits = Limits(story_shear=capacity, wall_force=wall_force)
     # configurations: member 0 no wall, then each barrier's gaps (BARRIERS order)
     n_gaps = gaps.size
     pick = {b: slice(1 + k * n_gaps, 1 + (k + 1) * n_gaps) for k, b in enumerate(BARRIERS)}
@@ -152,33 +145,29 @@ def _dataset(suite, levels, fractions, gaps, peaks, args):
         q = quantity(name)
         data[name] = variable(dims, by_config(peaks[name]), q.units, q.long_name + " (plan: "
                               "resultant)")
-    accel = peaks["peak_total_accel"].max(axis=-1)
-    drift = peaks["peak_interstory_drift"].max(axis=-1)
-    data["peak_floor_accel"] = variable(dims, by_config(accel), "m s-2",
-                                        "largest peak floor acceleration (resultant)")
-    data["peak_story_drift"] = variable(dims, by_config(drift), "m",
-                                        "largest peak interstory drift (resultant)")
-    free = {"peak_isolator_disp": peaks["peak_isolator_disp"][:, :, 0], "peak_floor_accel":
-            accel[:, :, 0], "peak_story_drift": drift[:, :, 0]}
+    largest = derived.derive(peaks, ("peak_floor_accel", "peak_story_drift"))
+    for name, value in largest.items():
+        q = derived.quantity(name)
+        data[name] = variable(dims, by_config(value), q.units, q.long_name + " (resultant)")
+    free = {"peak_isolator_disp": peaks["peak_isolator_disp"][:, :, 0],
+            **{name: value[:, :, 0] for name, value in largest.items()}}
     for name, value in free.items():
         data[f"unconstrained_{name}"] = variable(("record", "level"), value,
                                                  data[name].attrs["units"],
                                                  data[name].attrs["long_name"] + " without wall")
-    events = _events(peaks, building, args, capacity, wall_capacity, by_config)
+    events = _events(peaks, building, args, capacity, wall_force, by_config)
     for name, value in events.items():
         data[f"event_{name}"] = variable(dims, value.astype(np.int8), "1",
                                          f"1 where {EVENTS[name]}")
-    flagged = flags(peaks["peak_total_accel"], peaks["peak_interstory_drift"],
-                    peaks["max_impact_force"], building.story_stiffness, limits,
-                    n_bumpers=_bumper_counts(n_gaps)[None, None, :], area=AREA,
-                    stories_yield=building.story_yield_force is not None)
+    flagged = flags_of(peaks, building, limits, n_bumpers=_bumper_counts(n_gaps)[None, None, :],
+                       area=AREA)
     for name, value in flagged.items():
         data[name] = variable(dims, by_config(value).astype(np.int8), "1",
                               f"1 where {FLAGS[name]} ({limits.describe()})")
-    stress = by_config(bumper_stress(peaks["max_impact_force"], _bumper_counts(n_gaps), AREA))
+    q = derived.quantity("bumper_stress")
+    stress = by_config(q(peaks, n_bumpers=_bumper_counts(n_gaps), area=AREA))
     stress[..., 0] = np.nan  # the bare wall has no bumpers
-    data["bumper_stress"] = variable(dims, stress, "Pa", "mean contact stress on each bumper "
-                                     "at the largest impact force (NaN: no bumpers)")
+    data["bumper_stress"] = variable(dims, stress, q.units, q.long_name + " (NaN: no bumpers)")
 
     fits = _fits(levels, events, suite.weights, fit_outcomes, args.method)
     fit_dims = ("event", "gap_fraction", "barrier")
@@ -205,8 +194,8 @@ def _dataset(suite, levels, fractions, gaps, peaks, args):
         "gap_fraction": variable("gap_fraction", fractions, "1",
                                  "seismic gap / D_M (the last: the code's clearance D_TM)"),
         "gap": variable("gap_fraction", gaps, "m", "seismic gap"),
-        "barrier": variable("barrier", np.array(BARRIERS), "1", "the bare wall (linear law, "
-                            f"k 2500 kN/mm, COR 0.5) or n bumpers of {THICKNESS / CM:g} cm "
+        "barrier": variable("barrier", np.array(BARRIERS), "1", f"the bare wall "
+                            f"({bare_wall_text()}) or n bumpers of {THICKNESS / CM:g} cm "
                             "on each wall"),
         "event": variable("event", np.array(list(events)), "1", "what happens: "
                           + "; ".join(f"{k}: {EVENTS[k]}" for k in events)),
@@ -216,7 +205,7 @@ def _dataset(suite, levels, fractions, gaps, peaks, args):
     attrs.update({
         "moat": args.moat, "accel_threshold": args.accel_threshold_g * G,
         "drift_threshold": args.drift_threshold_cm * CM, "story_capacity": capacity,
-        "wall_capacity": "none" if wall_capacity is None else wall_capacity,
+        "wall_capacity": "none" if wall_force is None else wall_force,
         "validity_limits": limits.describe(), "invalid_counts": json.dumps(counts),
         "runs": int(np.prod([len(suite.names), levels.size, gaps.size, len(BARRIERS)])),
         "bumper_shape_factor": float(shape_factor(AREA, THICKNESS)),
@@ -239,11 +228,12 @@ def _bumper_counts(n_gaps: int) -> np.ndarray:
     return counts
 
 
-def _events(peaks, building, args, capacity, wall_capacity, by_config) -> dict:
-    """event name -> (R, L, gap, barrier) bool."""
-    accel = peaks["peak_total_accel"].max(axis=-1)
+def _events(peaks, building, args, capacity, wall_force, by_config) -> dict:
+    """event name -> (R, L, gap, barrier) bool; wall_force: the wall's capacity, N (None: no
+    event)."""
+    accel = derived.largest_floor_accel(peaks["peak_total_accel"])
     drift_all = peaks["peak_interstory_drift"]
-    crushed = peaks["max_indentation"] >= STRAIN * THICKNESS
+    crushed = derived.crushed(peaks["max_indentation"], DELTA_U)
     n_gaps = (peaks["n_impacts"].shape[2] - 1) // len(BARRIERS)
     crushed[:, :, :1 + n_gaps] = False  # no bumpers there
     if building.story_yield_force is not None:
@@ -252,10 +242,10 @@ def _events(peaks, building, args, capacity, wall_capacity, by_config) -> dict:
         beyond = (drift_all * np.asarray(building.story_stiffness)).max(axis=-1) > capacity
     out = {"contact": peaks["n_impacts"] > 0, "bumpers_crushed": crushed,
            "floor_accel": accel > args.accel_threshold_g * G,
-           "drift": drift_all.max(axis=-1) > args.drift_threshold_cm * CM,
+           "drift": derived.largest_story_drift(drift_all) > args.drift_threshold_cm * CM,
            "story_capacity": beyond}
-    if wall_capacity is not None:
-        out["wall_force"] = peaks["max_impact_force"] > wall_capacity
+    if wall_force is not None:
+        out["wall_force"] = peaks["max_impact_force"] > wall_force
     return {name: by_config(value) for name, value in out.items()}
 
 
@@ -365,10 +355,9 @@ recipe = Recipe(
     chosen=(f"site S_MS 1.5 g, S_M1 0.9 g, T_L 8 s; ASCE 7-22 ch. 17 scaling; levels "
             f"{', '.join(map(str, LEVELS))} x MCE_R; gaps {', '.join(map(str, GAPS))} D_M and "
             f"D_TM; floor acceleration threshold {ACCEL_THRESHOLD / G:g} g, drift "
-            f"{DRIFT_THRESHOLD / CM:g} cm; quick: 4 pairs, levels "
+            f"{DRIFT_THRESHOLD / CM:g} cm; quick: {QUICK_PAIRS} pairs, levels "
             f"{', '.join(map(str, QUICK_LEVELS))}"),
-    records=(), options=options,
-    resumable=False)
+    records=(), options=options)
 main = recipe.main
 
 if __name__ == "__main__":

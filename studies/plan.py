@@ -25,13 +25,15 @@ import json
 import numpy as np
 
 from engine.units import CM, G
+from pipeline.derived import largest_floor_accel, largest_story_drift
+from pipeline.outcomes import QUANTILES
 
+from ._options import add_moat, bare_wall_text, chosen_pairs
 from ._paper import GAP_FRACTION, N_BUMPERS, THICKNESS
 from ._plan_verdicts import (
     CLAIMS,
     MODELS,
     Claim,
-    _side_by_side,
     base_reduced,
     counts,
     drift_amplified,
@@ -39,6 +41,7 @@ from ._plan_verdicts import (
     force_reduced,
     narrow_more_effective,
     only_bumpers_amplify,
+    side_by_side,
 )
 from ._plot import plt
 from ._recipe import Recipe, Verdict, provenance, run_options
@@ -46,17 +49,10 @@ from ._recipe import Recipe, Verdict, provenance, run_options
 BARRIERS = ("none", "bare wall", "bumpers")
 FRACTIONS = (0.5, 0.7, GAP_FRACTION, 1.1, 1.3)  # gap / the planar peak without wall
 QUICK_FRACTIONS = (0.7, GAP_FRACTION)
+QUICK_PLAN_PAIRS = 3  # pairs of a --quick run
 ORBITS = 3  # pairs whose orbits (plan, bumpers, angle 0, the paper's gap) the figure draws
 MIN_CLEARANCE = 0.01  # m: the least clear gap in front of the bumpers for them to be run
-QUANTILES = (0.16, 0.5, 0.84)
 AS_RECORDED = (0.0, 90.0)  # degrees: the angles whose planar component is x, and -y
-
-
-def default_pairs(quick: bool) -> list[str]:
-    from pipeline.records import pair_names
-
-    names = pair_names("far-field")
-    return names[:3] if quick else names
 
 
 def angles(quick: bool) -> np.ndarray:
@@ -71,17 +67,13 @@ def gap_fractions(quick: bool) -> np.ndarray:
 
 
 def options(p) -> None:
-    p.add_argument("--moat", choices=("rectangular", "circular"), default="rectangular",
-                   help="the moat in plan: walls normal to x and y at +- the gap (default), or "
-                        "a circle of radius the gap")
+    add_moat(p)
 
 
 def compute(args):
     import engine
     import pipeline
-    from pipeline.errors import resolve_pairs
-
-    pairs, names = resolve_pairs(args.records or default_pairs(args.quick), args.records_dir)
+    pairs, names = chosen_pairs(args, QUICK_PLAN_PAIRS)
     thetas, fracs = angles(args.quick), gap_fractions(args.quick)
     n_p, n_a, n_g = len(pairs), thetas.size, fracs.size
     shape = (n_p, n_a, n_g, len(MODELS), len(BARRIERS))
@@ -215,9 +207,9 @@ def peaks_of(ds, last: str) -> dict:
     base's acceleration (m/s^2), the largest interstory drift (m), the largest impact force
     (N) and the impacts (-)."""
     return {"peak_isolator_disp": ds.peak_isolator_disp.values,
-            "peak_floor_accel": ds.peak_total_accel.max("floor").values,
+            "peak_floor_accel": largest_floor_accel(ds.peak_total_accel.values),
             "peak_base_accel": ds.peak_total_accel.isel(floor=0).values,
-            "peak_interstory_drift": ds.peak_interstory_drift.max("story").values,
+            "peak_interstory_drift": largest_story_drift(ds.peak_interstory_drift.values),
             "max_impact_force": ds.max_impact_force.values,
             "n_impacts": ds.n_impacts.values}
 
@@ -282,7 +274,7 @@ def _dataset(out, gaps, names, pairs, thetas, fracs, orbit_t, orbits, args):
                           "the component along the angle; plan: the building in plan under "
                           "the rotated pair"),
         "barrier": variable("barrier", np.array(BARRIERS), "1", "what stops the slab: "
-                            "nothing, the bare wall (linear law, k 2500 kN/mm, COR 0.5), or "
+                            f"nothing, the bare wall ({bare_wall_text()}), or "
                             f"{N_BUMPERS} bumpers of {THICKNESS / CM:g} cm a side"),
     }
     if n_t:
@@ -367,9 +359,9 @@ def check(ds) -> list[Verdict]:
                       "bumpers can reduce the peak floor acceleration against the bare wall",
                       "some", "(pair, angle) points where the bare wall is hit (bumpers run)",
                       floor_reduced)
-    out = [_side_by_side(paper_gap, ds.sel(gap_fraction=[GAP_FRACTION]), extra,
+    out = [side_by_side(paper_gap, ds.sel(gap_fraction=[GAP_FRACTION]), extra,
                          {"plan_vs_planar": summary})]
-    out += [_side_by_side(claim, ds) for claim in CLAIMS]
+    out += [side_by_side(claim, ds) for claim in CLAIMS]
     out.append(narrow_more_effective(ds))
     return out
 

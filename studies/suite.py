@@ -37,6 +37,10 @@ the quantity changes by more than the tolerance; "almost all": ALMOST_EVERY of t
 "can": one case at least; a claim without quantifier is read as stated in its text), the
 fraction it holds for, and "agrees" only when the quantifier holds. Comparisons are made only
 between configurations where something happens (contact, crushing).
+
+The derived responses (the largest floor acceleration and interstory drift, the bumpers'
+stress, "crushed") are pipeline.derived's; --moat, --wall-capacity-mn, the default pairs and
+the bare wall's description are studies._options'; QUANTILES is pipeline.outcomes'.
 """
 from __future__ import annotations
 
@@ -46,17 +50,27 @@ from dataclasses import dataclass
 import numpy as np
 
 from engine.units import CM
+from pipeline import derived
 from pipeline.outcomes import (
     ALMOST_EVERY,
     HELPED,
     HURT,
     NEUTRAL,
+    QUANTILES,
     amplification,
     effect,
     weighted_quantiles,
 )
 
 from ._code_suite import LEVELS, archive_variables, code_suite, describe, site_options
+from ._options import (
+    QUICK_PAIRS,
+    add_moat,
+    add_wall_capacity,
+    bare_wall_text,
+    chosen_pairs,
+    wall_capacity,
+)
 from ._paper import FIG19_COUNTS, FIG21_WALL_KS, THICKNESS
 from ._recipe import Recipe, provenance, run_options
 from ._suite_archive import (
@@ -66,7 +80,7 @@ from ._suite_archive import (
     PREFIX,
     RESPONSES,
     STRAIN,
-    _weights,
+    broadcast_weights,
     contact,
     outside,
     response,
@@ -82,28 +96,15 @@ the narrower gaps; 0.4 D_M leaves 5.5 cm in front of the 5 cm bumpers."""
 QUICK_GAPS = (0.4, 0.6)
 QUICK_LEVELS = ("design", "MCE_R")
 QUICK_COUNTS = (4, 32)
-QUICK_PAIRS = 4
 PEAKS = ("peak_isolator_disp", "peak_total_accel", "peak_interstory_drift", "max_impact_force",
          "max_indentation", "n_impacts")
 """The engine's peaks the archive keeps for every run (plan: resultants)."""
-QUANTILES = (0.16, 0.5, 0.84)
 
 
 def options(p) -> None:
     site_options(p)
-    p.add_argument("--moat", choices=("rectangular", "circular"), default="rectangular",
-                   help="the moat in plan (default: rectangular, the same walls on every side)")
-    p.add_argument("--wall-capacity-mn", type=float, default=None, metavar="MN",
-                   help="the moat wall's lateral capacity in MN, for the validity flag "
-                        "invalid_wall_force (default: none, not checked)")
-
-
-def default_pairs(quick: bool) -> list[str]:
-    """The FEMA P695 far-field pairs (quick: the first QUICK_PAIRS)."""
-    from pipeline.records import pair_names
-
-    names = pair_names("far-field")
-    return names[:QUICK_PAIRS] if quick else names
+    add_moat(p)
+    add_wall_capacity(p)
 
 
 @dataclass(frozen=True)
@@ -163,17 +164,15 @@ def make_grid(design, quick: bool) -> Grid:
 
 
 def compute(args):
-    from pipeline.errors import resolve_pairs
     from pipeline.validity import Limits, code_story_capacity
 
-    pairs, names = resolve_pairs(args.records or default_pairs(args.quick), args.records_dir)
+    pairs, names = chosen_pairs(args, QUICK_PAIRS)
     suite = code_suite(pairs, names, args.building, args.rule, args.sms_g, args.sm1_g, args.tl,
                        args.dt)
     grid = make_grid(suite.design, args.quick)
     peaks, swept = run(suite, grid, args)
-    wall = None if args.wall_capacity_mn is None else args.wall_capacity_mn * 1e6
     limits = Limits(story_shear=code_story_capacity(suite.design, args.building),
-                    wall_force=wall)
+                    wall_force=wall_capacity(args))
     ds = assemble(grid, peaks, suite.names, suite.weights, args.building, limits)
     data, coords, attrs = archive_variables(suite)
     attrs.update(moat=args.moat, suite=describe(suite))
@@ -202,8 +201,13 @@ def run(suite, grid: Grid, args):
 
 DIMS = {"free": ("record", "level"), "bare": ("record", "level", "gap_fraction"),
         "bumpers": ("record", "level", "gap_fraction", "n_bumpers", "wall_k")}
-CONFIG_TEXT = {"free": "without wall", "bare": "against the bare wall at the same gap (linear "
-               "law, k 2500 kN/mm, COR 0.5)", "bumpers": "with the bumpers"}
+
+
+def config_text() -> dict[str, str]:
+    """Configuration -> how the archive's long names say it."""
+    return {"free": "without wall",
+            "bare": f"against the bare wall at the same gap ({bare_wall_text()})",
+            "bumpers": "with the bumpers"}
 
 
 def assemble(grid: Grid, peaks: dict, names, weights, building, limits):
@@ -214,29 +218,26 @@ def assemble(grid: Grid, peaks: dict, names, weights, building, limits):
     bumpers' contact stress and the statistics (add_statistics)."""
     from engine.results import quantity
     from pipeline.archive import labelled_dataset, variable
-    from pipeline.validity import FLAGS, bumper_stress, flags, shape_factor
+    from pipeline.validity import FLAGS, flags_of, shape_factor
 
-    data = {}
+    data, said = {}, config_text()
+    counts = np.array(grid.counts, float)[:, None]  # (N, 1): against the wall_k axis
     for config, prefix in PREFIX.items():
         along = {"peak_total_accel": ("floor",), "peak_interstory_drift": ("story",)}
         for name in PEAKS:
             q = quantity(name)
             data[prefix + name] = variable(DIMS[config] + along.get(name, ()),
                                            peaks[config][name], q.units,
-                                           f"{q.long_name} {CONFIG_TEXT[config]} (resultant)")
-        n_bumpers = np.array(grid.counts, float)[:, None] if config == "bumpers" else None
-        flagged = flags(peaks[config]["peak_total_accel"],
-                        peaks[config]["peak_interstory_drift"],
-                        peaks[config]["max_impact_force"], building.story_stiffness, limits,
-                        n_bumpers=n_bumpers, area=AREA,
-                        stories_yield=building.story_yield_force is not None)
+                                           f"{q.long_name} {said[config]} (resultant)")
+        flagged = flags_of(peaks[config], building, limits, area=AREA,
+                           n_bumpers=counts if config == "bumpers" else None)
         for name, value in flagged.items():
             data[prefix + name] = variable(DIMS[config], value.astype(np.int8), "1",
-                                           f"1 where {FLAGS[name]} ({CONFIG_TEXT[config]})")
+                                           f"1 where {FLAGS[name]} ({said[config]})")
+    stress = derived.quantity("bumper_stress")
     data["bumper_stress"] = variable(
-        DIMS["bumpers"], bumper_stress(peaks["bumpers"]["max_impact_force"],
-                                       np.array(grid.counts, float)[:, None], AREA), "Pa",
-        f"mean contact stress on each bumper ({AREA * 1e6:g} mm2) at the largest impact force")
+        DIMS["bumpers"], stress(peaks["bumpers"], n_bumpers=counts, area=AREA), stress.units,
+        stress.describe(each=f"each bumper ({AREA * 1e6:g} mm2)"))
     data["record_weight"] = variable("record", np.asarray(weights, float), "1",
                                      "the pair's weight: 1 / the pairs of the same earthquake, "
                                      "normalised to sum to the number of pairs")
@@ -329,7 +330,7 @@ def add_statistics(ds):
     out["counted_outside_range"] = variable(
         dims[1:], _weighted_mean(~valid, touch, w), "1", "weighted share of the pairs with "
         "contact whose bumper or bare-wall run is outside the model's range (NaN: none)")
-    crushed = (ds.max_indentation > DELTA_U).transpose(*dims).values
+    crushed = derived.crushed(ds.max_indentation.transpose(*dims).values, DELTA_U)
     out["fraction_crushed"] = variable(
         dims[1:], _weighted_mean(crushed, np.ones_like(crushed), w), "1",
         f"weighted share of the pairs whose bumpers are crushed beyond {DELTA_U / CM:g} cm")
@@ -339,7 +340,7 @@ def add_statistics(ds):
 def _weighted_mean(values, counted, w) -> np.ndarray:
     """Over axis 0 (records): the weighted share of `values` among the `counted`, NaN where
     nothing is counted."""
-    ww = _weights(w, values.shape) * counted
+    ww = broadcast_weights(w, values.shape) * counted
     total = ww.sum(axis=0)
     with np.errstate(invalid="ignore", divide="ignore"):
         return np.where(total > 0, (ww * values).sum(axis=0) / total, np.nan)
@@ -347,7 +348,7 @@ def _weighted_mean(values, counted, w) -> np.ndarray:
 
 def _shares(eff, touch, w) -> np.ndarray:
     """(response, outcome, ...) weighted shares of all pairs in each outcome (sum 1)."""
-    ww = _weights(w, touch.shape)
+    ww = broadcast_weights(w, touch.shape)
     total = ww.sum(axis=0)
     out = []
     for e in eff:

@@ -36,6 +36,31 @@ def test_flags():
     assert "not checked" in validity.Limits().describe()
 
 
+def test_flags_of_takes_the_peaks_as_the_engine_names_them():
+    import engine
+
+    building = engine.Building()
+    limits = validity.Limits(story_shear=1e6)
+    peaks = {"peak_total_accel": np.array([[1.0] * building.n_levels, [6 * G] * 5]),
+             "peak_interstory_drift": np.array([[1e-4] * building.n_stories, [0.1] * 4]),
+             "max_impact_force": np.array([0.0, 4 * 0.0225 * 40e6])}
+    got = validity.flags_of(peaks, building, limits, n_bumpers=4, area=0.0225)
+    expected = validity.flags(peaks["peak_total_accel"], peaks["peak_interstory_drift"],
+                              peaks["max_impact_force"], building.story_stiffness, limits,
+                              n_bumpers=4, area=0.0225)
+    assert {k: v.tolist() for k, v in got.items()} == {k: v.tolist()
+                                                       for k, v in expected.items()}
+    assert [v.tolist() for v in got.values()] == [[False, True], [False, True], [False, True],
+                                                  [False, False]]
+    # stories with a yield force bound their own shear: not checked
+    yielding = engine.Building(story_yield_force=[1e6] * building.n_stories)
+    assert not validity.flags_of(peaks, yielding, limits)["invalid_story_shear"].any()
+
+
+def test_quantiles_are_the_median_and_one_sigma_either_side():
+    assert outcomes.QUANTILES == (0.16, 0.5, 0.84)
+
+
 def test_effect_counts_ties_as_neutral_and_only_where_contact():
     with_b = np.array([0.5, 1.0, 1.01, 1.5, 2.0, 1.0])
     without = np.array([1.0, 1.0, 1.0, 1.0, 1.0, 1.0])

@@ -197,6 +197,12 @@ def test_archive(archive):
     assert int(ds.reference_n_impacts.isel(level=0).sum()) == 0
     assert ds.attrs["D_TM"] > ds.attrs["D_M"] > ds.attrs["design_gap"]
     assert len(verdicts(ds)) == 4
+    # the long names and units the declarations give, worded as the archive always had them
+    assert ds.crushed.attrs == {"units": "1",
+                                "long_name": "1 where the bumpers are crushed beyond delta_u"}
+    assert ds.peak_interstory_drift.attrs["long_name"] == (
+        "largest peak interstory drift over the stories (resultant in plan)")
+    assert "(linear law, k 2500 kN/mm, COR 0.5)" in ds.reference.attrs["long_name"]
 
 
 def test_choice_is_the_best_feasible_and_its_nature_is_reported(archive):

@@ -14,7 +14,7 @@ from pipeline.grid import BASELINE
 from studies import _paper as paper
 
 STUDIES = Path(__file__).resolve().parents[2] / "studies"
-SHARED = {"__init__", "_paper", "_plot", "_recipe", "_peaks_vs_gap", "_suite_records",
+SHARED = {"__init__", "_paper", "_plot", "_recipe", "_peaks_vs_gap", "_options",
           "_code_suite", "_design_search", "_design_space", "_design_archive",
           "_suite_archive", "_suite_verdicts", "_suite_figure", "_plan_verdicts"}
 

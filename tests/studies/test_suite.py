@@ -47,6 +47,11 @@ def test_archive_dims_units_scaling_and_flags(archive):
     stress = ds.max_impact_force / (ds.n_bumpers * 0.0225)
     np.testing.assert_allclose(ds.bumper_stress.values,
                                stress.transpose(*ds.bumper_stress.dims).values, rtol=1e-12)
+    assert ds.bumper_stress.attrs["long_name"] == ("mean contact stress on each bumper (22500 "
+                                                   "mm2) at the largest impact force")
+    # the bare wall described from the linear law's declaration, as the archives always had it
+    assert ds.bare_max_impact_force.attrs["long_name"].endswith(
+        "against the bare wall at the same gap (linear law, k 2500 kN/mm, COR 0.5) (resultant)")
 
 
 def test_statistics_recomputed_by_hand(archive):
@@ -266,3 +271,30 @@ def test_maps_tell_no_contact_and_ties_from_harm():
         import matplotlib.pyplot as plt
 
         plt.close(fig)
+
+
+def test_shared_options():
+    """studies._options: the default pairs, --moat and --wall-capacity-mn, as every study
+    beyond the paper reads them."""
+    import argparse
+
+    from pipeline.errors import SweepError
+    from pipeline.records import pair_names
+    from studies import _options
+
+    far_field = pair_names("far-field")
+    assert len(far_field) == 22 and _options.default_pairs(False, 4) == far_field
+    assert _options.default_pairs(True, 4) == far_field[:4]
+    assert _options.default_pairs(True, ("RSN848", "RSN725")) == ["RSN848", "RSN725"]
+    p = argparse.ArgumentParser()
+    _options.add_moat(p)
+    _options.add_wall_capacity(p)
+    args = p.parse_args([])
+    assert args.moat == "rectangular" and _options.wall_capacity(args) is None
+    args = p.parse_args(["--moat", "circular", "--wall-capacity-mn", "12.5"])
+    assert args.moat == "circular" and _options.wall_capacity(args) == 12.5e6
+    with pytest.raises(SweepError, match="--wall-capacity-mn must be positive"):
+        _options.wall_capacity(p.parse_args(["--wall-capacity-mn", "0"]))
+    with pytest.raises(SystemExit):
+        p.parse_args(["--moat", "hexagonal"])
+    assert _options.bare_wall_text() == "linear law, k 2500 kN/mm, COR 0.5"

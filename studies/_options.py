@@ -1,0 +1,73 @@
+"""What the studies beyond the paper (suite, fragility, design, plan) share on their command
+lines and in their archives, declared once: the moat in plan (--moat), the wall's force
+capacity (--wall-capacity-mn), the default record pairs (the FEMA P695 far-field set) and the
+bare wall's description in the archives' long names."""
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from engine.results import WALLS
+from engine.units import KN_PER_MM
+
+PAIR_SET = "far-field"
+"""The FEMA P695 record set the studies run by default (pipeline.records.pair_names)."""
+QUICK_PAIRS = 4
+"""The pairs of a --quick suite or fragility run: the first of PAIR_SET."""
+
+
+def add_moat(p) -> None:
+    """--moat: the moat in plan, one of engine.results.WALLS (default rectangular)."""
+    p.add_argument("--moat", choices=tuple(WALLS), default="rectangular",
+                   help="the moat in plan: rectangular, walls normal to x and y at +- the gap "
+                        "(default), or circular, a circle of radius the gap")
+
+
+def add_wall_capacity(p, use: str = "the validity flag invalid_wall_force") -> None:
+    """--wall-capacity-mn: the wall's force capacity in MN (default none: not checked); `use`
+    says what the study does with it."""
+    p.add_argument("--wall-capacity-mn", type=float, default=None, metavar="MN",
+                   help=f"the moat wall's lateral capacity in MN, for {use} (default: none, "
+                        "not checked)")
+
+
+def wall_capacity(args) -> float | None:
+    """--wall-capacity-mn in N (None: not given); SweepError unless positive."""
+    from pipeline.errors import SweepError
+
+    if args.wall_capacity_mn is None:
+        return None
+    if not args.wall_capacity_mn > 0:
+        raise SweepError(f"--wall-capacity-mn must be positive, got {args.wall_capacity_mn:g}")
+    return args.wall_capacity_mn * 1e6
+
+
+def default_pairs(quick: bool, n_quick: int | Sequence[str]) -> list[str]:
+    """The FEMA P695 far-field pairs (PAIR_SET); quick: the first n_quick of them, or the
+    pairs n_quick names."""
+    from pipeline.records import pair_names
+
+    if not quick:
+        return pair_names(PAIR_SET)
+    if isinstance(n_quick, int):
+        return pair_names(PAIR_SET)[:n_quick]
+    return list(n_quick)
+
+
+def chosen_pairs(args, n_quick: int | Sequence[str]):
+    """The pairs a study runs: --records, else `default_pairs(--quick, n_quick)`, read from
+    --records-dir or the library. Returns (pairs, names), as pipeline.errors.resolve_pairs."""
+    from pipeline.errors import resolve_pairs
+
+    return resolve_pairs(args.records or default_pairs(args.quick, n_quick), args.records_dir)
+
+
+def bare_wall_text() -> str:
+    """The bare wall as the archives describe it, 'linear law, k 2500 kN/mm, COR 0.5': the law
+    and its parameters' names and defaults from pipeline.grid.BASELINE (the linear law's
+    declaration), the stiffness in kN/mm."""
+    from pipeline.grid import BASELINE, BASELINE_LAW, swept_parameter
+
+    stiffness = swept_parameter(BASELINE_LAW, "wall_k").name
+    restitution = swept_parameter(BASELINE_LAW, "cor").name.upper()
+    return (f"{BASELINE_LAW} law, {stiffness} {BASELINE['wall_k'] / KN_PER_MM:g} kN/mm, "
+            f"{restitution} {BASELINE['cor']:g}")
