@@ -32,7 +32,7 @@ RESULTS = Path(__file__).resolve().parent / "results"
 CHILD = """
 import json, sys, time
 import pipeline
-from studies._peaks_vs_gap import gaps
+from studies.common.peaks_vs_gap import gaps
 quick, workers = sys.argv[1] == "1", int(sys.argv[2])
 kwargs = dict(gap=gaps(quick), thickness=0.05, n_bumpers=4, baseline=True, unconstrained=True,
               workers=workers, quiet=True)

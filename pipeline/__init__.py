@@ -4,22 +4,26 @@
     ds = pipeline.sweep(records=["kobe", "pacoima"], gap=[0.15, 0.30, 0.45],
                         n_bumpers=[4, 8], baseline=True, out="results/gap.nc")
 
-Data flows one way, each fact in one place:
-- records/ : AT2 files, the embedded library, the paper's records, lookup by name;
-- grid.py : the sweep's parameters (derived from the impact laws' declarations), checked;
-  one member record per simulation, the baseline and unconstrained blocks;
-- execute/ : running the members. executor.py is the one executor (batches here or on
-  dask, progress, Ctrl-C -> errors.Interrupted); batches.py what one batch is and what a
-  worker runs; keys.py every key of a resumable run; progress.py the progress line;
-  dask_client.py the dask client and local cluster; two stores behind one interface:
-  netcdf_store.py (peaks gathered here, a resumable work folder of .npz batches, one NetCDF
-  at the end) and zarr_store.py (a template, workers writing chunk regions, batch_done);
-- archive.py : labelled Datasets (units and long names from engine.results and the laws'
-  declarations), atomic NetCDF; provenance.py : the global attributes, in pieces that fit
-  sweeps, histories and two-body runs;
-- histories.py : time histories of a few configurations; scaling.py : records scaled to a
-  design displacement; intensity.py : record intensity measures; cluster.py : connecting to a
-  dask cluster and refusing an unfit one; errors.py : SweepError, ClusterError, Interrupted.
+Data flows one way, each fact in one place: records -> what shakes the building -> the grid
+of members -> the executor -> labelled archives -> what a result means.
+- records/ : AT2 and text files, the embedded library, the paper's records, pairs, lookup;
+- motions/ : what shakes the building: spectra, the code's targets and isolation design,
+  scaling rules (rules/, a registry), code suites at levels of intensity, intensity measures;
+- grid.py : the sweep's parameters (derived from the laws' declarations, the excitation's
+  level, angle and wall friction), one member record per simulation, the baseline and
+  unconstrained blocks; listed.py : members listed one by one, for every record or per record;
+- execute/ : running the members: one executor (here or on dask, progress, Ctrl-C ->
+  errors.Interrupted), what a run is (run.py), its batches, its keys, and two stores behind
+  one interface (netcdf_store.py: a resumable work folder, one NetCDF at the end; zarr_store.py:
+  workers write chunk regions);
+- archive.py : labelled Datasets (units and long names from the declarations), atomic NetCDF;
+  provenance.py : the global attributes; writing.py : atomic replacement and configuration
+  keys; histories.py : time histories of a few configurations;
+- building_file.py : a building from a file or NAME=VALUE settings; cluster.py : connecting to
+  a dask cluster and refusing an unfit one; checks.py : the shared input checks; errors.py :
+  SweepError, ClusterError, Interrupted (a leaf);
+- assess/ : what a result means, pure functions over arrays: derived responses, validity,
+  outcomes and weights, fragility.
 Imports happen inside the functions, so that light entry points such as
 `python -m pipeline.records` load neither xarray nor dask, and `import pipeline` loads nothing
 (`pipeline.sweep` is completed, with its parameters, on first use).
@@ -110,7 +114,8 @@ def _sweep(records, *, impact: str = "bumper", dt: float | None = None, workers:
     bumpers); with unconstrained, unconstrained_<same> (record, ...). Raises SweepError, naming
     the parameter, before any simulation runs.
     """
-    from .errors import SweepError, check_building
+    from .building_file import check_building
+    from .errors import SweepError
     from .grid import make_grid, sweep_parameters
 
     given = sweep_parameters(parameters)
@@ -188,7 +193,9 @@ def _execute(grid, records, arguments: dict, *, dt=None, workers: int = 1, sched
     arguments: the call's, stored in the archive; the rest as `sweep` takes them."""
     import engine
 
-    from .errors import SweepError, check_building, check_count, resolve_pairs, resolve_records
+    from .building_file import check_building
+    from .checks import check_count, resolve_pairs, resolve_records
+    from .errors import SweepError
     from .execute.batches import default_batch_size
     from .execute.executor import execute
     from .execute.run import Run
@@ -269,11 +276,12 @@ def _factors(factors, n_records: int):
 def scale_to_displacement(records, displacement: float | None = None,
                           limits: tuple[float, float] | None = None, **options):
     """Scale records so that the building without wall reaches `displacement` (m; default
-    pipeline.scaling.DEFAULT_DISPLACEMENT, 0.30 m) with factors within `limits` (default
-    DEFAULT_LIMITS, 0.2-5): see pipeline.scaling.scale_to_displacement (options: dt, building,
-    records_dir, tolerance, quiet). Returns a pipeline.scaling.ScaledSuite."""
-    from .scaling import DEFAULT_DISPLACEMENT, DEFAULT_LIMITS
-    from .scaling import scale_to_displacement as scale
+    pipeline.motions.scaling.DEFAULT_DISPLACEMENT, 0.30 m) with factors within `limits` (default
+    DEFAULT_LIMITS, 0.2-5): see pipeline.motions.scaling.scale_to_displacement (options: dt,
+    building,
+    records_dir, tolerance, quiet). Returns a pipeline.motions.scaling.ScaledSuite."""
+    from .motions.scaling import DEFAULT_DISPLACEMENT, DEFAULT_LIMITS
+    from .motions.scaling import scale_to_displacement as scale
 
     return scale(records, DEFAULT_DISPLACEMENT if displacement is None else displacement,
                  DEFAULT_LIMITS if limits is None else limits, **options)

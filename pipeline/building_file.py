@@ -32,6 +32,7 @@ from engine.building import FIELD_UNITS, PER_LEVEL, PER_STORY
 from engine.isolators import LAWS as ISOLATOR_LAWS
 from engine.parameters import REQUIRED, Parameter
 
+from .checks import plausible
 from .errors import BuildingError, SweepError
 
 if sys.version_info >= (3, 11):
@@ -55,12 +56,20 @@ PLAUSIBLE = {
 }
 
 
+def check_building(building):
+    """The paper's engine.Building for None, `building` if it is one, else SweepError; a
+    building no real structure is (pipeline.building_file.check_plausible) too."""
+    building = engine.Building() if building is None else building
+    if not isinstance(building, engine.Building):
+        raise SweepError(f"building must be an engine.Building, got {type(building).__name__}")
+    check_plausible(building)
+    return building
+
+
 def check_plausible(building: engine.Building) -> None:
     """BuildingError for a level mass, story stiffness or yield force no real building has,
     with the conversion from the unit most likely meant; the isolator's parameters against
     their law's declared plausible ranges."""
-    from .grid import plausible
-
     for name, param in PLAUSIBLE.items():
         value = getattr(building, name)
         if value is not None:

@@ -1,8 +1,6 @@
-"""The pipeline's errors (bad input, an unfit cluster, a run interrupted), and the small input
-checks that raise SweepError."""
+"""The pipeline's errors: bad input, an unfit cluster, a run interrupted. A leaf: it imports
+nothing, so that every module can raise them (the checks that raise them: checks.py)."""
 from __future__ import annotations
-
-import operator
 
 
 class SweepError(ValueError):
@@ -12,53 +10,6 @@ class SweepError(ValueError):
 class PlausibilityWarning(UserWarning):
     """Valid input that may not give what was meant (e.g. a step coarser than the converged
     one); raised before any compute, shown by the commands as one 'warning: ...' line."""
-
-
-def check_count(name: str, value, minimum: int) -> int:
-    """`value` as an int >= minimum, or SweepError naming it."""
-    try:
-        count = operator.index(value)
-    except TypeError:
-        raise SweepError(f"{name} must be a whole number, got {value!r}") from None
-    if count < minimum:
-        raise SweepError(f"{name} must be >= {minimum}, got {count}")
-    return count
-
-
-def check_building(building):
-    """The paper's engine.Building for None, `building` if it is one, else SweepError; a
-    building no real structure is (pipeline.building_file.check_plausible) too."""
-    import engine
-
-    building = engine.Building() if building is None else building
-    if not isinstance(building, engine.Building):
-        raise SweepError(f"building must be an engine.Building, got {type(building).__name__}")
-    from .building_file import check_plausible
-
-    check_plausible(building)
-    return building
-
-
-def resolve_pairs(pairs, records_dir=None) -> tuple[list, list[str]]:
-    """pipeline.records.resolve_pairs, its RecordError raised as SweepError."""
-    from .records import RecordError
-    from .records import resolve_pairs as resolve
-
-    try:
-        return resolve(pairs, records_dir)
-    except RecordError as err:
-        raise SweepError(str(err)) from err
-
-
-def resolve_records(records, records_dir=None) -> tuple[list, list[str]]:
-    """pipeline.records.resolve_records, its RecordError raised as SweepError."""
-    from .records import RecordError
-    from .records import resolve_records as resolve
-
-    try:
-        return resolve(records, records_dir)
-    except RecordError as err:
-        raise SweepError(str(err)) from err
 
 
 class BuildingError(SweepError):

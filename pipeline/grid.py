@@ -40,6 +40,7 @@ from engine.isolators import LAWS as ISOLATOR_LAWS
 from engine.parameters import Parameter
 from engine.plan import PLAN_PARAMETERS
 
+from .checks import checked_values, plausible
 from .errors import PlausibilityWarning, SweepError
 
 IMPACT_LAWS = ("bumper", *(law for law in LAWS if law != "bumper"))
@@ -90,11 +91,6 @@ def declarations(name: str) -> dict:
 
 
 CHECK_SLICE = 65_536  # members checked at once by check_dt
-
-# Units in which a value is most likely meant when it is implausible in SI: (unit, its value
-# in SI, the suffix of the command-line option taking it).
-UNIT_SLIPS = {"m": ("cm", 1e-2, "cm"), "N m-1": ("kN/mm", 1e6, "kn-mm"),
-              "kg": ("t", 1e3, "t")}
 
 LISTED_PARAMS = tuple(dict.fromkeys(
     p.name for law in IMPACT_LAWS for p in LAWS[law].PARAMETERS.numeric.values()
@@ -344,32 +340,6 @@ def _members_block(prefix: str, law: str, values: dict, swept, m_eff: float) -> 
     members["law"] = law
     members["m_eff"] = m_eff
     return Block(prefix, dims, shape, members)
-
-
-def plausible(name: str, param, array: np.ndarray, option: bool = True) -> np.ndarray:
-    """Refuse values outside the declaration's `plausible` range (a real moat, bumper, slab or
-    isolator has none): most likely a value in the paper's units given as SI. The message
-    gives the conversion and, when `option`, the command-line option in the paper's unit."""
-    bad = param.implausible(array)
-    if bad.size == 0:
-        return array
-    worst = float(bad[0])
-    text = f"{name} {worst:g} {param.units} is implausible (outside {param.plausible} " \
-           f"{param.units})"
-    if param.units in UNIT_SLIPS:
-        unit, factor, suffix = UNIT_SLIPS[param.units]
-        text += f": give {param.units} ({worst:g} {unit} is {worst * factor:g} {param.units})"
-        if option:
-            text += f", or --{name.replace('_', '-')}-{suffix} {worst:g} on the command line"
-    raise SweepError(text)
-
-
-def checked_values(param, array: np.ndarray, name: str) -> np.ndarray:
-    """The declaration's range check, in the sweep's vocabulary."""
-    try:
-        return param.check(array, name=name)
-    except engine.EngineError as err:
-        raise SweepError(str(err)) from None
 
 
 def _scalar(name: str, value) -> float:

@@ -43,7 +43,9 @@ from .archive import (
     record_coords,
     variable,
 )
-from .errors import SweepError, check_building, check_count, resolve_records
+from .building_file import check_building
+from .checks import check_count, resolve_records
+from .errors import SweepError
 from .execute.progress import Progress
 from .grid import (
     IMPACT_LAWS,

@@ -29,6 +29,7 @@ import numpy as np
 
 from engine.impact import LAWS, M_EFF, NO_WALL
 
+from .checks import checked_values, plausible
 from .errors import SweepError
 from .grid import (
     EXCITATION_PARAMETERS,
@@ -39,8 +40,6 @@ from .grid import (
     PLAN_PARAMS,
     Block,
     Grid,
-    checked_values,
-    plausible,
 )
 
 COLUMNS = ("law", *EXCITATION_PARAMS, *PARAMS, *LISTED_PARAMS, "m_eff")

@@ -27,8 +27,9 @@ import textwrap
 from dataclasses import dataclass
 
 PACKAGE = "studies"
-NOT_RECIPES = frozenset({"cli", "sweep"})
-"""Modules of studies/ that are commands but not recipes (cli: this one)."""
+NOT_RECIPES = frozenset({"cli", "sweep", "common"})
+"""Modules of studies/ that are not recipes (cli: this one; sweep: a command of its own;
+common: what the recipes share)."""
 
 
 @dataclass(frozen=True)

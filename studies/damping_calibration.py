@@ -19,8 +19,8 @@ from engine.impact.laws.rubber_bumper import (
     EQ9_VELOCITY_EXPONENT,
 )
 
-from ._plot import plt
-from ._recipe import Recipe, Verdict
+from .common.plot import plt
+from .common.recipe import Recipe, Verdict
 
 # One large pad of the paper's rubber (K_r 55,835 kN/m^2, n 2.65, alpha 2.25), thick enough
 # that the heaviest, fastest impact of the grid (320 t at 4 m/s) stays below delta_u.

@@ -1,25 +1,26 @@
 """Beyond the paper: fragility curves of the moat, with and without bumpers.
 
 The paper's building in plan (coupled isolators, a square moat) under the FEMA P695 far-field
-record pairs, scaled to a site's MCE_R by a code's rule (studies._code_suite: ASCE 7-22 chapter
-17 by default), then run at intensity levels that are fractions of the MCE_R (a multiple-stripe
-analysis: every pair at every level, the levels one more batch dimension). The moat's clear gap
-is a fraction of the code's D_M (and the code's clearance D_TM), against the bare wall (the
-paper's linear law) and with the paper's bumpers (4 x 5 cm a side).
+record pairs, scaled to a site's MCE_R by a code's rule (pipeline.motions.code_suite: ASCE 7-22
+chapter 17 by default), then run at intensity levels that are fractions of the MCE_R (a
+multiple-stripe analysis: every pair at every level, the levels one more batch dimension). The
+moat's clear gap is a fraction of the code's D_M (and the code's clearance D_TM), against the bare
+wall (the paper's linear law) and with the paper's bumpers (4 x 5 cm a side).
 
 Per pair, level and configuration the archive keeps the peaks and the events (`event_*`, 1
 where it happens): contact with the wall or bumpers, bumpers crushed beyond their ultimate
 strain, the largest floor acceleration or interstory drift above a threshold (defaults
 ACCEL_THRESHOLD, DRIFT_THRESHOLD), a story beyond its capacity (yielding stories: their yield
-drift; linear ones: the code's superstructure capacity, pipeline.validity.code_story_capacity),
-and, if a capacity is given, the wall's force above it. For each event and configuration a
-lognormal fragility P(event | IM) = Phi(ln(IM / theta) / beta) is fitted by maximum likelihood
-over the stripes (Baker 2015; pipeline.fragility), pairs weighted per earthquake; IM is the
-level as a fraction of the MCE_R (and, equivalently, the target's Sa(T_M)). Runs outside the
-model's range (pipeline.validity) are flagged (`invalid_*`) and counted in the summary. The
+drift; linear ones: the code's superstructure capacity,
+pipeline.assess.validity.code_story_capacity), and, if a capacity is given, the wall's force above
+it. For each event and configuration a lognormal fragility P(event | IM) = Phi(ln(IM / theta) /
+beta) is fitted by maximum likelihood over the stripes (Baker 2015; pipeline.assess.fragility),
+pairs weighted per earthquake; IM is the level as a fraction of the MCE_R (and, equivalently, the
+target's Sa(T_M)). Runs outside the model's range (pipeline.assess.validity) are flagged
+(`invalid_*`) and counted in the summary. The
 largest floor acceleration and interstory drift, the bumpers' stress and "crushed" are
-pipeline.derived's (names, units, long names, formulas); --moat, --wall-capacity-mn and the
-default pairs are studies._options'.
+pipeline.assess.derived's (names, units, long names, formulas); --moat, --wall-capacity-mn and the
+default pairs are studies.common.options'.
 """
 from __future__ import annotations
 
@@ -28,21 +29,21 @@ import json
 import numpy as np
 
 from engine.units import CM, G
-from pipeline import derived
+from pipeline.assess import derived
+from pipeline.motions.code_suite import archive_variables, code_suite, describe
 
-from ._code_suite import archive_variables, code_suite, describe, site_options
-from ._options import (
+from .common.options import (
     QUICK_PAIRS,
     add_moat,
     add_wall_capacity,
     bare_wall_text,
     chosen_pairs,
+    site_options,
     wall_capacity,
 )
-from ._paper import N_BUMPERS, THICKNESS
-from ._plot import plt
-from ._recipe import Recipe, Verdict, provenance, run_options
-from ._suite_archive import AREA, DELTA_U
+from .common.paper import AREA, DELTA_U, N_BUMPERS, THICKNESS
+from .common.plot import plt
+from .common.recipe import Recipe, Verdict, provenance, run_options
 
 LEVELS = (0.5, 0.75, 1.0, 1.25, 1.5, 1.75, 2.0, 2.5)
 """Intensity levels, fractions of the MCE_R target (1 = MCE_R, 2/3 = the design level)."""
@@ -125,8 +126,8 @@ PEAK_NAMES = ("peak_isolator_disp", "max_impact_force", "max_indentation", "n_im
 def _dataset(suite, levels, fractions, gaps, peaks, args):
     from engine.results import quantity
     from pipeline.archive import labelled_dataset, variable
-    from pipeline.fragility_outcomes import fit_outcomes
-    from pipeline.validity import FLAGS, Limits, code_story_capacity, flags_of, shape_factor
+    from pipeline.assess.fragility_outcomes import fit_outcomes
+    from pipeline.assess.validity import FLAGS, Limits, code_story_capacity, flags_of, shape_factor
 
     building = args.building
     capacity = code_story_capacity(suite.design, building)
@@ -181,8 +182,9 @@ def _dataset(suite, levels, fractions, gaps, peaks, args):
     data["fragility_identifiable"] = variable(fit_dims, fits["identifiable"].astype(np.int8),
                                               "1", "1 where the data identify both parameters")
     data["fragility_status"] = variable(fit_dims, fits["status"], "1",
-                                        "the fit's status (pipeline.fragility): ok, never or "
-                                        "always observed, beta not identifiable, extrapolated")
+                                        "the fit's status (pipeline.assess.fragility): ok, "
+                                        "never or always observed, beta not identifiable, "
+                                        "extrapolated")
     more, more_coords, attrs = archive_variables(suite)
     data.update(more)
     coords = {
@@ -270,9 +272,9 @@ def check(ds) -> list[Verdict]:
     """Paper 4 and 5.1 in fragility terms: bumpers can reduce the floor accelerations due to
     pounding, i.e. for some bumper configuration at some gap the median intensity at which the
     floor acceleration exceeds its threshold is higher with bumpers than against the bare wall
-    by more than the tolerance of pipeline.outcomes (compared only where both fits are
+    by more than the tolerance of pipeline.assess.outcomes (compared only where both fits are
     identified)."""
-    from pipeline.outcomes import TOLERANCE
+    from pipeline.assess.outcomes import TOLERANCE
 
     median = ds.fragility_median.sel(event="floor_accel")
     known = ds.fragility_identifiable.sel(event="floor_accel") == 1

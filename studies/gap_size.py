@@ -1,7 +1,7 @@
 """Figs. 14-15: amplification of the peak responses by rubber bumpers, against the gap width.
 
 Gap 15-45 cm, the four paper records. With bumpers: four 5 cm bumpers on each side (the
-practical example's, studies._paper), so the clear gap is 5 cm smaller; without: the bare
+practical example's, studies.common.paper), so the clear gap is 5 cm smaller; without: the bare
 linear viscoelastic wall at the full gap. Amplification = peak with bumpers / peak without (>
 1: bumpers hurt).
 """
@@ -13,9 +13,9 @@ import numpy as np
 
 from engine.units import CM
 
-from ._paper import N_BUMPERS, THICKNESS
-from ._peaks_vs_gap import gaps, ranges
-from ._plot import (
+from .common.paper import N_BUMPERS, THICKNESS
+from .common.peaks_vs_gap import gaps, ranges
+from .common.plot import (
     building_text,
     floor_labels,
     plt,
@@ -24,7 +24,7 @@ from ._plot import (
     shown,
     story_labels,
 )
-from ._recipe import Recipe, Verdict, sweep_options
+from .common.recipe import Recipe, Verdict, sweep_options
 
 
 def compute(args):

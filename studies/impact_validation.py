@@ -15,7 +15,7 @@ import numpy as np
 from engine.impact import LAWS
 from engine.units import KN, MM, kn_per_mm_n, power_law_units
 
-from ._paper import (
+from .common.paper import (
     STRAIN,
     TEST_COR,
     TEST_K_ST_KN_MM,
@@ -23,11 +23,11 @@ from ._paper import (
     TEST_PAD_THICKNESS,
     TEST_ROD_MASS,
 )
-from ._plot import plt
-from ._recipe import Recipe, Verdict
+from .common.plot import plt
+from .common.recipe import Recipe, Verdict
 
 # The test (rod mass, pad, static fit, COR) and the rubber's ultimate strain (0.8: delta_u =
-# 8 mm) are the paper's, studies._paper; the rubber's exponent n is the bumper law's.
+# 8 mm) are the paper's, studies.common.paper; the rubber's exponent n is the bumper law's.
 EXPONENT = LAWS["bumper"].PARAMETERS.n.default  # 2.65
 # Past delta_u the rods would bear steel on steel: the axial stiffness E A / L of one
 # 1000 x 200 x 200 mm steel bar of the test (E = 205 GPa). The impacts below do not reach it.

@@ -12,9 +12,9 @@ import numpy as np
 
 from engine.units import CM, KN_PER_MM, MM
 
-from ._paper import FIG19_COUNTS, STRAIN, THICKNESS, WALL_K
-from ._peaks_vs_gap import accel_g, drift_cm, gaps, plot_vs_gap, ranges
-from ._recipe import Recipe, Verdict, sweep_options
+from .common.paper import FIG19_COUNTS, STRAIN, THICKNESS, WALL_K
+from .common.peaks_vs_gap import accel_g, drift_cm, gaps, plot_vs_gap, ranges
+from .common.recipe import Recipe, Verdict, sweep_options
 
 LIMIT = STRAIN * THICKNESS  # m: delta_u, 4 cm
 ALMOST_ALL = 0.75  # share of the points for 'almost all cases'

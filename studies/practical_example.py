@@ -6,7 +6,7 @@ rule; it gives 15 and 24 cm from 16.7 and 26.8 cm). Three configurations per rec
 poundings (no wall), no bumpers (the bare linear viscoelastic wall at the gap, k 2500 kN/mm,
 COR 0.5, the sweeps' baseline) and four 5 cm bumpers of 150 x 150 mm on each side
 (0.36 kN/mm^2.65, k_w 1500 kN/mm, ultimate strain 0.8, clear gap = gap - 5 cm). The paper's
-bumper, gap rule and gaps are read from studies._paper.
+bumper, gap rule and gaps are read from studies.common.paper.
 
 Archive: the peaks of the three configurations and, on a common time axis (histories every
 2 ms), the base total acceleration (Figs. 9-10), the impact force and indentation (Fig. 11)
@@ -24,7 +24,7 @@ import numpy as np
 
 from engine.units import CM, KN, G
 
-from ._paper import (
+from .common.paper import (
     GAP_FRACTION,
     N_BUMPERS,
     PRACTICAL_GAPS,
@@ -33,8 +33,8 @@ from ._paper import (
     THICKNESS,
     WALL_K,
 )
-from ._plot import floor_labels, ordinal, plt, record_label
-from ._recipe import Recipe, Verdict
+from .common.plot import floor_labels, ordinal, plt, record_label
+from .common.recipe import Recipe, Verdict
 
 EVERY = 4  # integration steps per history sample: 2 ms at the default 0.5 ms step
 HISTORY_SECONDS = 40.0  # s of history kept (longer if an impact happens later)

@@ -3,7 +3,7 @@
 Sylmar Converter, 5 cm bumpers, four of them, k_w = 1500 kN/mm; COR 0.3 to 1.0; two seismic
 gaps: 10% under the engine's own unconstrained peak isolator displacement for the record (the
 paper's rule), and the paper's stated 28.5 cm (clear gaps 5 cm smaller; the paper's values:
-studies._paper). Peak floor accelerations (g) per floor and interstory deflections (cm) per
+studies.common.paper). Peak floor accelerations (g) per floor and interstory deflections (cm) per
 story, against the COR.
 
 The paper finds no effect of the COR; here the responses rise with it. To see why, the
@@ -19,9 +19,9 @@ import numpy as np
 
 from engine.units import CM, G
 
-from ._paper import GAP_FRACTION, RESTITUTION_GAP, THICKNESS
-from ._plot import floor_labels, plt, record_label, story_labels
-from ._recipe import Recipe, Verdict, sweep_options
+from .common.paper import GAP_FRACTION, RESTITUTION_GAP, THICKNESS
+from .common.plot import floor_labels, plt, record_label, story_labels
+from .common.recipe import Recipe, Verdict, sweep_options
 
 NO_EFFECT = 0.05  # largest spread over the CORs, relative to the mean, read as 'no effect'
 IMPACTS_KEPT = 2  # approach speeds stored for the first two impacts

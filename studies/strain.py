@@ -10,9 +10,9 @@ from __future__ import annotations
 
 from engine.units import CM
 
-from ._paper import THICKNESS
-from ._peaks_vs_gap import gaps, lowered, plot_vs_gap
-from ._recipe import Recipe, Verdict, sweep_options
+from .common.paper import THICKNESS
+from .common.peaks_vs_gap import gaps, lowered, plot_vs_gap
+from .common.recipe import Recipe, Verdict, sweep_options
 
 STRAINS = (0.6, 0.8, 1.0)  # chosen, the paper does not state them (0.8: its default, _paper)
 

@@ -8,7 +8,7 @@ A parameter given one value is held fixed (a scalar coordinate); several values 
 
 Not a figure's recipe: the pipeline's general command line, for grids no figure fixes. It lives
 in studies/ because studies/ holds every command a user runs, the figures' recipes and this
-sweep alike, and they share one set of command-line conventions (_recipe.py: --out as an
+sweep alike, and they share one set of command-line conventions (common/recipe.py: --out as an
 archive path or a folder, --records, --records-dir, --workers, --scheduler, --dt, --quiet,
 negative numbers as values, the one-line error and the resumable work folder).
 """
@@ -22,7 +22,7 @@ from engine.units import CM, KN_PER_MM
 from pipeline.cluster import add_tls_options
 from pipeline.grid import BASELINE, IMPACT_LAWS, ISOLATOR_PARAMS, PARAMS, PLAN_PARAMS, declarations
 
-from ._recipe import accept_negative_numbers, add_text_record_options, interrupted, outputs
+from .common.recipe import accept_negative_numbers, add_text_record_options, interrupted, outputs
 
 # Units the command line also takes in the paper's units, by the SI unit declared: the option
 # --NAME-<suffix> takes values in that unit.
@@ -197,7 +197,7 @@ def main(argv: list[str] | None = None) -> int:
     from pipeline.records import RecordError
     from pipeline.records.lookup import read_text_records
 
-    from ._recipe import announce_stand_ins
+    from .common.recipe import announce_stand_ins
 
     archive = None
     try:

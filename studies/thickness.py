@@ -9,9 +9,9 @@ from __future__ import annotations
 
 from engine.units import CM, KN_PER_MM
 
-from ._paper import N_BUMPERS, WALL_K
-from ._peaks_vs_gap import accel_g, drift_cm, gaps, plot_vs_gap, spread
-from ._recipe import Recipe, Verdict, sweep_options
+from .common.paper import N_BUMPERS, WALL_K
+from .common.peaks_vs_gap import accel_g, drift_cm, gaps, plot_vs_gap, spread
+from .common.recipe import Recipe, Verdict, sweep_options
 
 THICKNESSES = (0.03, 0.05, 0.08)  # m: chosen, the paper does not state them
 NARROW = 0.6  # "very narrow" gap: below this fraction of the unconstrained peak

@@ -8,9 +8,9 @@ from __future__ import annotations
 
 from engine.units import CM, KN_PER_MM
 
-from ._paper import FIG21_WALL_KS
-from ._peaks_vs_gap import gaps, lowered, plot_vs_gap
-from ._recipe import Recipe, Verdict, sweep_options
+from .common.paper import FIG21_WALL_KS
+from .common.peaks_vs_gap import gaps, lowered, plot_vs_gap
+from .common.recipe import Recipe, Verdict, sweep_options
 
 SIGNIFICANT = 0.1  # mean relative reduction of the peak acceleration
 

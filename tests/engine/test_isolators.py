@@ -123,7 +123,7 @@ def test_a_law_without_the_code_formulas_names_itself(monkeypatch):
     what, at the point of use."""
     from types import SimpleNamespace
 
-    from pipeline.target import isolation_design
+    from pipeline.motions.target import isolation_design
 
     bilinear = registry.LAWS["bilinear"]
     bare = SimpleNamespace(**{name: getattr(bilinear, name)

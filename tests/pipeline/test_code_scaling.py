@@ -1,7 +1,8 @@
-"""pipeline.target and pipeline.code_scaling: the ASCE 7 spectrum at hand-computed points, the
+"""pipeline.motions.target and pipeline.motions.code_scaling: the ASCE 7 spectrum at hand-computed
+points, the
 code's D_M of the paper's building by a hand iteration, B_M, and suites scaled by ASCE 7-22
 chapter 17 and FEMA P695, checked with an independent oscillator (scipy's lsim through
-pipeline.intensity, not pipeline.spectra's recurrence)."""
+pipeline.motions.intensity, not pipeline.motions.spectra's recurrence)."""
 from __future__ import annotations
 
 import math
@@ -11,9 +12,9 @@ import pytest
 
 import engine
 from engine.units import G
-from pipeline import code_scaling as cs
-from pipeline import target as tg
-from pipeline.intensity import isolated_period, peak_ground_velocity, sdof_displacement
+from pipeline.motions import code_scaling as cs
+from pipeline.motions import target as tg
+from pipeline.motions.intensity import isolated_period, peak_ground_velocity, sdof_displacement
 
 ANGLES = np.radians(np.arange(180.0))
 S_MS, S_M1, T_L = 1.5, 0.9, 8.0  # g, g, s: a high-seismicity site (T_S = 0.6 s, T_0 = 0.12 s)
@@ -39,7 +40,7 @@ def target():
 
 
 def _rotd100_lsim(accel: np.ndarray, dt: float, period: float) -> float:
-    """RotD100 (m/s^2) by lsim and every angle: independent of pipeline.spectra."""
+    """RotD100 (m/s^2) by lsim and every angle: independent of pipeline.motions.spectra."""
     ux, uy = (sdof_displacement(accel[:, c], dt, period) for c in range(2))
     peak = np.max(np.abs(np.outer(ux, np.cos(ANGLES)) + np.outer(uy, np.sin(ANGLES))))
     return float(peak * (2 * np.pi / period) ** 2)
@@ -275,11 +276,11 @@ def test_pairs_given_as_objects():
 # --- the rules' registry --------------------------------------------------------------------
 
 def test_every_rule_module_is_found_and_an_unknown_rule_lists_them():
-    """pipeline/scaling_rules: each module on disk is a rule, in ORDER, with a one-line TEXT
+    """pipeline/motions/rules: each module on disk is a rule, in ORDER, with a one-line TEXT
     and a clause; another name is refused in one line that lists the rules."""
     from pathlib import Path
 
-    from pipeline import scaling_rules
+    from pipeline.motions import rules as scaling_rules
 
     folder = Path(scaling_rules.__file__).parent
     on_disk = {p.stem for p in folder.glob("*.py")} - {"__init__"}
@@ -301,7 +302,7 @@ def test_rule_modules_keep_the_pairs_their_scaling_keeps():
     suite's order (ScaledPairs.factors_of), whatever the scaling left out."""
     from types import SimpleNamespace
 
-    from pipeline import scaling_rules
+    from pipeline.motions import rules as scaling_rules
 
     class Pair:
         def __init__(self, accel, dt, name):

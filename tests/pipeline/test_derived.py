@@ -1,11 +1,12 @@
-"""The derived responses (pipeline.derived) against hand computations on small arrays, "crushed"
+"""The derived responses (pipeline.assess.derived) against hand computations on small arrays,
+"crushed"
 at, below and above the limit as the bumper law has it, and the declarations complete."""
 import numpy as np
 import pytest
 
 from engine.impact.laws import rubber_bumper
 from engine.results import Result
-from pipeline import derived, validity
+from pipeline.assess import derived, validity
 
 
 def test_largest_floor_accel_and_story_drift_over_the_last_axis():

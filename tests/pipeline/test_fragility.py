@@ -1,4 +1,5 @@
-"""pipeline.fragility on synthetic lognormal data: recovery of known (theta, beta), the stripes
+"""pipeline.assess.fragility on synthetic lognormal data: recovery of known (theta, beta), the
+stripes
 MLE against a brute-force grid of the same likelihood written independently, censored IDA
 against the naive fit, degenerate data, record weights and non-monotonic outcomes."""
 from __future__ import annotations
@@ -7,8 +8,8 @@ import numpy as np
 import pytest
 from scipy import stats
 
-from pipeline.fragility import BETA_BOUNDS, Fragility, fit_ida, fit_stripes
-from pipeline.fragility_outcomes import event_weights, fit_outcomes
+from pipeline.assess.fragility import BETA_BOUNDS, Fragility, fit_ida, fit_stripes
+from pipeline.assess.fragility_outcomes import event_weights, fit_outcomes
 
 THETA, BETA = 1.3, 0.4
 """The synthetic fragility: median 1.3 (IM units, e.g. m/s^2), log standard deviation 0.4."""

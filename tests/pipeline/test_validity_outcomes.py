@@ -1,10 +1,11 @@
-"""The model's range (pipeline.validity) and the counting of comparisons (pipeline.outcomes)."""
+"""The model's range (pipeline.assess.validity) and the counting of comparisons
+(pipeline.assess.outcomes)."""
 import numpy as np
 import pytest
 
 from engine.impact.laws import rubber_bumper
 from engine.units import G
-from pipeline import outcomes, validity
+from pipeline.assess import outcomes, validity
 
 
 def test_rubber_limit_is_the_calibration_tests_stress_and_crushed_bumpers_exceed_it():

@@ -11,9 +11,11 @@ import pytest
 from studies import cli
 
 ROOT = Path(__file__).resolve().parents[2]
-RECIPES = sorted(p.stem for p in (ROOT / "studies").glob("*.py")
-                 if not p.stem.startswith("_") and p.stem not in ("cli", "sweep"))
-"""The recipe modules on disk, found here independently of cli's pkgutil discovery."""
+RECIPES = sorted([p.stem for p in (ROOT / "studies").glob("*.py")
+                  if not p.stem.startswith("_") and p.stem not in ("cli", "sweep")]
+                 + [p.parent.name for p in (ROOT / "studies").glob("*/__main__.py")])
+"""The recipes on disk, modules and packages run with `python -m` (a package has a
+__main__.py), found here independently of cli's pkgutil discovery."""
 
 
 def listed(text: str) -> list[str]:

@@ -5,11 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from pipeline.outcomes import weighted_quantiles
-from studies import _design_search as search
-from studies import _design_space as space
+from pipeline.assess.outcomes import weighted_quantiles
+from studies.design import search, space
 from studies import design
-from studies._recipe import verdicts
+from studies.common.recipe import verdicts
 from tests.helpers import assert_udunits, run_recipe
 
 # --------------------------------------------------------------------- hand-made tables
@@ -234,7 +233,7 @@ def test_numbers_equal_direct_engine_runs(archive):
     direct engine call: the same peaks, whether the search ran the member or took the free
     run (no contact)."""
     import engine
-    from pipeline.errors import resolve_pairs
+    from pipeline.checks import resolve_pairs
 
     ds = archive
     i = int(ds.attrs["chosen_candidate"])

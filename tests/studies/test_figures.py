@@ -12,7 +12,7 @@ from engine import Building
 from engine.units import CM, G
 from pipeline.provenance import building_attributes
 from studies import gap_size, practical_example, restitution, thickness
-from studies._plot import plt, record_label
+from studies.common.plot import plt, record_label
 
 SCALED = "San Fernando 1971 (pacoima) \u00d71.5"  # the label of pacoima*1.5
 

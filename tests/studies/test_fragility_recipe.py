@@ -1,7 +1,7 @@
 """studies.fragility --quick: code-scaled pairs at intensity levels in plan, the events, the
 fragility fits and the validity flags, each checked against what it is made of: the engine's
 run of a member, the events recomputed from the stored peaks, the fit recomputed from the
-stored events (pipeline.fragility), the scaling recomputed (studies._code_suite)."""
+stored events (pipeline.assess.fragility), the scaling recomputed (pipeline.motions.code_suite)."""
 import json
 
 import numpy as np
@@ -9,11 +9,11 @@ import pytest
 
 import engine
 from engine.units import G
-from pipeline.errors import resolve_pairs
-from pipeline.fragility_outcomes import fit_outcomes
-from pipeline.validity import RUBBER_STRESS_LIMIT
+from pipeline.assess.fragility_outcomes import fit_outcomes
+from pipeline.assess.validity import RUBBER_STRESS_LIMIT
+from pipeline.checks import resolve_pairs
+from pipeline.motions.code_suite import code_suite
 from studies import fragility
-from studies._code_suite import code_suite
 from tests.helpers import assert_udunits, run_recipe
 
 

@@ -4,7 +4,7 @@ import pytest
 import xarray as xr
 
 from studies import gap_size
-from studies._recipe import verdicts
+from studies.common.recipe import verdicts
 from tests.helpers import assert_udunits
 
 

@@ -3,7 +3,7 @@ quick runs write beside full ones, a recipe's archive and figures are replaced t
 at all, and refused runs leave nothing behind.
 
 A toy recipe (a tiny Dataset and figure, no compute) exercises the recipe machinery
-(studies._recipe) quickly; pipeline.sweep is checked on an 8 s synthetic record.
+(studies.common.recipe) quickly; pipeline.sweep is checked on an 8 s synthetic record.
 """
 from __future__ import annotations
 
@@ -16,7 +16,7 @@ import xarray as xr
 
 import pipeline
 from pipeline.errors import SweepError
-from studies._recipe import Recipe
+from studies.common.recipe import Recipe
 from tests.pipeline.test_sweep import RECORDS
 
 

@@ -1,4 +1,4 @@
-"""studies/ layout: the paper's fixed choices (studies._paper) agree with the bumper law's
+"""studies/ layout: the paper's fixed choices (studies.common.paper) agree with the bumper law's
 declared defaults where both hold one, reproduce the paper's own numbers, and no recipe
 imports another recipe."""
 from __future__ import annotations
@@ -11,12 +11,10 @@ import pytest
 from engine.impact import LAWS
 from engine.units import KN_PER_MM
 from pipeline.grid import BASELINE
-from studies import _paper as paper
+from studies.common import paper
 
 STUDIES = Path(__file__).resolve().parents[2] / "studies"
-SHARED = {"__init__", "_paper", "_plot", "_recipe", "_peaks_vs_gap", "_options",
-          "_code_suite", "_design_search", "_design_space", "_design_archive",
-          "_suite_archive", "_suite_verdicts", "_suite_figure", "_plan_verdicts"}
+NOT_RECIPES = {"__init__", "cli", "common", "__pycache__"}
 
 
 def test_practical_bumper_is_the_laws_default():
@@ -41,23 +39,41 @@ def test_paper_numbers():
     assert paper.TEST_PAD_AREA == pytest.approx(0.040 * 0.040, rel=1e-15)
 
 
+def _recipe_files(name: str) -> list[Path]:
+    """The files of recipe `name`: its module, or every module of its package."""
+    package = STUDIES / name
+    return sorted(package.glob("*.py")) if package.is_dir() else [STUDIES / f"{name}.py"]
+
+
 def _studies_imports(path: Path) -> set[str]:
-    """Modules of studies/ a module imports (relative or absolute)."""
+    """The first part after `studies.` of every module of studies/ that `path` imports
+    (relative or absolute): "common", a recipe's name, or the module's own package."""
+    package = path.parent.relative_to(STUDIES.parent).parts  # ("studies",) or (.., "suite")
     found = set()
     for node in ast.walk(ast.parse(path.read_text())):
         if isinstance(node, ast.ImportFrom):
-            if node.level == 1:
-                found |= {node.module} if node.module else {a.name for a in node.names}
-            elif node.module and node.module.startswith("studies"):
-                rest = node.module.split(".")[1:]
-                found |= set(rest[:1]) if rest else {a.name for a in node.names}
+            if node.level:
+                base = list(package[:len(package) - node.level + 1])
+                target = base + (node.module.split(".") if node.module else [])
+                names = [a.name for a in node.names]
+            elif node.module and node.module.split(".")[0] == "studies":
+                target, names = node.module.split("."), [a.name for a in node.names]
+            else:
+                continue
+            found |= {target[1]} if len(target) > 1 else set(names)
         elif isinstance(node, ast.Import):
             found |= {a.name.split(".")[1] for a in node.names
                       if a.name.startswith("studies.")}
     return found
 
 
-@pytest.mark.parametrize("path", sorted(STUDIES.glob("*.py")), ids=lambda p: p.stem)
-def test_no_recipe_imports_another(path):
-    """Recipes (and the general sweep) import only the shared underscore modules."""
-    assert _studies_imports(path) <= SHARED, path.stem
+RECIPES = sorted({p.stem if p.is_file() else p.name for p in STUDIES.iterdir()
+                  if (p.suffix == ".py" or (p / "__init__.py").is_file())} - NOT_RECIPES)
+
+
+@pytest.mark.parametrize("name", RECIPES)
+def test_no_recipe_imports_another(name):
+    """Recipes (and the general sweep) import only what the recipes share (studies.common)
+    and, in a recipe's package, its own modules."""
+    for path in _recipe_files(name):
+        assert _studies_imports(path) <= {"common", name}, path

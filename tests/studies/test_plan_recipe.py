@@ -8,7 +8,7 @@ import pytest
 import xarray as xr
 
 import engine
-from pipeline.outcomes import judged
+from pipeline.assess.outcomes import judged
 from pipeline.records import load_pair, pair_accel
 from studies import plan
 from tests.helpers import assert_udunits, run_recipe

@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 
 import engine
-from pipeline.outcomes import TOLERANCE, judged, weighted_quantiles
-from pipeline.validity import ACCEL_LIMIT, FLAGS, Limits
+from pipeline.assess.outcomes import TOLERANCE, judged, weighted_quantiles
+from pipeline.assess.validity import ACCEL_LIMIT, FLAGS, Limits
 from studies import suite
-from studies._recipe import verdicts
+from studies.common.recipe import verdicts
 from tests.helpers import assert_udunits, run_recipe
 
 PAIRS = ["RSN960", "RSN725", "RSN848", "RSN68"]  # short pairs, with contact on the quick grid
@@ -74,7 +74,7 @@ def test_statistics_recomputed_by_hand(archive):
 def test_member_equals_a_direct_engine_run(archive):
     """A suite member = engine.simulate of the pair at its MCE_R factor x the level, with the
     same bumpers at the same gap: the same numbers, bit for bit."""
-    from pipeline.errors import resolve_pairs
+    from pipeline.checks import resolve_pairs
 
     ds = archive
     (pair,), _ = resolve_pairs([PAIRS[1]])
@@ -274,27 +274,27 @@ def test_maps_tell_no_contact_and_ties_from_harm():
 
 
 def test_shared_options():
-    """studies._options: the default pairs, --moat and --wall-capacity-mn, as every study
+    """studies.common.options: the default pairs, --moat and --wall-capacity-mn, as every study
     beyond the paper reads them."""
     import argparse
 
     from pipeline.errors import SweepError
     from pipeline.records import pair_names
-    from studies import _options
+    from studies.common import options
 
     far_field = pair_names("far-field")
-    assert len(far_field) == 22 and _options.default_pairs(False, 4) == far_field
-    assert _options.default_pairs(True, 4) == far_field[:4]
-    assert _options.default_pairs(True, ("RSN848", "RSN725")) == ["RSN848", "RSN725"]
+    assert len(far_field) == 22 and options.default_pairs(False, 4) == far_field
+    assert options.default_pairs(True, 4) == far_field[:4]
+    assert options.default_pairs(True, ("RSN848", "RSN725")) == ["RSN848", "RSN725"]
     p = argparse.ArgumentParser()
-    _options.add_moat(p)
-    _options.add_wall_capacity(p)
+    options.add_moat(p)
+    options.add_wall_capacity(p)
     args = p.parse_args([])
-    assert args.moat == "rectangular" and _options.wall_capacity(args) is None
+    assert args.moat == "rectangular" and options.wall_capacity(args) is None
     args = p.parse_args(["--moat", "circular", "--wall-capacity-mn", "12.5"])
-    assert args.moat == "circular" and _options.wall_capacity(args) == 12.5e6
+    assert args.moat == "circular" and options.wall_capacity(args) == 12.5e6
     with pytest.raises(SweepError, match="--wall-capacity-mn must be positive"):
-        _options.wall_capacity(p.parse_args(["--wall-capacity-mn", "0"]))
+        options.wall_capacity(p.parse_args(["--wall-capacity-mn", "0"]))
     with pytest.raises(SystemExit):
         p.parse_args(["--moat", "hexagonal"])
-    assert _options.bare_wall_text() == "linear law, k 2500 kN/mm, COR 0.5"
+    assert options.bare_wall_text() == "linear law, k 2500 kN/mm, COR 0.5"

@@ -7,7 +7,7 @@ import pytest
 import xarray as xr
 
 from studies import n_bumpers, restitution, strain, thickness, wall_stiffness
-from studies._recipe import verdicts
+from studies.common.recipe import verdicts
 from tests.helpers import SHARED_RECORDS, assert_udunits
 
 RECORDS_DIR = ["--records-dir", str(SHARED_RECORDS)] if SHARED_RECORDS.is_dir() else []

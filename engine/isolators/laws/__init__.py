@@ -17,8 +17,9 @@ that physics, once, for both time loops. A law module holds:
     yield_displacement(mass, g, **checked) -> m, where the slip element starts to slip
     effective_stiffness(mass, g, displacement, **checked) -> N/m, the secant stiffness at a
                                       displacement (ASCE 7 chapter 17's k_eff)
-and, for the code's equivalent-linear design (pipeline.target.isolation_design; a law without
-them cannot be designed so, and says so when asked, engine.isolators.registry.CODE_INTERFACE):
+and, for the code's equivalent-linear design (pipeline.motions.target.isolation_design; a law
+without them cannot be designed so, and says so when asked,
+engine.isolators.registry.CODE_INTERFACE):
     post_yield_stiffness(mass, g, **checked) -> N/m, the secant stiffness's limit at large
                                       displacements
     energy_per_cycle(mass, g, displacement, **checked) -> J, the energy dissipated per cycle

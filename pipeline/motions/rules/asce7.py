@@ -1,8 +1,8 @@
 """ASCE 7-22 chapter 17 (section 17.3.3; pairs and maximum-direction spectra as in section
 16.2.3): every pair scaled by one factor, so that the suite's mean RotD100 spectrum is not below
 the stated fraction of the MCE_R target over the stated period range around T_M
-(pipeline.code_scaling.asce7_isolated with ASCE7_22_ISOLATED, which holds the numbers and the
-clause; pairs whose factor falls outside its limits are left out and listed there).
+(pipeline.motions.code_scaling.asce7_isolated with ASCE7_22_ISOLATED, which holds the numbers and
+the clause; pairs whose factor falls outside its limits are left out and listed there).
 """
 from __future__ import annotations
 
@@ -17,7 +17,7 @@ TEXT = ("ASCE 7-22 chapter 17 (section 17.3.3): the suite's mean maximum-directi
         "around T_M")
 """What it does, in one line."""
 CLAUSE = ASCE7_22_ISOLATED.clause
-"""The clause it implements (pipeline.code_scaling.ASCE7_22_ISOLATED)."""
+"""The clause it implements (pipeline.motions.code_scaling.ASCE7_22_ISOLATED)."""
 
 
 def factors(pairs, target, design, building, dt):

@@ -1,6 +1,6 @@
 """The space studies.design searches (see its docstring for what and why): the candidates'
 variables, their grids and steps, the physical bounds (Bounds) and the user's constraints
-(Criteria). The search itself, over this space, is _design_search.py."""
+(Criteria). The search itself, over this space, is search.py."""
 from __future__ import annotations
 
 import math
@@ -10,7 +10,7 @@ import numpy as np
 
 from engine.results import quantity as peak
 from engine.units import CM, KN_PER_MM
-from pipeline.derived import quantity as derived
+from pipeline.assess.derived import quantity as derived
 
 VARIABLES = {  # the searched variables: units, long name
     "thickness": ("m", "bumper thickness t"),
@@ -67,13 +67,13 @@ REFERENCES = ("no wall", "bare wall at the gap", "code clearance D_TM")
 
 
 PEAKS = {  # what is kept per member: units, long name
-    # The units are the declarations' (pipeline.derived, engine.results); the long names are
+    # The units are the declarations' (pipeline.assess.derived, engine.results); the long names are
     # worded as this archive has always had them where they differ from the declarations'.
     "peak_floor_accel": (derived("peak_floor_accel").units, "largest peak total acceleration "
                          "over the levels (the base slab and the floors; resultant in plan)"),
     "peak_isolator_disp": (peak("peak_isolator_disp").units,
                            f"{peak('peak_isolator_disp').long_name} (resultant in plan)"),
-    # the archive's name for pipeline.derived's peak_story_drift
+    # the archive's name for pipeline.assess.derived's peak_story_drift
     "peak_interstory_drift": (derived("peak_story_drift").units,
                               f"{derived('peak_story_drift').long_name} over the stories "
                               "(resultant in plan)"),

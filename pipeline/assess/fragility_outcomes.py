@@ -1,5 +1,5 @@
 """Fragility fits from what the runs say: per-record boolean outcomes over intensity levels
-(`fit_outcomes`, stripes or IDA, through pipeline.fragility's fits) and the record weights
+(`fit_outcomes`, stripes or IDA, through pipeline.assess.fragility's fits) and the record weights
 that keep one earthquake from dominating them (`event_weights`). Pure functions of arrays."""
 from __future__ import annotations
 

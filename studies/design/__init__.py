@@ -1,18 +1,19 @@
 """Beyond the paper: what bumpers to install for a building and a gap short of the code's.
 
 The record pairs (default: the 22 FEMA P695 far-field pairs, as recorded) are scaled to the
-site's MCE_R by a code's rule (studies._code_suite: ASCE 7-22 chapter 17 by default) and run in
-plan (a rectangular moat by default) at three intensity levels, the service, design and MCE_R
-levels of _code_suite.LEVELS (1/3, 2/3 and 1 x the MCE_R factors). The gap is the user's
+site's MCE_R by a code's rule (pipeline.motions.code_suite: ASCE 7-22 chapter 17 by default) and
+run in plan (a rectangular moat by default) at three intensity levels, the service, design and MCE_R
+levels of pipeline.motions.code_suite.LEVELS (1/3, 2/3 and 1 x the MCE_R factors). The gap is the user's
 (--gap-cm, or --gap-dm as a fraction of the code's D_M); by default 0.8 D_M, short of the
 code's clearance D_TM: where bumpers matter.
 
 A candidate is a bumper layout: thickness t, cavity depth as a ratio c/t (paper 5.3), count per
 wall n, shape factor S (a square pad of side 4 S t: the plan size follows from S and t) and
 wall stiffness k_w. Each is judged at every level on every pair, with the validity flags of
-pipeline.validity per member (contact stress against the rubber's limit, floor acceleration,
+pipeline.assess.validity per member (contact stress against the rubber's limit, floor acceleration,
 story shear against the code's capacity when the stories are linear, wall force if a capacity
-is given), and the statistics weighted per earthquake (studies._code_suite: no event dominates).
+is given), and the statistics weighted per earthquake (pipeline.motions.code_suite: no event
+dominates).
 
 Objective (--objective): the weighted 84th percentile (default) or median over the pairs of the
 largest peak floor acceleration at the MCE_R (the other one breaks ties). The 84th percentile by
@@ -21,21 +22,21 @@ and the median pair, which does not, cannot tell one layout from another. Constr
 command-line option:
 - within limits (--within-limits, default 0.84): under at least this weighted fraction of the
   pairs at the MCE_R the bumpers stay uncrushed and their contact stress within the rubber's
-  limit (pipeline.validity.RUBBER_STRESS_LIMIT, 30.9 MPa; --no-stress-limit: uncrushed only,
+  limit (pipeline.assess.validity.RUBBER_STRESS_LIMIT, 30.9 MPa; --no-stress-limit: uncrushed only,
   the old criterion);
 - service (--service-contact, default 0): at most this weighted fraction of the pairs touches
   the bumpers at the service level;
 - design (--hurt-design, default 1: not constrained): at most this weighted fraction of the
   pairs is hurt at the design level by the bumpers against the bare wall at the same gap
-  (pipeline.outcomes, 2% tolerance);
+  (pipeline.assess.outcomes, 2% tolerance);
 - valid (--valid, default 0: not constrained): at least this weighted fraction of the pairs at
   the MCE_R raises no other validity flag (floor acceleration, story shear, wall force).
 
 Search bounds, from physical limits (Bounds; each named where the optimum meets it):
 - thickness - cavity <= gap - D_S: the bumpers leave the clearance the code's procedure gives
-  at the service level (D_S: pipeline.target.isolation_design at LEVELS["service"] x S_M1; 4.8
-  cm for the paper's building at the default site), so that frequent earthquakes do not reach
-  them by the code's own estimate (the service constraint checks it on the pairs);
+  at the service level (D_S: pipeline.motions.target.isolation_design at LEVELS["service"] x
+  S_M1; 4.8 cm for the paper's building at the default site), so that frequent earthquakes do
+  not reach them by the code's own estimate (the service constraint checks it on the pairs);
   thickness >= 3 cm (its usable stroke, under 2 cm, is of the order of the gap's tolerances);
 - c/t <= 1 - the rubber's usable strain (the least of its crush strain and the strain at the
   stress limit, 0.59 for the paper's rubber): a deeper cavity lets the slab bear on the wall's
@@ -72,15 +73,18 @@ import json
 import numpy as np
 
 from engine.units import CM, KN_PER_MM, G
+from pipeline.motions.code_suite import LEVELS
 
-from ._code_suite import LEVELS, site_options
-from ._design_archive import dataset, flagged_text, table_lines
-from ._design_search import (
+from ..common.options import add_moat, add_wall_capacity, chosen_pairs, site_options, wall_capacity
+from ..common.plot import plt
+from ..common.recipe import Recipe, Verdict, provenance, run_options
+from .archive import dataset, flagged_text, table_lines
+from .search import (
     Problem,
     Search,
     reference_members,
 )
-from ._design_space import (
+from .space import (
     COARSE,
     CRITERIA,
     DESIGN,
@@ -101,9 +105,6 @@ from ._design_space import (
     grid,
     usable_strain,
 )
-from ._options import add_moat, add_wall_capacity, chosen_pairs, wall_capacity
-from ._plot import plt
-from ._recipe import Recipe, Verdict, provenance, run_options
 
 GAP_FRACTION = 0.8
 """Default gap / D_M: short of the code's clearance D_TM (1.15 D_M), where bumpers matter."""
@@ -131,7 +132,7 @@ def options(p) -> None:
                         "then bounded by the crush strain)")
     p.add_argument("--stress-limit-mpa", type=float, default=None, metavar="MPA",
                    help="the rubber's contact stress limit, MPa (default 30.9: "
-                        "pipeline.validity.RUBBER_STRESS_LIMIT)")
+                        "pipeline.assess.validity.RUBBER_STRESS_LIMIT)")
     p.add_argument("--service-contact", type=float, default=0.0, metavar="FRACTION",
                    help="largest weighted fraction of the pairs touching the bumpers at the "
                         "service level (default 0: none)")
@@ -181,12 +182,11 @@ def design_gap(args, design) -> float:
 
 def compute(args):
     import engine
-    from pipeline import validity
+    from pipeline.assess import validity
     from pipeline.errors import SweepError
-    from pipeline.target import isolation_design
-
-    from ._code_suite import code_suite
-    from ._code_suite import describe as describe_suite
+    from pipeline.motions.code_suite import code_suite
+    from pipeline.motions.code_suite import describe as describe_suite
+    from pipeline.motions.target import isolation_design
 
     crit = criteria(args)
     pairs, names = chosen_pairs(args, QUICK_PAIRS)
@@ -308,7 +308,7 @@ def _paired(ds, name: str, low, high):
 def _compare(conclusion, claim, ds, name, low, high, what) -> Verdict:
     """A claim that `low` beats `high` in `name`, asked of every pair of candidates that differ
     only there: counted where the objective changes by more than the tolerance."""
-    from pipeline import outcomes
+    from pipeline.assess import outcomes
 
     a, b = _paired(ds, name, low, high)
     effect = outcomes.effect(a, b)
@@ -336,7 +336,7 @@ def _wall_verdict(ds) -> Verdict:
 
 
 def _narrow_verdict(ds) -> Verdict:
-    from pipeline import outcomes
+    from pipeline.assess import outcomes
 
     i = int(ds.attrs["chosen_candidate"])
     if i < 0:
@@ -412,6 +412,3 @@ recipe = Recipe(
             f"law's defaults; wall length {WALL_LENGTH:g} m"),
 )
 main = recipe.main
-
-if __name__ == "__main__":
-    raise SystemExit(main())

@@ -8,21 +8,20 @@ import json
 import numpy as np
 
 from engine.units import CM, G
-from pipeline import derived
+from pipeline.assess import derived
+from pipeline.motions.code_suite import LEVELS
 
-from ._code_suite import LEVELS
-from ._design_search import STAT_TEXT, Search, bumper_members, describe, nature, statistics
-from ._design_space import CRITERIA, OBJECTIVES, PEAKS, REFERENCES, VARIABLES
-from ._options import bare_wall_text
+from ..common.options import bare_wall_text
+from .search import STAT_TEXT, Search, bumper_members, describe, nature, statistics
+from .space import CRITERIA, OBJECTIVES, PEAKS, REFERENCES, VARIABLES
 
 
 def dataset(search: Search, references: dict, rounds: int, args):
     """The archive: every candidate and reference, per pair and level, with the statistics,
     the constraints, the ranking and the optimum's nature."""
     from pipeline.archive import labelled_dataset, variable
+    from pipeline.motions.code_suite import archive_variables
     from pipeline.provenance import common_attributes, plan_attributes, run_attributes
-
-    from ._code_suite import archive_variables
 
     problem, suite = search.problem, search.problem.suite
     judged = search.judged()
@@ -110,8 +109,8 @@ def _fails(judged) -> list[list[str]]:
 
 
 def _peak_variable(dims, name, values):
-    from pipeline import validity
     from pipeline.archive import variable
+    from pipeline.assess import validity
 
     if name in PEAKS:
         units, long_name = PEAKS[name]
@@ -123,8 +122,8 @@ def _peak_variable(dims, name, values):
 
 
 def _stat_variable(dims, name, values):
-    from pipeline import validity
     from pipeline.archive import variable
+    from pipeline.assess import validity
 
     if name in STAT_TEXT:
         units, long_name = STAT_TEXT[name]
@@ -154,7 +153,7 @@ def _line(label: str, ds, prefix: str, dim: str, i: int) -> list[str]:
 def flagged_text(ds, prefix: str, dim: str, i: int, level: int) -> str:
     """The pairs each validity flag counts for a candidate or reference at a level:
     'bumper_stress 3, story_shear 17' ('' when none)."""
-    from pipeline import validity
+    from pipeline.assess import validity
 
     counts = {name: int(ds[f"{prefix}n_{name}"].isel(level=level, **{dim: i}))
               for name in validity.FLAGS}

@@ -10,15 +10,15 @@ it (ASCE 7-22 section 11.4.5), the service level a third (a stated choice, about
 level's fraction: the shape of the suite's spectrum is kept and its amplitude scaled, as an
 incremental dynamic analysis does.
 
-Rules (--rule), one module each in pipeline/scaling_rules/ and read from its registry: "asce7"
-(default; ASCE 7-22 chapter 17, pipeline.code_scaling.asce7_isolated: the mean
+Rules (--rule), one module each in pipeline/motions/rules/ and read from its registry: "asce7"
+(default; ASCE 7-22 chapter 17, pipeline.motions.code_scaling.asce7_isolated: the mean
 maximum-direction spectrum not below the fraction of the target over the period range around
 T_M), "p695" (FEMA P695: PGV normalisation, the median anchored at T_M) and "displacement"
 (every pair scaled so that the building without wall reaches D_M in plan: kept as an explicit
 option, labelled as removing the record-to-record scatter).
 
 Pairs that share an earthquake are weighted 1 / (their number) in every statistic
-(pipeline.fragility.event_weights): no event dominates, every pair still runs.
+(pipeline.assess.fragility.event_weights): no event dominates, every pair still runs.
 """
 from __future__ import annotations
 
@@ -26,38 +26,24 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pipeline import scaling_rules
+from . import rules as scaling_rules
 
 SITE = {"s_ms": 1.5, "s_m1": 0.9, "t_long": 8.0}
 """The default site: S_MS g, S_M1 g, T_L s."""
 LEVELS = {"service": 1 / 3, "design": 2 / 3, "MCE_R": 1.0}
 """Intensity levels as fractions of the MCE_R target."""
-RULES = tuple(scaling_rules.RULES)
-"""The scaling rules' names (--rule), from pipeline.scaling_rules."""
 RULE_TEXT = {name: module.TEXT for name, module in scaling_rules.RULES.items()}
 """Rule name -> its one line (the --rule help and the archives' scaling_rule_text)."""
-
-
-def site_options(p) -> None:
-    """The site's and the rule's command-line options."""
-    p.add_argument("--sms-g", type=float, default=SITE["s_ms"], metavar="G",
-                   help=f"MCE_R short-period spectral acceleration S_MS in g (default "
-                        f"{SITE['s_ms']:g})")
-    p.add_argument("--sm1-g", type=float, default=SITE["s_m1"], metavar="G",
-                   help=f"MCE_R 1-s spectral acceleration S_M1 in g (default {SITE['s_m1']:g})")
-    p.add_argument("--tl", type=float, default=SITE["t_long"], metavar="S",
-                   help=f"long-period transition period T_L in s (default {SITE['t_long']:g})")
-    p.add_argument("--rule", choices=RULES, default="asce7",
-                   help="how the pairs are scaled: " + "; ".join(
-                       f"{k}: {v}" for k, v in RULE_TEXT.items()))
+DEFAULT_RULE = next(iter(scaling_rules.RULES))
+"""The rule a suite is scaled by unless told: the first of the registry (asce7)."""
 
 
 @dataclass(frozen=True)
 class CodeSuite:
     """Pairs scaled to the MCE_R by a rule: pairs (RecordPair), names, factors (R,) at the
-    MCE_R, weights (R,) per earthquake, the target (pipeline.target.TargetSpectrum), the
-    building's code quantities (pipeline.target.IsolationDesign), the scaling (a
-    pipeline.code_scaling.ScaledPairs, or None for the displacement rule) and the rule."""
+    MCE_R, weights (R,) per earthquake, the target (pipeline.motions.target.TargetSpectrum), the
+    building's code quantities (pipeline.motions.target.IsolationDesign), the scaling (a
+    pipeline.motions.code_scaling.ScaledPairs, or None for the displacement rule) and the rule."""
 
     pairs: list
     names: list
@@ -71,14 +57,14 @@ class CodeSuite:
     site: dict
 
 
-def code_suite(pairs, names, building, rule: str = "asce7", s_ms: float = SITE["s_ms"],
+def code_suite(pairs, names, building, rule: str = DEFAULT_RULE, s_ms: float = SITE["s_ms"],
                s_m1: float = SITE["s_m1"], t_long: float = SITE["t_long"],
                dt: float | None = None) -> CodeSuite:
     """Scale the pairs (RecordPair) to the site's MCE_R by the rule (see the module
     docstring). Pairs the rule excludes (factor limits) are dropped and listed in
     .scaled.excluded."""
-    from pipeline.fragility_outcomes import event_weights
-    from pipeline.target import asce7_target, isolation_design
+    from pipeline.assess.fragility_outcomes import event_weights
+    from pipeline.motions.target import asce7_target, isolation_design
 
     scaling = scaling_rules.rule(rule)  # ValueError listing the rules for another name
     # The model's isolation dashpot is part of its isolation system: the code's effective

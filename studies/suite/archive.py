@@ -1,23 +1,14 @@
 """What studies.suite's archive holds and how its verdicts and figure read it: the bumpers'
 crush limit, the configurations' variable prefixes, the responses, the outcomes, the
 quantifiers' wording, and the accessors (a response with or without bumpers, contact, runs
-outside the model's range, the runs a case counts). Shared by suite.py, _suite_verdicts.py
-and _suite_figure.py."""
+outside the model's range, the runs a case counts). Shared by the recipe (__init__.py),
+verdicts.py and figure.py."""
 from __future__ import annotations
 
 import numpy as np
 
-from engine.impact import LAWS
-from pipeline import derived
-from pipeline.outcomes import ALMOST_EVERY
-
-from ._paper import THICKNESS
-
-_BUMPER = LAWS["bumper"].PARAMETERS  # the paper's bumpers: the law's own area and strain
-AREA, STRAIN = _BUMPER.area.default, _BUMPER.strain.default
-DELTA_U = STRAIN * THICKNESS
-"""m: the crush limit of the paper's bumpers, 0.8 x 5 cm (no cavity)."""
-
+from pipeline.assess import derived
+from pipeline.assess.outcomes import ALMOST_EVERY
 
 PREFIX = {"bumpers": "", "bare": "bare_", "free": "free_"}
 """Archive prefix of each configuration's variables: bumpers, the bare wall, no wall."""
@@ -26,7 +17,7 @@ PREFIX = {"bumpers": "", "bare": "bare_", "free": "free_"}
 RESPONSES = {
     "base_accel": "peak base (isolation level) acceleration",
     "floor_accel": f"{derived.quantity('peak_floor_accel').long_name} (base included)",
-    # pipeline.derived's peak_story_drift, in the paper's word, as the archives have it
+    # pipeline.assess.derived's peak_story_drift, in the paper's word, as the archives have it
     "interstory_drift": "largest peak interstory deflection",
 }
 
@@ -42,7 +33,7 @@ QUANTIFIER_TEXT = {
 
 def response(ds, name: str, config: str = "bumpers"):
     """The response `name` (RESPONSES, or "upper_accel": the largest over the floors above the
-    base) of a configuration's runs: the largest ones as pipeline.derived computes them."""
+    base) of a configuration's runs: the largest ones as pipeline.assess.derived computes them."""
     prefix = PREFIX[config]
     accel = ds[prefix + "peak_total_accel"]
     largest = derived.largest_floor_accel
@@ -72,7 +63,7 @@ def outside(ds, config: str):
     DataArray over the configuration's dims."""
     from functools import reduce
 
-    from pipeline.validity import FLAGS
+    from pipeline.assess.validity import FLAGS
 
     prefix = PREFIX[config]
     return reduce(lambda a, b: a | b, [ds[prefix + name].astype(bool) for name in FLAGS])
@@ -90,7 +81,7 @@ def runs(ds, n=None, k=None) -> dict:
     """One configuration's runs over (record, level, gap_fraction) as arrays: the bumpers (n,
     k) or, with n None, the bare wall. Keys: base, upper, floor, drift (responses), force,
     indentation, hit (bool), outside (name of the flag -> bool), outside_any (bool)."""
-    from pipeline.validity import FLAGS
+    from pipeline.assess.validity import FLAGS
 
     config = "bare" if n is None else "bumpers"
     at = {} if n is None else {"n_bumpers": n, "wall_k": k}

@@ -3,7 +3,7 @@ conclusions hold as the paper words them?
 
 The paper draws its conclusions from four records. This recipe runs the paper's building in
 plan (coupled isolators, a square moat by default: --moat) under the FEMA P695 far-field record
-pairs, scaled to a site's MCE_R spectrum by a code's rule (studies._code_suite: ASCE 7-22
+pairs, scaled to a site's MCE_R spectrum by a code's rule (pipeline.motions.code_suite: ASCE 7-22
 chapter 17 by default, --rule p695 or the labelled "displacement" option), at three intensity
 levels (the service level, a third of the MCE_R; the design earthquake, two thirds; the MCE_R).
 The moat's clear gap is a fraction of the code's D_M (0.4 to 1.2, GAPS) and the code's
@@ -12,7 +12,7 @@ against each of Fig. 21's three wall stiffnesses) are compared with the bare wal
 gap (the paper's linear law); the building without wall runs once per pair and level. Every pair
 runs every level and configuration in one batched engine call (per-member scale factors).
 
-Counting (pipeline.outcomes, SPEC section 6): with bumpers against the bare wall, each
+Counting (pipeline.assess.outcomes, SPEC section 6): with bumpers against the bare wall, each
 (pair, level, gap) point is HELPED (amplification with / without below 1 - 2%), NEUTRAL (within
 2%, exact ties included) or HURT (above 1 + 2%), and counted only where contact occurs in at
 least one of the two configurations; elsewhere the two runs are the same unconstrained run and
@@ -20,7 +20,7 @@ the point is "no contact", never a tie or harm. Pairs are weighted per earthquak
 (record_weight: 1 / the pairs of the same earthquake, normalised to sum to the number of
 pairs), in every share, quantile and verdict.
 
-Validity (pipeline.validity): every run is checked against the model's range (the bumpers'
+Validity (pipeline.assess.validity): every run is checked against the model's range (the bumpers'
 contact stress against the rubber's 30.9 MPa, the largest floor acceleration against 5 g, a
 linear story's shear against the code's superstructure capacity, the wall's force against a
 capacity if given); the flags are stored per run (`invalid_*`, `bare_invalid_*`,
@@ -39,8 +39,8 @@ fraction it holds for, and "agrees" only when the quantifier holds. Comparisons 
 between configurations where something happens (contact, crushing).
 
 The derived responses (the largest floor acceleration and interstory drift, the bumpers'
-stress, "crushed") are pipeline.derived's; --moat, --wall-capacity-mn, the default pairs and
-the bare wall's description are studies._options'; QUANTILES is pipeline.outcomes'.
+stress, "crushed") are pipeline.assess.derived's; --moat, --wall-capacity-mn, the default pairs and
+the bare wall's description are studies.common.options'; QUANTILES is pipeline.assess.outcomes'.
 """
 from __future__ import annotations
 
@@ -50,8 +50,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from engine.units import CM
-from pipeline import derived
-from pipeline.outcomes import (
+from pipeline.assess import derived
+from pipeline.assess.outcomes import (
     ALMOST_EVERY,
     HELPED,
     HURT,
@@ -61,32 +61,30 @@ from pipeline.outcomes import (
     effect,
     weighted_quantiles,
 )
+from pipeline.motions.code_suite import LEVELS, archive_variables, code_suite, describe
 
-from ._code_suite import LEVELS, archive_variables, code_suite, describe, site_options
-from ._options import (
+from ..common.options import (
     QUICK_PAIRS,
     add_moat,
     add_wall_capacity,
     bare_wall_text,
     chosen_pairs,
+    site_options,
     wall_capacity,
 )
-from ._paper import FIG19_COUNTS, FIG21_WALL_KS, THICKNESS
-from ._recipe import Recipe, provenance, run_options
-from ._suite_archive import (
-    AREA,
-    DELTA_U,
+from ..common.paper import AREA, DELTA_U, FIG19_COUNTS, FIG21_WALL_KS, STRAIN, THICKNESS
+from ..common.recipe import Recipe, provenance, run_options
+from .archive import (
     OUTCOMES,
     PREFIX,
     RESPONSES,
-    STRAIN,
     broadcast_weights,
     contact,
     outside,
     response,
 )
-from ._suite_figure import plot
-from ._suite_verdicts import check
+from .figure import plot
+from .verdicts import check
 
 GAPS = (0.4, 0.5, 0.6, 0.8, 1.0, 1.2)
 """Clear gaps as fractions of D_M; the code's clearance D_TM is added among them. Below 0.6:
@@ -151,7 +149,7 @@ class Grid:
 
 
 def make_grid(design, quick: bool) -> Grid:
-    """The grid for the code's design (pipeline.target.IsolationDesign): the gaps GAPS x D_M
+    """The grid for the code's design (pipeline.motions.target.IsolationDesign): the gaps GAPS x D_M
     and D_TM (which marks an existing fraction if it coincides with one)."""
     names = QUICK_LEVELS if quick else tuple(LEVELS)
     fractions = np.array(QUICK_GAPS if quick else GAPS, dtype=float)
@@ -164,7 +162,7 @@ def make_grid(design, quick: bool) -> Grid:
 
 
 def compute(args):
-    from pipeline.validity import Limits, code_story_capacity
+    from pipeline.assess.validity import Limits, code_story_capacity
 
     pairs, names = chosen_pairs(args, QUICK_PAIRS)
     suite = code_suite(pairs, names, args.building, args.rule, args.sms_g, args.sm1_g, args.tl,
@@ -214,11 +212,11 @@ def assemble(grid: Grid, peaks: dict, names, weights, building, limits):
     """The archive from the peaks: configuration (free, bare, bumpers) -> PEAKS name -> array
     shaped as Grid.split gives (SI: m, m/s^2 over the building's levels, m over its stories, N,
     m, impacts); names (R,) of the pairs; weights (R,) per earthquake; building: the
-    engine.Building run; limits: pipeline.validity.Limits. Adds the validity flags, the
+    engine.Building run; limits: pipeline.assess.validity.Limits. Adds the validity flags, the
     bumpers' contact stress and the statistics (add_statistics)."""
     from engine.results import quantity
     from pipeline.archive import labelled_dataset, variable
-    from pipeline.validity import FLAGS, flags_of, shape_factor
+    from pipeline.assess.validity import FLAGS, flags_of, shape_factor
 
     data, said = {}, config_text()
     counts = np.array(grid.counts, float)[:, None]  # (N, 1): against the wall_k axis
@@ -274,11 +272,11 @@ def assemble(grid: Grid, peaks: dict, names, weights, building, limits):
 
 STATISTICS_TEXT = (
     "with bumpers against the bare wall at the same gap: helped (amplification below 1 - 2%), "
-    "neutral (within 2%, ties included), hurt (above 1 + 2%), pipeline.outcomes; counted only "
-    "where contact occurs with the bumpers or the bare wall, else no_contact; pairs weighted "
-    "per earthquake (record_weight); runs outside the model's range (invalid_*) kept in the "
-    "shares, quantiles and verdicts, their number stated (counted_outside_range, and in each "
-    "verdict with its fraction without them)")
+    "neutral (within 2%, ties included), hurt (above 1 + 2%), pipeline.assess.outcomes; "
+    "counted only where contact occurs with the bumpers or the bare wall, else no_contact; "
+    "pairs weighted per earthquake (record_weight); runs outside the model's range (invalid_*) "
+    "kept in the shares, quantiles and verdicts, their number stated (counted_outside_range, "
+    "and in each verdict with its fraction without them)")
 
 
 def _with_without(ds, name: str) -> tuple[np.ndarray, np.ndarray]:
@@ -380,13 +378,10 @@ recipe = Recipe(
     compute=compute, plot=plot, check=check, records=(), options=options,
     chosen=(f"site S_MS 1.5 g, S_M1 0.9 g, T_L 8 s; levels service 1/3, design 2/3, MCE_R; "
             f"gaps {', '.join(map(str, GAPS))} D_M and D_TM; {THICKNESS / CM:g} cm bumpers, "
-            f"strain {STRAIN:g}, no cavity; tolerance 2% (pipeline.outcomes); pairs weighted "
-            f"per earthquake; 'almost all' = {ALMOST_EVERY:.0%} of the cases that change; "
+            f"strain {STRAIN:g}, no cavity; tolerance 2% (pipeline.assess.outcomes); pairs "
+            f"weighted per earthquake; 'almost all' = {ALMOST_EVERY:.0%} of the cases that change; "
             f"quick: {QUICK_PAIRS} pairs, levels {', '.join(QUICK_LEVELS)}, gaps "
             f"{', '.join(map(str, QUICK_GAPS))} D_M and D_TM, {QUICK_COUNTS[0]} and "
             f"{QUICK_COUNTS[1]} bumpers"),
 )
 main = recipe.main
-
-if __name__ == "__main__":
-    raise SystemExit(main())

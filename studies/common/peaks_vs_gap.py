@@ -2,7 +2,7 @@
 the varied bumper parameter, the building without bumpers (bare wall) dashed.
 
 Shared by the thickness, strain, n_bumpers and wall_stiffness recipes (and gap_size, Figs.
-14-15, for the gap grid): their gap grid over the paper's range (studies._paper), their figure
+14-15, for the gap grid): their gap grid over the paper's range (studies.common.paper), their figure
 (rows: peak floor acceleration in g, the largest over the floors, and peak interstory
 deflection in cm, the largest over the stories; columns: records) and the envelopes their
 checks compare.
@@ -16,8 +16,8 @@ import numpy as np
 
 from engine.units import CM, KN_PER_MM, G
 
-from ._paper import GAP_RANGE_CM
-from ._plot import plt, record_label
+from .paper import GAP_RANGE_CM
+from .plot import plt, record_label
 
 MARKERS = ("o", "s", "^", "D", "v", "P")
 

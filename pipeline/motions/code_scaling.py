@@ -13,11 +13,12 @@ tuple (accel, dt) or (accel, dt, name). A target is a target.TargetSpectrum (any
 .at(periods) -> m/s^2). Results are ScaledPairs: the factors (one per pair, the same for both
 components) and the spectra that justify them; nothing is run, written or plotted here.
 
-The rules a suite is scaled by are declared one module each in pipeline/scaling_rules/ (asce7
+The rules a suite is scaled by are declared one module each in pipeline/motions/rules/ (asce7
 and p695 apply the functions here; displacement is not a code rule). The alternatives that
 scale every record to the same unconstrained peak isolator displacement
-(pipeline.scaling.scale_to_displacement for planar records, pipeline.scaling_rules.displacement
-for pairs in plan) are labelled as removing the record-to-record scatter (SPEC section 6).
+(pipeline.motions.scaling.scale_to_displacement for planar records,
+pipeline.motions.rules.displacement for pairs in plan) are labelled as removing the
+record-to-record scatter (SPEC section 6).
 
 Code values whose wording was not checked against the standard's text are marked so in
 ASCE7_22_ISOLATED.clause; every number is a named field of a ScalingRule, to be changed there.
@@ -220,7 +221,7 @@ def fema_p695(pairs, target, period: float, *, rule: ScalingRule = FEMA_P695, pe
     """Normalise and anchor pairs by FEMA P695 (rule.clause) at the period T = period (s).
 
     pgv: (R,) PGV_PEER of each pair in m/s; default the geometric mean of its two
-    components' PGV (pipeline.intensity.peak_ground_velocity: the record as given, no
+    components' PGV (pipeline.motions.intensity.peak_ground_velocity: the record as given, no
     baseline correction; within -6% to +8% of P695 Table A-4's PGV_PEER for the far-field
     set, which comes from the PEER database). NM_i = median(pgv) / pgv_i, so every
     normalised pair has the set's median PGV. The common factor SF = target(T) / median of

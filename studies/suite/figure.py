@@ -5,12 +5,12 @@ from __future__ import annotations
 import numpy as np
 
 from engine.units import CM, KN_PER_MM
-from pipeline.outcomes import QUANTILES
+from pipeline.assess.outcomes import QUANTILES
 
-from ._paper import THICKNESS
-from ._plot import plt
-from ._suite_archive import OUTCOMES, RESPONSES
-from ._suite_verdicts import all_outside_numbers, paper_config
+from ..common.paper import THICKNESS
+from ..common.plot import plt
+from .archive import OUTCOMES, RESPONSES
+from .verdicts import all_outside_numbers, paper_config
 
 
 def plot(ds):

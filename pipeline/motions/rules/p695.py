@@ -1,6 +1,6 @@
 """FEMA P695 (2009) appendix A, section A.8: each pair normalised by its PGV to the set's median
 PGV, then one factor anchoring the set's median spectrum at T = T_M on the target
-(pipeline.code_scaling.fema_p695 with FEMA_P695, which holds the clause).
+(pipeline.motions.code_scaling.fema_p695 with FEMA_P695, which holds the clause).
 """
 from __future__ import annotations
 
@@ -14,7 +14,7 @@ TEXT = ("FEMA P695 (appendix A.8): each pair normalised by its PGV to the set's 
         "one factor anchoring the set's median spectrum at T_M")
 """What it does, in one line."""
 CLAUSE = FEMA_P695.clause
-"""The clause it implements (pipeline.code_scaling.FEMA_P695)."""
+"""The clause it implements (pipeline.motions.code_scaling.FEMA_P695)."""
 
 
 def factors(pairs, target, design, building, dt):

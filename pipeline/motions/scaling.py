@@ -15,7 +15,7 @@ scaled record (accel x factor, the record the sweeps run) is run once more to ch
 reaches D within the tolerance. Records that would need a factor outside the limits, or never
 reach D, are listed in `excluded` with the reason, never silently kept.
 
-Pairs in plan are scaled to the code's D_M by another search, pipeline.scaling_rules.displacement
+Pairs in plan are scaled to the code's D_M by another search, pipeline.motions.rules.displacement
 (the resultant peak in plan, an unrounded bracket end, every pair kept; its docstring says why
 this one cannot serve there).
 """
@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .execute.progress import Progress
+from ..execute.progress import Progress
 
 FIRST_PASS = 33  # geometric grid over the limits: neighbours ~10% apart for limits 0.2-5
 REFINE = 17  # trial factors per refining pass, inside the current bracket
@@ -70,8 +70,8 @@ def scale_to_displacement(records, displacement: float = DEFAULT_DISPLACEMENT,
     """
     import engine
 
-    from .errors import SweepError
-    from .records import RecordError, resolve_records
+    from ..errors import SweepError
+    from ..records import RecordError, resolve_records
 
     if not (isinstance(displacement, (int, float)) and math.isfinite(displacement)
             and displacement > 0):

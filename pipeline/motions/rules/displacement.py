@@ -2,8 +2,8 @@
 code rule, kept as an explicit option and labelled as removing the record-to-record scatter (by
 construction every pair then gives the same unconstrained peak).
 
-Why not pipeline.scaling.scale_to_displacement, which also scales to a displacement: it cannot
-give these factors. It scales planar records (one component, the building along one axis) to
+Why not pipeline.motions.scaling.scale_to_displacement, which also scales to a displacement: it
+cannot give these factors. It scales planar records (one component, the building along one axis) to
 a chosen displacement, by a geometric grid within its limits refined linearly, interpolates
 inside the last bracket, rounds to 6 digits, checks the rounded factor by one more run and
 leaves out the records it cannot bring there. Here a pair moves the building in plan (both

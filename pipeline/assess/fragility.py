@@ -12,7 +12,7 @@ already computed (numpy + scipy only):
     fit_stripes    multiple-stripe analysis: event counts per intensity level, binomial MLE
     fit_ida        incremental dynamic analysis: each record's intensity at the event,
                    lognormal MLE, right-censored records that never reach it
-    (fit_outcomes and event_weights, from per-record outcomes: pipeline.fragility_outcomes)
+    (fit_outcomes and event_weights, from per-record outcomes: pipeline.assess.fragility_outcomes)
 
 Each returns a frozen :class:`Fragility`; degenerate data (the event never or always happens,
 beta not identifiable, a median outside the tested levels) are said in its `status` and

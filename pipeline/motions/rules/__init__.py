@@ -1,7 +1,7 @@
 """The rules that scale record pairs to a site's MCE_R, one module each: every module in this
 folder is a rule, found here as the isolator and impact laws are found (engine/registry.py), so
-a new rule is a new module here and nothing else; studies._code_suite reads its --rule choices
-and their help from RULES.
+a new rule is a new module here and nothing else; pipeline.motions.code_suite reads its --rule
+choices and their help from RULES.
 
 A rule module holds:
     NAME: str, ORDER: int     its name (the --rule choice, the archives' scaling_rule) and its
@@ -11,16 +11,17 @@ A rule module holds:
     CLAUSE: str               the clause of the standard it implements, or why it is none
     factors(pairs, target, design, building, dt) -> (chosen, factors, scaled)
         pairs: records.RecordPair list (.accel (N, 2) m/s^2, .dt s, .name); target: the MCE_R
-        target (pipeline.target.TargetSpectrum); design: the building's code quantities
-        (pipeline.target.IsolationDesign: T_M s, D_M m, ...); building: engine.Building;
+        target (pipeline.motions.target.TargetSpectrum); design: the building's code quantities
+        (pipeline.motions.target.IsolationDesign: T_M s, D_M m, ...); building: engine.Building;
         dt: integration step (s) of any engine run, None for engine.DEFAULT_DT.
         chosen: indices (list of int) of the pairs kept, in their order; factors (K,) -: each
         kept pair's factor at the MCE_R (both components); scaled: the
-        pipeline.code_scaling.ScaledPairs that justifies them, or None when the rule has no
+        pipeline.motions.code_scaling.ScaledPairs that justifies them, or None when the rule has no
         spectra to show.
 
-The codes' arithmetic (spectra of pairs, the factors of each clause) is pipeline.code_scaling's,
-pure arrays; a rule module declares the rule and applies it to a suite.
+The codes' arithmetic (spectra of pairs, the factors of each clause) is
+pipeline.motions.code_scaling's, pure arrays; a rule module declares the rule and applies it to a
+suite.
 """
 from __future__ import annotations
 

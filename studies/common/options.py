@@ -1,13 +1,15 @@
 """What the studies beyond the paper (suite, fragility, design, plan) share on their command
 lines and in their archives, declared once: the moat in plan (--moat), the wall's force
-capacity (--wall-capacity-mn), the default record pairs (the FEMA P695 far-field set) and the
-bare wall's description in the archives' long names."""
+capacity (--wall-capacity-mn), the site and the scaling rule (--sms-g, --sm1-g, --tl, --rule),
+the default record pairs (the FEMA P695 far-field set) and the bare wall's description in the
+archives' long names."""
 from __future__ import annotations
 
 from collections.abc import Sequence
 
 from engine.results import WALLS
 from engine.units import KN_PER_MM
+from pipeline.motions.code_suite import DEFAULT_RULE, RULE_TEXT, SITE
 
 PAIR_SET = "far-field"
 """The FEMA P695 record set the studies run by default (pipeline.records.pair_names)."""
@@ -55,8 +57,8 @@ def default_pairs(quick: bool, n_quick: int | Sequence[str]) -> list[str]:
 
 def chosen_pairs(args, n_quick: int | Sequence[str]):
     """The pairs a study runs: --records, else `default_pairs(--quick, n_quick)`, read from
-    --records-dir or the library. Returns (pairs, names), as pipeline.errors.resolve_pairs."""
-    from pipeline.errors import resolve_pairs
+    --records-dir or the library. Returns (pairs, names), as pipeline.checks.resolve_pairs."""
+    from pipeline.checks import resolve_pairs
 
     return resolve_pairs(args.records or default_pairs(args.quick, n_quick), args.records_dir)
 
@@ -71,3 +73,17 @@ def bare_wall_text() -> str:
     restitution = swept_parameter(BASELINE_LAW, "cor").name.upper()
     return (f"{BASELINE_LAW} law, {stiffness} {BASELINE['wall_k'] / KN_PER_MM:g} kN/mm, "
             f"{restitution} {BASELINE['cor']:g}")
+
+
+def site_options(p) -> None:
+    """The site's and the rule's command-line options."""
+    p.add_argument("--sms-g", type=float, default=SITE["s_ms"], metavar="G",
+                   help=f"MCE_R short-period spectral acceleration S_MS in g (default "
+                        f"{SITE['s_ms']:g})")
+    p.add_argument("--sm1-g", type=float, default=SITE["s_m1"], metavar="G",
+                   help=f"MCE_R 1-s spectral acceleration S_M1 in g (default {SITE['s_m1']:g})")
+    p.add_argument("--tl", type=float, default=SITE["t_long"], metavar="S",
+                   help=f"long-period transition period T_L in s (default {SITE['t_long']:g})")
+    p.add_argument("--rule", choices=tuple(RULE_TEXT), default=DEFAULT_RULE,
+                   help="how the pairs are scaled: " + "; ".join(
+                       f"{k}: {v}" for k, v in RULE_TEXT.items()))

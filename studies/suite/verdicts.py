@@ -8,16 +8,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from engine.units import CM, KN_PER_MM
-from pipeline.derived import crushed
-from pipeline.outcomes import HELPED, HURT, NEUTRAL, TOLERANCE, amplification, effect, judged
+from pipeline.assess.derived import crushed
+from pipeline.assess.outcomes import HELPED, HURT, NEUTRAL, TOLERANCE, amplification, effect, judged
 
-from ._paper import N_BUMPERS, THICKNESS, WALL_K
-from ._recipe import Verdict, verdict
-from ._suite_archive import (
-    DELTA_U,
+from ..common.paper import DELTA_U, N_BUMPERS, STRAIN, THICKNESS, WALL_K
+from ..common.recipe import Verdict, verdict
+from .archive import (
     PREFIX,
     QUANTIFIER_TEXT,
-    STRAIN,
     broadcast_weights,
     outside,
     runs,
@@ -170,7 +168,7 @@ def check(ds) -> list[Verdict]:
 def _number_of_bumpers(ds, k_p, w, levels) -> list[Verdict]:
     """5.4: more bumpers raise the peaks in almost all cases; with the most bumpers the
     indentation stays within delta_u for all examined excitations (every pair)."""
-    from pipeline.validity import RUBBER_STRESS_LIMIT
+    from pipeline.assess.validity import RUBBER_STRESS_LIMIT
 
     if ds.n_bumpers.size < 2:
         return [_not_tested(ds, "5.4", "The number of bumpers", "one count in the grid")]

@@ -2,8 +2,8 @@
 accelerations a shear building with rigid floors cannot carry, a linear story's shear above its
 capacity, the wall's force above its capacity. Pure functions of peaks (engine.results.PEAKS,
 SI) and of the bumper and building parameters (the largest floor acceleration and the bumpers'
-stress as pipeline.derived declares them); `flags_of` takes the peaks as the engine names them
-with the building. The studies store the flags per member in their archives (variables
+stress as pipeline.assess.derived declares them); `flags_of` takes the peaks as the engine names
+them with the building. The studies store the flags per member in their archives (variables
 `invalid_*`, 1 where the member is outside the range) and count them in every summary.
 
 The limits are stated defaults, each replaceable by the user:
@@ -54,7 +54,7 @@ def code_story_capacity(design, building, r_i: float = 2.0, overstrength: float 
     17.5-7), the superstructure's share V_st = V_b (W_s / W)^(1 - 2.5 beta_M) (eq. 17.5-8),
     reduced by R_I (at most 2, section 17.5.4.2) and raised by an overstrength factor for the
     strength a designed structure has beyond its design force. design: a
-    pipeline.target.IsolationDesign (k_m N/m, d_m m, beta_m); building: engine.Building.
+    pipeline.motions.target.IsolationDesign (k_m N/m, d_m m, beta_m); building: engine.Building.
     Applied to every story (the first carries the most)."""
     v_b = design.k_m * design.d_m
     masses = np.asarray(building.masses, float)

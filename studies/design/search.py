@@ -1,4 +1,4 @@
-"""The search of studies.design over its space (_design_space.py: variables, bounds,
+"""The search of studies.design over its space (space.py: variables, bounds,
 constraints; see design.py's docstring for what and why): the members a candidate runs, the
 statistics weighted per earthquake, the judgement and ranking, the pattern search (Search)
 and the nature of its optimum, interior or at a named bound (Nature). No files, no figures:
@@ -10,12 +10,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from engine.units import CM, KN_PER_MM
-from pipeline.derived import crushed, largest_floor_accel, largest_story_drift
-from pipeline.derived import quantity as derived_quantity
-from pipeline.outcomes import QUANTILES, weighted_quantiles
+from pipeline.assess.derived import crushed, largest_floor_accel, largest_story_drift
+from pipeline.assess.derived import quantity as derived_quantity
+from pipeline.assess.outcomes import QUANTILES, weighted_quantiles
+from pipeline.motions.code_suite import LEVELS
 
-from ._code_suite import LEVELS
-from ._design_space import (
+from .space import (
     FINEST,
     MCE,
     OTHER_FLAGS,
@@ -74,8 +74,9 @@ def reference_members(gap: float, d_tm: float) -> Members:
 
 @dataclass
 class Problem:
-    """What every run shares: the scaled suite (studies._code_suite.CodeSuite), the building,
-    dt s, the moat, the validity limits (pipeline.validity.Limits), how and where the runs go
+    """What every run shares: the scaled suite (pipeline.motions.code_suite.CodeSuite), the
+    building,
+    dt s, the moat, the validity limits (pipeline.assess.validity.Limits), how and where the runs go
     (options: pipeline.sweep's workers, scheduler, quiet, work_dir); `free` holds the building
     without wall per pair and level (filled by `run_free`), `swept` its sweep's Dataset (whose
     provenance the archive keeps)."""
@@ -143,7 +144,7 @@ def _listed(columns: dict, reach: np.ndarray, levels: np.ndarray) -> dict:
 def _peaks(ds, shape: tuple, building, limits, n_bumpers, area) -> dict[str, np.ndarray]:
     """PEAKS and the validity flags of a sweep's Dataset over (record, member), each shaped
     `shape` (the members split as the caller listed them)."""
-    from pipeline import validity
+    from pipeline.assess import validity
 
     peaks = {name: ds[name].values.reshape(*shape, *ds[name].shape[2:]) for name in
              ("peak_total_accel", "peak_interstory_drift", "max_impact_force",
@@ -173,8 +174,8 @@ def statistics(peaks: dict, weights, bare: dict | None = None) -> dict[str, np.n
     fractions uncrushed, within the stress limit, within both, and with contact; the number of
     pairs (unweighted) flagged by each validity flag; with `bare` (the bare wall at the gap,
     (R, L) peaks), the weighted fractions of all the pairs the member helps and hurts against
-    it, and of those counted (contact in one of the two; pipeline.outcomes)."""
-    from pipeline import outcomes, validity
+    it, and of those counted (contact in one of the two; pipeline.assess.outcomes)."""
+    from pipeline.assess import outcomes, validity
 
     accel = peaks["peak_floor_accel"]
     q16, med, q84 = weighted_quantiles(accel, weights, QUANTILES)

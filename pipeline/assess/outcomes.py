@@ -53,7 +53,8 @@ def where_contact(impacts_with, impacts_without) -> np.ndarray:
 
 
 def tally(effects, counted, weights=None) -> dict:
-    """Counts (weighted if given: e.g. pipeline.fragility.event_weights per record) of helped,
+    """Counts (weighted if given: e.g. pipeline.assess.fragility.event_weights per record) of
+    helped,
     neutral and hurt among the counted points, with their total and the points not counted
     ("no contact")."""
     e, c = np.asarray(effects), np.asarray(counted, bool)

@@ -25,12 +25,14 @@ import json
 import numpy as np
 
 from engine.units import CM, G
-from pipeline.derived import largest_floor_accel, largest_story_drift
-from pipeline.outcomes import QUANTILES
+from pipeline.assess.derived import largest_floor_accel, largest_story_drift
+from pipeline.assess.outcomes import QUANTILES
 
-from ._options import add_moat, bare_wall_text, chosen_pairs
-from ._paper import GAP_FRACTION, N_BUMPERS, THICKNESS
-from ._plan_verdicts import (
+from ..common.options import add_moat, bare_wall_text, chosen_pairs
+from ..common.paper import GAP_FRACTION, N_BUMPERS, THICKNESS
+from ..common.plot import plt
+from ..common.recipe import Recipe, Verdict, provenance, run_options
+from .verdicts import (
     CLAIMS,
     MODELS,
     Claim,
@@ -43,8 +45,6 @@ from ._plan_verdicts import (
     only_bumpers_amplify,
     side_by_side,
 )
-from ._plot import plt
-from ._recipe import Recipe, Verdict, provenance, run_options
 
 BARRIERS = ("none", "bare wall", "bumpers")
 FRACTIONS = (0.5, 0.7, GAP_FRACTION, 1.1, 1.3)  # gap / the planar peak without wall
@@ -478,6 +478,3 @@ recipe = Recipe(
             f"{', '.join(f'{f:g}' for f in QUICK_FRACTIONS)} x"),
     records=(), options=options)
 main = recipe.main
-
-if __name__ == "__main__":
-    raise SystemExit(main())

@@ -18,6 +18,9 @@ THICKNESS = 0.05  # m: bumper thickness t, 150 x 150 x 50 mm rubber pads (sectio
 N_BUMPERS = 4  # bumpers on each side of the slab, acting in parallel (section 4)
 STRAIN = 0.8  # ultimate compressive strain eps_u: crushed past 0.8 x 5 = 4 cm (section 4, Eq. 14)
 WALL_K = 1.5e9  # N/m: moat-wall stiffness k_w behind the crushed rubber, 1500 kN/mm (Eq. 14)
+AREA = 0.150 * 0.150  # m^2: each pad's 150 x 150 mm face (section 4)
+DELTA_U = STRAIN * THICKNESS
+"""m: the crush limit of the paper's bumpers, 0.8 x 5 cm (no cavity, Eq. 14)."""
 
 # --- The gap rule (section 4, used again in 5.6).
 GAP_FRACTION = 0.9  # seismic gap = 0.9 x the peak isolator displacement without moat wall

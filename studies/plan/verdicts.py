@@ -7,9 +7,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pipeline.outcomes import QUANTIFIERS, judged
+from pipeline.assess.outcomes import QUANTIFIERS, judged
 
-from ._recipe import Verdict, verdict
+from ..common.recipe import Verdict, verdict
 
 MODELS = ("planar", "plan")
 
