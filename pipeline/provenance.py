@@ -195,8 +195,14 @@ def sweep_attributes(grid: Grid) -> dict:
         "isolator values (building_isolator_*) member by member; the building_* attributes "
         "describe everything else" if replaced else
         "the building's for every member (building_isolator_*)")
-    if law == "hertzdamp":  # its exponent is not a sweep parameter: sweeps use the default
-        attrs["hertzdamp_exponent"] = LAWS[law].PARAMETERS.n.default
+    if grid.listed is not None:  # several laws, each member its own (pipeline.listed)
+        laws = list(dict.fromkeys(str(x) for x in np.ravel(grid.listed["law"])))
+        attrs.update({
+            "impact_law": " ".join(laws),
+            "swept_parameters": "none: members listed one by one (pipeline.listed), their "
+                                "parameters the coordinates along member",
+            "impact_law_defaults": json.dumps({x: law_defaults(x) for x in laws}),
+        })
     return attrs
 
 

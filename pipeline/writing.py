@@ -15,6 +15,7 @@ import glob
 import hashlib
 import json
 import os
+import shutil
 import signal
 import tempfile
 import threading
@@ -112,24 +113,53 @@ class Staged:
         self.pending.append((Path(tmp), target))
         return Path(tmp)
 
+    def folder(self, target) -> Path:
+        """A fresh hidden temporary folder beside `target`, for an output that is a folder (a
+        Zarr store); committed like a file, the folder it replaces removed after."""
+        target = Path(target)
+        target.parent.mkdir(parents=True, exist_ok=True)
+        tmp = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}.",
+                                    suffix=".tmp"))
+        os.chmod(tmp, 0o777 & ~_umask())  # mkdtemp made it private; an output is not
+        self.pending.append((tmp, target))
+        return tmp
+
     def commit(self) -> None:
         """Make every temporary file durable, then rename each over its target."""
         for tmp, _ in self.pending:
+            if tmp.is_dir():
+                continue
             with open(tmp, "rb") as f:
                 os.fsync(f.fileno())  # the bytes are on disk before the names point at them
             os.chmod(tmp, 0o666 & ~_umask())  # mkstemp made it private; an output is not
+        replaced = []
         with _sigint_held():
             for tmp, target in self.pending:
+                if tmp.is_dir() and target.is_dir():  # a folder cannot be renamed over one
+                    old = Path(tempfile.mkdtemp(dir=target.parent,
+                                                prefix=f".{target.name}.", suffix=".tmp"))
+                    os.replace(target, old / target.name)
+                    replaced.append(old)
                 os.replace(tmp, target)
+        for old in replaced:
+            shutil.rmtree(old, ignore_errors=True)
         for _, target in self.pending:
             for stale in target.parent.glob(f".{glob.escape(target.name)}.*.tmp"):
-                stale.unlink(missing_ok=True)  # left by writers killed before their rename
+                _remove(stale)  # left by writers killed before their rename
         self.pending = []
 
     def __exit__(self, *exc) -> None:
         for tmp, _ in self.pending:
-            tmp.unlink(missing_ok=True)
+            _remove(tmp)
         self.pending = []
+
+
+def _remove(path: Path) -> None:
+    """A temporary file or folder, gone."""
+    if path.is_dir():
+        shutil.rmtree(path, ignore_errors=True)
+    else:
+        path.unlink(missing_ok=True)
 
 
 class _sigint_held:

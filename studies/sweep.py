@@ -204,7 +204,7 @@ def main(argv: list[str] | None = None) -> int:
         apply_tls_options(args)
         damping = [] if args.damping is None else [f"damping={args.damping}"]
         building = building_from([*args.building, *damping])
-        archive, _ = outputs(args.out, "sweep", archives=(".nc", ".zarr"))
+        archive, _ = outputs(args.out, "sweep")
         with announce_stand_ins():
             records = args.records
             if args.moat is None:

@@ -101,7 +101,8 @@ class Recipe:
                                 "default: the paper's building)")
         p.add_argument("--out", type=Path, default=Path("results"), metavar="PATH",
                        help=f"where the archive goes: a path ending in .nc is the archive "
-                            f"itself (the figures take its stem), anything else a folder "
+                            f"itself (the figures take its stem), one ending in .zarr a Zarr "
+                            f"store instead, anything else a folder "
                             f"receiving {self.name}.nc/.png/.pdf (default: results/); "
                             f"finished simulations wait in <archive>.work/ until it is "
                             f"written")
@@ -153,11 +154,12 @@ class Recipe:
         archive, stem = outputs(args.out, self.name, quick=args.quick)
         figures = [Path(f"{stem}.png"), Path(f"{stem}.pdf")]
         if args.replot:
-            if not archive.is_file():
+            if not archive.exists():
                 raise SweepError(f"--replot needs {archive}, which does not exist")
             for path in figures:
                 check_out(path)
-            with xr.open_dataset(archive) as opened:
+            opener = xr.open_zarr if archive.suffix == ".zarr" else xr.open_dataset
+            with opener(archive) as opened:
                 ds = opened.load()
         else:
             for path in (archive, *figures):
@@ -183,7 +185,9 @@ class Recipe:
                      color="firebrick", fontsize=9, fontweight="bold")
         # The archive and its figures are replaced together or not at all.
         with Staged() as stage:
-            if not args.replot:
+            if not args.replot and archive.suffix == ".zarr":
+                ds.to_zarr(stage.folder(archive), mode="w", consolidated=True)
+            elif not args.replot:
                 to_netcdf(ds, stage.path(archive))
             for path in figures:
                 fig.savefig(stage.path(path), format=path.suffix[1:])
@@ -245,18 +249,16 @@ RUN_ONLY = frozenset({"out", "replot", "quiet", "workers", "scheduler", "batch_s
 """Options that say how or where a recipe runs, not what it computes."""
 
 
-def outputs(out: Path, name: str, archives=(".nc",), quick: bool = False) -> tuple[Path, Path]:
-    """(archive, figure stem) for --out: a path with an archive suffix is the archive,
-    anything else a folder receiving NAME.nc. A quick run's go into a quick/ folder beside,
-    so that they never replace a full run's. SweepError for an archive format this command
-    does not write (a .zarr store where only NetCDF is)."""
-    from pipeline.errors import SweepError
+ARCHIVES = (".nc", ".zarr")
+"""What --out may name as the archive itself: a NetCDF file or a Zarr store."""
 
+
+def outputs(out: Path, name: str, quick: bool = False) -> tuple[Path, Path]:
+    """(archive, figure stem) for --out: a path with an archive suffix (ARCHIVES) is the
+    archive, anything else a folder receiving NAME.nc. A quick run's go into a quick/ folder
+    beside, so that they never replace a full run's."""
     out = Path(out)
-    if out.suffix in (".zarr", ".nc") and out.suffix not in archives:
-        raise SweepError(f"--out {out}: this command writes NetCDF archives (.nc), not "
-                         f"{out.suffix}; give a .nc path or a folder")
-    archive = out if out.suffix in archives else out / f"{name}.nc"
+    archive = out if out.suffix in ARCHIVES else out / f"{name}.nc"
     if quick:
         archive = archive.parent / "quick" / archive.name
     return archive, archive.with_suffix("")

@@ -1,9 +1,10 @@
 """Beyond the paper: what bumpers to install for a building and a gap short of the code's.
 
 The record pairs (default: the 22 FEMA P695 far-field pairs, as recorded) are scaled to the
-site's MCE_R by a code's rule (pipeline.motions.code_suite: ASCE 7-22 chapter 17 by default) and
-run in plan (a rectangular moat by default) at three intensity levels, the service, design and MCE_R
-levels of pipeline.motions.code_suite.LEVELS (1/3, 2/3 and 1 x the MCE_R factors). The gap is the user's
+site's MCE_R by a code's rule (pipeline.motions.code_suite: ASCE 7-22 chapter 17 by default)
+and run in plan (a rectangular moat by default) at three intensity levels, the service, design
+and MCE_R levels of pipeline.motions.code_suite.LEVELS (1/3, 2/3 and 1 x the MCE_R factors).
+The gap is the user's
 (--gap-cm, or --gap-dm as a fraction of the code's D_M); by default 0.8 D_M, short of the
 code's clearance D_TM: where bumpers matter.
 

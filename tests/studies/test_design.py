@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from pipeline.assess.outcomes import weighted_quantiles
-from studies.design import search, space
 from studies import design
 from studies.common.recipe import verdicts
+from studies.design import search, space
 from tests.helpers import assert_udunits, run_recipe
 
 # --------------------------------------------------------------------- hand-made tables

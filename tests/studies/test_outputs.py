@@ -68,6 +68,18 @@ def test_archive_of_another_configuration_is_kept_unless_forced(tmp_path, capsys
         assert float(ds.x[0]) == 2e-3
 
 
+def test_a_recipe_writes_a_zarr_store_on_request(tmp_path, capsys):
+    out = ["--out", str(tmp_path / "toy.zarr"), "--quiet"]
+    assert TOY.main(out) == 0
+    assert TOY.main([*out, "--dt", "2e-3"]) == 2  # another configuration: kept, refused
+    assert "is kept" in capsys.readouterr().err
+    assert TOY.main([*out, "--dt", "2e-3", "--force"]) == 0  # the old store replaced whole
+    with xr.open_zarr(tmp_path / "toy.zarr") as ds:
+        assert ds.x.values.tolist() == [2e-3] * 3 and ds.x.attrs["units"] == "1"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["toy.pdf", "toy.png", "toy.zarr"]
+    assert TOY.main([*out[:2], "--replot"]) == 0
+
+
 def test_a_file_that_is_not_an_archive_is_kept(tmp_path, capsys):
     (tmp_path / "toy.nc").write_text("my notes")
     assert TOY.main(["--out", str(tmp_path), "--quiet"]) == 2
@@ -99,8 +111,9 @@ def test_refused_runs_leave_nothing_behind(tmp_path, capsys):
         ["--out", str(tmp_path / "new" / "folder"), "--quiet"]) == 2
     with pytest.raises(SweepError, match="unstable"):
         pipeline.sweep(RECORDS, gap=0.1, dt=0.05, out=tmp_path / "sweep" / "x.nc", quiet=True)
-    assert TOY.main(["--out", str(tmp_path / "x.zarr"), "--quiet"]) == 2
-    assert "NetCDF" in capsys.readouterr().err
+    assert dataclasses.replace(TOY, compute=refused).main(
+        ["--out", str(tmp_path / "x.zarr"), "--quiet"]) == 2
+    assert "refused" in capsys.readouterr().err
     assert not list(tmp_path.iterdir())
 
 
