@@ -28,7 +28,15 @@ from .keys import batch_key, sweep_key
 
 
 class WorkFolder:
-    """Finished batches on disk: `<key>.npz` with the context, members and peaks."""
+    """Finished batches on disk: `<key>.npz` with the context, members and peaks.
+
+    Each file is read once per process: what it holds is remembered with its size and
+    modification time (READ), and what this process writes is remembered as it is written, so
+    that the sweeps of one recipe sharing a work folder do not read it again and again."""
+
+    READ: dict = {}
+    """file -> ((size, mtime_ns), its entries): the batch files this process has read or
+    written, shared by every WorkFolder of the process."""
 
     def __init__(self, path: Path):
         self.path = Path(path)  # created with the first batch: a refused run leaves nothing
@@ -38,17 +46,14 @@ class WorkFolder:
         found = {}
         for file in sorted(self.path.glob("*.npz")):
             try:
-                with np.load(file, allow_pickle=False) as data:
-                    context, members = str(data["context"]), data["members"]
-                    peaks = {name: data[name] for name in data.files
-                             if name not in ("context", "members")}
+                stamp = _stamp(file)
+                known = self.READ.get(file)
+                if known is None or known[0] != stamp:
+                    known = (stamp, _entries(file))
+                    self.READ[file] = known
             except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
                 continue  # a damaged file (killed mid-write elsewhere) is simply recomputed
-            if members.dtype != MEMBER_DTYPE:
-                continue  # written by another version: its keys cannot match
-            for i, member in enumerate(members):
-                found[context, member.tobytes()] = {name: value[i]
-                                                    for name, value in peaks.items()}
+            found.update(known[1])
         return found
 
     def count(self) -> int:
@@ -70,10 +75,35 @@ class WorkFolder:
         try:
             with os.fdopen(fd, "wb") as f:
                 np.savez(f, context=np.array(context), members=members, **peaks)
-            os.replace(tmp, self.path / f"{key}.npz")
+            file = self.path / f"{key}.npz"
+            os.replace(tmp, file)
         except BaseException:
             Path(tmp).unlink(missing_ok=True)
             raise
+        self.READ[file] = (_stamp(file), _by_member(context, members, peaks))
+
+
+def _stamp(file: Path) -> tuple[int, int]:
+    """What tells a batch file changed: its size and modification time (ns)."""
+    stat = file.stat()
+    return stat.st_size, stat.st_mtime_ns
+
+
+def _entries(file: Path) -> dict:
+    """(context, member bytes) -> peaks of one batch file; {} for another version's."""
+    with np.load(file, allow_pickle=False) as data:
+        context, members = str(data["context"]), data["members"]
+        peaks = {name: data[name] for name in data.files if name not in ("context", "members")}
+    if members.dtype != MEMBER_DTYPE:
+        return {}  # written by another version: its keys cannot match
+    return _by_member(context, members, peaks)
+
+
+def _by_member(context: str, members: np.ndarray, peaks: dict) -> dict:
+    """(context, member bytes) -> that member's peaks, for the (b,) members of one batch."""
+    return {(context, member.tobytes()): {name: np.asarray(value[i]).copy()
+                                          for name, value in peaks.items()}
+            for i, member in enumerate(members)}
 
 
 def check_work_dir(work_dir) -> Path | None:
