@@ -1,5 +1,7 @@
-"""Ctrl-C: a recipe stops within seconds with one line saying what is kept, and the same
-command again computes only the rest and writes a byte-identical archive."""
+"""Ctrl-C and kill -9: a recipe stops within seconds with one line saying what is kept (Ctrl-C)
+or with nothing said (SIGKILL), and the same command again computes only the rest and writes
+a byte-identical archive. The recipe: fragility, the code-scaled pairs in plan at intensity
+levels (pipeline.sweep with levels and record factors), a study beyond the paper."""
 from __future__ import annotations
 
 import os
@@ -12,12 +14,13 @@ from pathlib import Path
 import pytest
 
 PROJECT = Path(__file__).resolve().parents[2]
-# Three records, longest first, the quick grid (21 members a record) at a fine step so that
-# each record's batch takes a quarter of a second or more: long enough to be interrupted,
-# short enough for three runs of the recipe.
-COMMAND = [sys.executable, "-m", "studies.n_bumpers", "--records", "kobe", "sylmar_converter",
-           "pacoima", "--dt", "1e-4", "--quick"]
-MEMBERS = 4 * 4 + 4 + 1  # quick grid: 4 gaps x 4 counts, 4 gaps of bare wall, 1 without wall
+# Three short pairs, the quick grid (3 levels x (no wall + 3 gaps x (bare wall, 4 and 32
+# bumpers)) = 30 members a pair) at a fine step so that each pair's batch takes half a second
+# or more: long enough to be stopped, short enough for five runs of the recipe.
+COMMAND = [sys.executable, "-m", "studies.fragility", "--records", "RSN1148", "RSN848",
+           "RSN725", "--dt", "1e-4", "--quick"]
+MEMBERS = 3 * (1 + 3 * 3)
+ARCHIVE = Path("quick") / "fragility.nc"
 
 
 def _env():
@@ -29,37 +32,63 @@ def _run(out: Path, timeout: float = 600) -> subprocess.CompletedProcess:
                           capture_output=True, text=True, timeout=timeout)
 
 
-@pytest.mark.slow
-def test_interrupted_recipe_resumes_to_the_same_bytes(tmp_path):
-    whole = tmp_path / "whole"
-    assert _run(whole).returncode == 0
+@pytest.fixture(scope="module")
+def whole(tmp_path_factory) -> bytes:
+    """The archive of an uninterrupted run."""
+    out = tmp_path_factory.mktemp("whole")
+    done = _run(out)
+    assert done.returncode == 0, done.stderr
+    return (out / ARCHIVE).read_bytes()
 
-    parts = tmp_path / "parts"
-    work = parts / "quick" / "n_bumpers.nc.work"
+
+def _stopped(parts: Path, sig: int) -> tuple[int, str, float]:
+    """Start the recipe, send `sig` once its first batch is kept; (exit status, stderr,
+    seconds it took to stop)."""
+    work = parts / "quick" / "fragility.nc.work"
     proc = subprocess.Popen([*COMMAND, "--out", str(parts), "--quiet"], cwd=PROJECT,
                             env=_env(), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             text=True)
     deadline = time.monotonic() + 300
-    while not list(work.glob("*.npz")):  # the first record's batch is kept
+    while not list(work.glob("*.npz")):  # the first pair's batch is kept
         assert proc.poll() is None, proc.communicate()
         assert time.monotonic() < deadline
         time.sleep(0.05)
     sent = time.monotonic()
-    proc.send_signal(signal.SIGINT)
+    proc.send_signal(sig)
     _, err = proc.communicate(timeout=60)
-    stopped = time.monotonic() - sent
-    assert proc.returncode == 130, err
+    return proc.returncode, err, time.monotonic() - sent
+
+
+@pytest.mark.slow
+def test_interrupted_recipe_resumes_to_the_same_bytes(tmp_path, whole):
+    parts = tmp_path / "parts"
+    work = parts / "quick" / "fragility.nc.work"
+    status, err, stopped = _stopped(parts, signal.SIGINT)
+    assert status == 130, err
     assert stopped < 3.0
     (line,) = err.strip().splitlines()  # one line, no traceback
-    assert line.startswith("n_bumpers: interrupted: ")
+    assert line.startswith("fragility: interrupted: ")
     assert f"kept in {work}; run the same command again to resume" in line
     kept, total = (int(x) for x in line.split(": interrupted: ")[1].split(" simulations")[0]
                    .split(" of "))
     assert 0 < kept < total and total == 3 * MEMBERS
-    assert not (parts / "quick" / "n_bumpers.nc").exists()
+    assert not (parts / ARCHIVE).exists()
 
     resumed = _run(parts)
     assert resumed.returncode == 0, resumed.stderr
     assert not work.exists()
-    assert (parts / "quick" / "n_bumpers.nc").read_bytes() \
-        == (whole / "quick" / "n_bumpers.nc").read_bytes()
+    assert (parts / ARCHIVE).read_bytes() == whole
+
+
+@pytest.mark.slow
+def test_killed_recipe_resumes_to_the_same_bytes(tmp_path, whole):
+    parts = tmp_path / "parts"
+    status, _, _ = _stopped(parts, signal.SIGKILL)
+    assert status == -signal.SIGKILL
+    assert not (parts / ARCHIVE).exists()
+    kept = list((parts / "quick" / "fragility.nc.work").glob("*.npz"))
+    assert 0 < len(kept) < 3  # some pairs kept, not all
+
+    resumed = _run(parts)
+    assert resumed.returncode == 0, resumed.stderr
+    assert (parts / ARCHIVE).read_bytes() == whole
