@@ -60,20 +60,10 @@ def test_a_table_excludes_grid_parameters():
         pipeline.sweep(RECORDS, members=SHARED, gap=0.1, dt=DT, quiet=True)
 
 
-def test_a_member_listed_twice_runs_once(monkeypatch):
-    from pipeline.execute import batches
-
-    ran = []
-    real = batches.simulate_batch
-
-    def counting(accel, accel_dt, rows, *args, **kwargs):
-        ran.append(len(rows))
-        return real(accel, accel_dt, rows, *args, **kwargs)
-
-    monkeypatch.setattr(batches, "simulate_batch", counting)
+def test_a_member_listed_twice_runs_once(count_simulated):
     table = {"law": ["linear", "none", "linear", "none"], "gap": [0.10, NAN, 0.10, NAN]}
     ds = pipeline.sweep(RECORDS[:1], members=table, dt=DT, quiet=True)
-    assert sum(ran) == 2
+    assert sum(count_simulated) == 2
     values = ds.peak_total_accel.isel(record=0).values
     assert values[0].tobytes() == values[2].tobytes() and values[1].tobytes() == values[3].tobytes()
     assert not np.array_equal(values[0], values[1])

@@ -49,20 +49,6 @@ def reference():
                           quiet=True)
 
 
-@pytest.fixture
-def count_simulated(monkeypatch):
-    """Count batches and members simulated in this process."""
-    calls = []
-    real = batches_module.simulate_batch
-
-    def counting(accel, accel_dt, rows, *args, **kwargs):
-        calls.append(len(rows))
-        return real(accel, accel_dt, rows, *args, **kwargs)
-
-    monkeypatch.setattr(batches_module, "simulate_batch", counting)
-    return calls
-
-
 def assert_same_archive(a: xr.Dataset, b: xr.Dataset):
     """Identical values, coordinates and attributes, bar the creation time."""
     a, b = a.copy(), b.copy()
