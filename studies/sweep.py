@@ -20,7 +20,15 @@ import sys
 from engine.impact import M_EFF
 from engine.units import CM, KN_PER_MM
 from pipeline.cluster import add_tls_options
-from pipeline.grid import BASELINE, IMPACT_LAWS, ISOLATOR_PARAMS, PARAMS, PLAN_PARAMS, declarations
+from pipeline.grid import (
+    BASELINE,
+    EXCITATION_PARAMS,
+    IMPACT_LAWS,
+    ISOLATOR_PARAMS,
+    PARAMS,
+    PLAN_PARAMS,
+    declarations,
+)
 
 from .common.recipe import accept_negative_numbers, add_text_record_options, interrupted, outputs
 
@@ -62,12 +70,13 @@ def paper_unit(name: str):
 
 
 def add_parameters(p: argparse.ArgumentParser) -> None:
-    """One option per sweep parameter (pipeline.grid.PARAMS and ISOLATOR_PARAMS, from the
-    laws' declarations), with a paper-unit variant (-cm, -kn-mm) where one applies."""
+    """One option per sweep parameter (pipeline.grid.PARAMS, ISOLATOR_PARAMS and
+    EXCITATION_PARAMS, from their declarations), with a paper-unit variant (-cm, -kn-mm) where
+    one applies."""
     isolator = p.add_argument_group(
         "the isolator's parameters", "replace the building's own values, fixed or swept alike; "
         "each applies to the isolator law that declares it (the building's)")
-    for name in (*PARAMS, *ISOLATOR_PARAMS, *PLAN_PARAMS):
+    for name in (*PARAMS, *ISOLATOR_PARAMS, *EXCITATION_PARAMS):
         p = isolator if name in ISOLATOR_PARAMS else p
         params = declarations(name)
         first = next(iter(params.values()))
@@ -171,7 +180,7 @@ def parameters(args) -> dict:
     from pipeline.errors import SweepError
 
     values = {}
-    for name in (*PARAMS, *ISOLATOR_PARAMS, *PLAN_PARAMS):
+    for name in (*PARAMS, *ISOLATOR_PARAMS, *EXCITATION_PARAMS):
         values[name] = _one_or_many(getattr(args, name))
         variant = paper_unit(name)
         given = getattr(args, f"{name}_{variant[0].replace('-', '_')}", None) if variant \
