@@ -36,8 +36,8 @@ def client(workers: int, scheduler):
 
 
 def silence_dask() -> None:
-    """No more dask log lines: shutting down after a Ctrl-C makes dask log lost scattered
-    data and closed comms, which say nothing to the user."""
+    """No more dask log lines: shutting down after a Ctrl-C makes dask log closed comms and
+    cancelled tasks, which say nothing to the user."""
     for name in ("distributed", "tornado", "asyncio"):
         logging.getLogger(name).setLevel(logging.CRITICAL)
 

@@ -17,12 +17,18 @@ the executor only runs batches. The interface (`Store`):
 
 Batches of the longest records run first (a long record's batch starting last would leave
 workers idle). In this process the compiled kernel spreads each batch over every core with
-threads; with workers >= 2 or a scheduler the batches go to dask workers, the records
-scattered once, running batches reporting their progress through a dask event topic.
+threads; with workers >= 2 or a scheduler the batches go to dask workers, running batches
+reporting their progress through a dask event topic. On dask each record enters the task graph
+once, as a task returning its samples on which the record's batches depend: the scheduler
+holds the samples, so it computes the record again if every worker holding it dies, and runs a
+dead worker's batches on the others (a batch is a pure function of its inputs: the numbers do
+not change). Records scattered instead would die with the last worker holding them (dask's
+memory manager drops extra replicas within seconds), and every batch of the record with them.
 """
 from __future__ import annotations
 
 import uuid
+from collections import Counter
 from typing import Protocol
 
 import numpy as np
@@ -31,6 +37,13 @@ from ..errors import Interrupted
 from .batches import Batch, record_batch_sizes
 from .dask_client import client, silence_dask
 from .progress import Progress
+
+# A batch that raises is run again this many times before its error reaches the user: it is a
+# pure function of its inputs, so a retry gives the same numbers, and an error with a lasting
+# cause comes back. A worker that dies running it is another matter, the scheduler's: the batch
+# runs on another worker, until it has been on distributed.scheduler.allowed-failures + 1 dead
+# ones (3 + 1 by default), when it fails with KilledWorker.
+RETRIES = 2
 
 
 class Store(Protocol):
@@ -91,36 +104,51 @@ def _run_on_dask(store: Store, batches: list[Batch], workers: int, scheduler,
     from distributed import as_completed
 
     records = store.records
+    run = uuid.uuid4().hex  # in every key and the topic: runs sharing a scheduler never mix
     with client(workers, scheduler) as dask:
         sizes = {b.key: b.size for b in batches}
-        topic = f"bumpers-progress-{uuid.uuid4().hex}"
+        topic = f"bumpers-progress-{run}"
 
         def on_event(event):  # (timestamp, [batch key, fraction done])
             key, fraction = event[1]
             progress.running(key, sizes[key] * fraction)
 
         dask.subscribe_topic(topic, on_event)
-        futures = {}
+        accel, futures = {}, {}
+        left = Counter(b.record for b in batches)  # batches of each record not yet accepted
         try:
-            # On every worker: a record held by one worker only is lost with it, and every
-            # batch of that record with it ("cancelled: already forgotten"); a record is small.
-            accel = {r: dask.scatter(np.asarray(records[r].accel), hash=False, broadcast=True)
-                     for r in sorted({b.record for b in batches})}
-            for batch in batches:
+            for r in sorted(left):
+                accel[r] = dask.submit(samples, np.asarray(records[r].accel),
+                                       key=f"bumpers-record-{run}-{r}")
+            for batch in batches:  # in this order: dask runs the first submitted first
                 function, args = store.task(batch)
                 future = dask.submit(function, accel[batch.record], *args,
-                                     report=(topic, batch.key),
-                                     key=f"bumpers-batch-{batch.record}-{batch.key}")
+                                     report=(topic, batch.key), retries=RETRIES,
+                                     key=f"bumpers-batch-{run}-{batch.key}")
                 futures[future] = batch
-            for future in as_completed(futures, loop=dask.loop):
-                batch = futures[future]
+            for future in as_completed(list(futures), loop=dask.loop):
+                batch = futures.pop(future)
                 store.accept(batch, future.result())
+                # Forgotten by the scheduler once accepted: a result held by a worker that dies
+                # later is not computed again, nor a record all of whose batches are in.
+                future.release()
+                left[batch.record] -= 1
+                if not left[batch.record]:
+                    accel.pop(batch.record).release()
                 progress.advance(batch.size, batch.key)
         except KeyboardInterrupt:
-            # Stop quietly: cancel what is queued; shutting down then makes dask log lost
-            # scattered data and closed comms, which say nothing to the user.
+            # Stop quietly: cancel what is queued; shutting down then makes dask log closed
+            # comms and cancelled tasks, which say nothing to the user.
             silence_dask()
-            dask.cancel(list(futures), force=True)
+            dask.cancel([*futures, *accel.values()], force=True)
             raise
         finally:
             dask.unsubscribe_topic(topic)
+            for future in (*futures, *accel.values()):  # a Client the caller owns keeps none
+                future.release()
+
+
+def samples(accel: np.ndarray) -> np.ndarray:
+    """A record's task on a dask worker: its samples (m/s^2, (N,) or (N, 2) for a pair), which
+    the task carries in the graph."""
+    return accel

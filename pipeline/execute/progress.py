@@ -15,6 +15,12 @@ class Progress:
     has finished in this run: until then the kernel may still be compiling. label: what is
     running ("sweep", "scaling"); unit: what total counts. Thread-safe: dask reports running
     batches from the client's event-loop thread.
+
+    A batch's reports may come late, or twice: a dask worker's last report can reach the client
+    after the batch's result, and a batch runs again from the start when the worker running it
+    dies. So a batch counts once, when first finished, its later reports ignored; a running
+    batch's latest report replaces its earlier ones; and the line never shows more than the
+    total, nor a negative time left.
     """
 
     def __init__(self, total: int, done: int = 0, quiet: bool = False, stream=None,
@@ -23,6 +29,7 @@ class Progress:
         self.total, self.done = total, done
         self.start_done = done
         self.partial: dict = {}  # running batch -> simulations' worth done
+        self.finished: set = set()  # batches counted in done
         self.quiet = quiet
         self.stream = sys.stderr if stream is None else stream
         self.tty = getattr(self.stream, "isatty", lambda: False)()
@@ -34,15 +41,23 @@ class Progress:
         self.lock = threading.Lock()
 
     def advance(self, n: int, batch=None) -> None:
-        """n more simulations finished (those of `batch`, if it was reported running)."""
+        """n more simulations finished: those of `batch` (counted once, whatever the calls),
+        or, batch None, n of no batch in particular."""
         with self.lock:
+            if batch is not None:
+                if batch in self.finished:
+                    return
+                self.finished.add(batch)
+                self.partial.pop(batch, None)
             self.done += n
-            self.partial.pop(batch, None)
             self._draw()
 
     def running(self, batch, n: float) -> None:
-        """`batch` has done n simulations' worth so far."""
+        """`batch` has done n simulations' worth so far (since it last started: after a run
+        again, less than before); nothing once it finished."""
         with self.lock:
+            if batch in self.finished:
+                return
             self.partial[batch] = n
             self._draw()
 
@@ -63,13 +78,15 @@ class Progress:
         elapsed = now - self.t0
         if self.quiet or elapsed < self.delay or (not final and now - self.last < self.every):
             return
-        done = self.done + sum(self.partial.values())
+        # Never past the total, so never a negative time left, whatever a caller counts.
+        finished = min(self.done, self.total)
+        done = min(finished + sum(self.partial.values()), self.total)
         rate = (done - self.start_done) / elapsed
-        if self.done > self.start_done and rate > 0:
+        if finished > self.start_done and rate > 0:
             left = f"~{_clock((self.total - done) / rate)} left"
         else:
             left = "time left: once the first finishes"
-        line = (f"{self.label}: {100 * done / max(self.total, 1):3.0f}% ({int(self.done)} of "
+        line = (f"{self.label}: {100 * done / max(self.total, 1):3.0f}% ({int(finished)} of "
                 f"{self.total} {self.unit} finished), {_clock(elapsed)} elapsed, {left}")
         if final and line == self.last_line and not self.tty:
             return  # already said

@@ -1,6 +1,6 @@
 """Sweeps on a real dask.distributed cluster on localhost: a scheduler and worker processes
 started as a user would (`dask scheduler`, `dask worker`), the same numbers as a local run,
-a worker killed mid-run, and each way a cluster can be unfit failing in one clear line.
+workers killed mid-run, and each way a cluster can be unfit failing in one clear line.
 The helpers starting the processes serve tests/pipeline/test_tls.py too (with TLS options)."""
 from __future__ import annotations
 
@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import xarray
 
 import pipeline
 from pipeline.errors import ClusterError
@@ -129,29 +130,86 @@ def test_cluster_run_equals_local_run(cluster, record):
         np.testing.assert_array_equal(here[name].values, there[name].values, err_msg=name)
 
 
-def test_worker_killed_mid_run(cluster, record, tmp_path):
-    """One of two workers is killed once batches are finishing: its batches run on the other,
-    and the archive holds the numbers of a local run."""
+def _batch_runner(watcher, workers: list, sweep: threading.Thread, work: Path,
+                  record_holder: bool, timeout: float = 60) -> tuple[subprocess.Popen | None, str]:
+    """The process of `workers` to kill, and its address: once a batch of the running `sweep`
+    is kept in `work` (the kernels are loaded, batches flow), one the scheduler has a batch
+    processing on; with record_holder, one holding the record's samples besides. (None, "")
+    if the sweep ended first."""
+    pids = watcher.run(os.getpid)  # worker address -> pid
+    by_pid = {proc.pid: proc for proc in workers}
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline and sweep.is_alive():
+        if list(work.glob("*.npz")):
+            holders = {address for key, where in watcher.who_has().items()
+                       if str(key).startswith("bumpers-record-") for address in where}
+            for address, keys in watcher.processing().items():
+                if any(str(key).startswith("bumpers-batch-") for key in keys) \
+                        and (address in holders or not record_holder):
+                    return by_pid[pids[address]], address
+        time.sleep(0.01)
+    assert not sweep.is_alive(), "no batch of the sweep ran on a worker"
+    return None, ""
+
+
+def test_workers_killed_mid_run(cluster, record, tmp_path, monkeypatch):
+    """Three sweeps, each losing one of its two workers (SIGKILL) while it runs a batch, the
+    first time a worker holding the record's samples: the other runs the lost batches (and the
+    record's task again if it had no copy), each archive holds the numbers of a local run, and
+    the progress never counts past the total. A new worker replaces the dead one between
+    sweeps."""
+    from distributed import Client
+
+    from pipeline.execute import executor
+
     address, workers = cluster
-    out = tmp_path / "killed.nc"
-    work = tmp_path / "killed.nc.work"
-    grid = {**GRID, "gap": list(np.round(np.linspace(0.10, 0.25, 16), 3))}
-    done = {}
-    thread = threading.Thread(target=lambda: done.update(ds=pipeline.sweep(
-        [record], scheduler=address, batch_size=2, out=out, **grid)))
-    thread.start()
-    deadline = time.monotonic() + 120
-    while not list(work.glob("*.npz")) and time.monotonic() < deadline:
-        time.sleep(0.02)
-    victim = workers[1]
-    victim.kill()
-    victim.wait(timeout=10)
-    thread.join(timeout=300)
-    assert "ds" in done, "the sweep did not finish after a worker died"
+    # ~1 s a sweep on two workers at this step: several batches still to run at the kill.
+    grid = {**GRID, "gap": list(np.round(np.linspace(0.10, 0.25, 16), 3)), "dt": 2.5e-4}
     here = pipeline.sweep([record], **grid)
-    for name in here.data_vars:
-        np.testing.assert_array_equal(here[name].values, done["ds"][name].values,
-                                      err_msg=name)
+    counted = []  # (done, done + running, total) at every report
+
+    class Counted(executor.Progress):
+        def _draw(self, final=False):
+            counted.append((self.done, self.done + sum(self.partial.values()), self.total))
+            super()._draw(final)
+
+    monkeypatch.setattr(executor, "Progress", Counted)
+    with Client(address, timeout=30, set_as_default=False) as watcher:
+        for run in range(3):
+            out = tmp_path / f"killed{run}.nc"
+            done = {}
+
+            def sweep(out=out, done=done):
+                try:
+                    done["ds"] = pipeline.sweep([record], scheduler=address, batch_size=2,
+                                                out=out, **grid)
+                except Exception as err:  # noqa: BLE001 - said by the assertion below
+                    done["error"] = err
+
+            thread = threading.Thread(target=sweep)
+            thread.start()
+            try:
+                victim, gone = _batch_runner(watcher, workers, thread,
+                                             out.with_name(out.name + ".work"), run == 0)
+                assert victim is not None, f"sweep {run} ended before a worker was killed"
+                victim.kill()
+                victim.wait(timeout=10)
+            finally:
+                thread.join(timeout=120)
+            assert "ds" in done, f"sweep {run} failed: {done.get('error')!r}"
+            with xarray.open_dataset(out) as saved:
+                for name in here.data_vars:
+                    xarray.testing.assert_identical(saved[name], here[name])
+            # The dead worker out of the scheduler's list first: asked to reach it, the
+            # scheduler would retry its address for dask's connect timeout (30 s).
+            deadline = time.monotonic() + 30
+            while gone in watcher.ncores():
+                assert time.monotonic() < deadline, "the scheduler kept a dead worker"
+                time.sleep(0.01)
+            workers[workers.index(victim)] = _worker(tmp_path, address, nanny=False)
+            watcher.wait_for_workers(2, timeout=60)
+    assert counted and all(running <= total and done <= total
+                           for done, running, total in counted)
 
 
 def test_nothing_listening(record):
