@@ -157,12 +157,19 @@ def _row_address(context, builder, array_type, arr, i):
     return builder.bitcast(first, _VECTOR.as_pointer())
 
 
+MIN_CHUNK_MEMBER_STEPS = 2_000_000
+"""The least work of one chunk of a run reporting progress (member-steps: about 0.1 s of the
+kernel), so that a small batch (a sweep's record with a few members) is not cut into a hundred
+chunks whose hand-over to the threads would cost more than their steps."""
+
+
 def run_members(size: int, n_steps: int, progress, steps) -> None:
     """Run a batch of `size` members through `n_steps` steps: steps(members, s0, s1) advances
     the members (an index array) over steps s0 <= step < s1, in a compiled kernel that
     releases the GIL. The members go, a few at a time, to whichever of numba's threads is
     free (members that pound cost more than those that do not); a member's result depends on
-    neither. With progress(step, n_steps), in chunks of about 1% of the steps.
+    neither. With progress(step, n_steps), in chunks of about 1% of the steps, or of
+    MIN_CHUNK_MEMBER_STEPS member-steps where that is more (the chunks change no bit).
 
     Threads of this process rather than numba's parallel loops: the same speed, and a kernel
     compiled without parallel=True takes a third of the time to compile."""
@@ -184,7 +191,7 @@ def run_members(size: int, n_steps: int, progress, steps) -> None:
         if progress is None:
             advance(0, n_steps)
         else:
-            chunk = max(n_steps // 100, 1)
+            chunk = max(n_steps // 100, -(-MIN_CHUNK_MEMBER_STEPS // size), 1)
             for start in range(0, n_steps, chunk):
                 progress(start, n_steps)
                 advance(start, min(start + chunk, n_steps))

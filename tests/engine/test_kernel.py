@@ -82,10 +82,17 @@ def test_backends_agree_on_histories(both):
         np.testing.assert_allclose(fast[name], value, rtol=0, atol=RTOL * scale, err_msg=name)
 
 
-def test_progress_chunks_do_not_change_a_bit(short_record):
+def test_progress_chunks_do_not_change_a_bit(short_record, monkeypatch):
+    from engine.loops import numba_support
+
     accel, accel_dt = short_record
     contact, buildings = _every_case(np.random.default_rng(3))
     calls = []
+    few = []
+    engine.simulate(accel, accel_dt, contact, buildings, dt=1e-3, backend="numba",
+                    progress=lambda step, n: few.append(step))
+    assert len(few) < 10  # a small batch: chunks of MIN_CHUNK_MEMBER_STEPS, not 1% each
+    monkeypatch.setattr(numba_support, "MIN_CHUNK_MEMBER_STEPS", 1)
     chunked = engine.simulate(accel, accel_dt, contact, buildings, dt=1e-3,
                               progress=lambda step, n: calls.append((step, n)), backend="numba")
     whole = engine.simulate(accel, accel_dt, contact, buildings, dt=1e-3, backend="numba")
