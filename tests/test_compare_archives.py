@@ -1,0 +1,30 @@
+"""tools/compare_archives.py, the check that a change of structure changed no number: equal
+archives pass, a changed bit or a missing variable fails, added attributes are listed."""
+import importlib.util
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+PROJECT = Path(__file__).resolve().parents[1]
+spec = importlib.util.spec_from_file_location("compare_archives",
+                                              PROJECT / "tools" / "compare_archives.py")
+compare = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(compare)
+
+
+def archive(folder: Path, values, **attrs) -> None:
+    folder.mkdir(exist_ok=True)
+    xr.Dataset({"x": ("n", np.asarray(values, float), {"units": "m"})},
+               attrs={"date_created": str(folder), **attrs}).to_netcdf(folder / "a.nc")
+
+
+def test_equal_changed_and_missing(tmp_path, capsys):
+    archive(tmp_path / "before", [0.1, 0.2])
+    archive(tmp_path / "same", [0.1, 0.2], provenance="added")
+    archive(tmp_path / "changed", [0.1, np.nextafter(0.2, 1.0)])
+    assert compare.main([str(tmp_path / "before"), str(tmp_path / "same")]) == 0
+    assert "a: equal (added: @provenance)" in capsys.readouterr().out
+    assert compare.main([str(tmp_path / "before"), str(tmp_path / "changed")]) == 1
+    assert "x: values differ" in capsys.readouterr().out
+    assert compare.main([str(tmp_path / "before"), str(tmp_path / "nowhere"), "a"]) == 1
