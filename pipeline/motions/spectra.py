@@ -39,6 +39,9 @@ from __future__ import annotations
 import numpy as np
 
 DEFAULT_DAMPING = 0.05
+SPECTRA = ("RotD100", "RotD50", "geomean")
+"""The horizontal spectra a target or a suite can be: maximum direction, median direction,
+geometric mean of the two components."""
 """Damping ratio of the codes' spectra (5% of critical)."""
 DEFAULT_ANGLES = np.arange(180.0)
 """deg: the rotation angles of RotD (Boore 2010): 0, 1, ..., 179."""

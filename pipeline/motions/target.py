@@ -24,6 +24,8 @@ import numpy as np
 
 from engine.units import G
 
+from .spectra import SPECTRA
+
 LEVELS = ("MCE_R", "design", "service", "user")
 """What a target spectrum represents: the risk-targeted maximum considered earthquake, the
 design earthquake (2/3 of MCE_R), a service level, or a user's table."""
@@ -72,7 +74,11 @@ def design_parameters(s_ms: float, s_m1: float) -> tuple[float, float]:
 @dataclass(frozen=True)
 class TargetSpectrum:
     """A target spectrum as a table: periods (P,) s, strictly increasing and > 0; sa (P,)
-    m/s^2, > 0; level one of LEVELS; source the clause or table it comes from.
+    m/s^2, > 0; level one of LEVELS; source the clause or table it comes from; component the
+    horizontal spectrum it describes (pipeline.motions.spectra.SPECTRA: "RotD100", the maximum
+    direction, as ASCE 7-22's MCE_R and design spectra are, section 11.2's definition of the
+    MCE_R: "determined for the orientation that results in the largest maximum response to
+    horizontal ground motions"; "geomean" for FEMA P695's own S_MT and older targets).
 
     `at(T)` interpolates log(sa) linearly in log(T) (exact on the 1/T and 1/T^2 branches of
     the code's spectrum) and refuses periods outside the table.
@@ -82,6 +88,7 @@ class TargetSpectrum:
     sa: np.ndarray
     level: str
     source: str
+    component: str = "RotD100"
 
     def __post_init__(self):
         periods = np.array(self.periods, dtype=float)
@@ -105,21 +112,26 @@ class TargetSpectrum:
                              f"{sa[bad]:g} m/s^2 at {periods[bad]:g} s")
         if self.level not in LEVELS:
             raise ValueError(f"target level must be one of {LEVELS}, got {self.level!r}")
+        if self.component not in SPECTRA:
+            raise ValueError(f"target component must be one of {SPECTRA}, got "
+                             f"{self.component!r}")
         for name, value in (("periods", periods), ("sa", sa)):
             value.flags.writeable = False  # a frozen target must not change under a suite
             object.__setattr__(self, name, value)
 
     @classmethod
-    def from_table(cls, periods, sa_g, level: str = "user",
-                   source: str = "user's table") -> TargetSpectrum:
+    def from_table(cls, periods, sa_g, level: str = "user", source: str = "user's table",
+                   component: str = "RotD100") -> TargetSpectrum:
         """A target from a user's table: periods (P,) s and spectral accelerations sa_g (P,)
-        in g (converted with G). ValueError names what is wrong (order, sign, shape)."""
+        in g (converted with G), of the horizontal spectrum `component` (default RotD100, as
+        ASCE 7-22's site-specific and multi-period spectra are). ValueError names what is
+        wrong (order, sign, shape)."""
         periods, sa_g = np.asarray(periods, dtype=float), np.asarray(sa_g, dtype=float)
         bad = np.flatnonzero(~(np.isfinite(sa_g) & (sa_g > 0)))
         if bad.size and sa_g.shape == periods.shape:  # said in the user's unit, g
             raise ValueError(f"target spectral accelerations must be finite and > 0, got "
                              f"{sa_g[bad[0]]:g} g at {periods[bad[0]]:g} s")
-        return cls(periods, sa_g * G, level, source)
+        return cls(periods, sa_g * G, level, source, component)
 
     @property
     def sa_g(self) -> np.ndarray:
@@ -156,7 +168,10 @@ def asce7_target(s_short: float, s_one: float, t_long: float, level: str = "MCE_
     names = ("S_MS", "S_M1") if level == "MCE_R" else ("S_DS", "S_D1")
     source = (f"ASCE 7-22 section 11.4.5.2 two-period {level} spectrum, {names[0]} = "
               f"{s_short:g} g, {names[1]} = {s_one:g} g, T_L = {t_long:g} s")
-    return TargetSpectrum(grid, asce7_sa(grid, s_short, s_one, t_long), level, source)
+    # ASCE 7-22's MCE_R is the maximum-direction spectrum (section 11.2), its design spectrum
+    # two thirds of it.
+    return TargetSpectrum(grid, asce7_sa(grid, s_short, s_one, t_long), level, source,
+                          "RotD100")
 
 
 def damping_coefficient(beta):

@@ -103,6 +103,9 @@ def test_user_table_checks():
         table.at(5.0)
     with pytest.raises(ValueError, match="level"):
         tg.TargetSpectrum.from_table([0.1, 1.0], [1.0, 0.5], level="MCE")
+    assert table.component == "RotD100"  # as ASCE 7-22's spectra; another said so
+    with pytest.raises(ValueError, match="component must be one of"):
+        tg.TargetSpectrum.from_table([0.1, 1.0], [1.0, 0.5], component="maximum")
 
 
 def test_damping_coefficient_table():
@@ -214,8 +217,9 @@ def test_meets_rule():
 
 def test_p695_normalises_pgv_and_anchors_median(pairs, target):
     """Every normalised pair has the set's median PGV (geometric mean of its components),
-    so the median is unchanged; the scaled set's median Sa at T (geometric mean over pairs
-    of sqrt(Sa_x Sa_y), by lsim) equals the target there."""
+    so the median is unchanged; like with like, the scaled set's median (geometric mean over
+    pairs) of the spectrum the ASCE 7-22 target describes, the maximum direction RotD100 (by
+    lsim over every angle), equals the target at T; its geometric-mean spectrum lies below."""
     period = 1.5
     result = cs.fema_p695(pairs, target, period)
     pgv = np.array([math.sqrt(peak_ground_velocity(a[:, 0], dt)
@@ -225,9 +229,13 @@ def test_p695_normalises_pgv_and_anchors_median(pairs, target):
                            for n, (a, dt, _) in zip(result.normalisation, pairs, strict=True)])
     np.testing.assert_allclose(normalised, np.median(pgv), rtol=1e-12)
     assert np.median(normalised) == pytest.approx(np.median(pgv), rel=1e-12)
-    sa = [_geomean_lsim(f * a, dt, period)
+    assert target.component == result.spectrum == "RotD100"
+    sa = [_rotd100_lsim(f * a, dt, period)
           for f, (a, dt, _) in zip(result.factors, pairs, strict=True)]
     assert math.exp(np.mean(np.log(sa))) == pytest.approx(target.at(period), rel=1e-6)
+    geomean = [_geomean_lsim(f * a, dt, period)
+               for f, (a, dt, _) in zip(result.factors, pairs, strict=True)]
+    assert math.exp(np.mean(np.log(geomean))) < 0.95 * target.at(period)
     assert result.worst_ratio == pytest.approx(1.0, rel=1e-12)
     assert result.period_range == (period, period)
 
@@ -249,7 +257,8 @@ def test_p695_far_field_set_reproduces_tables():
         x, y = load_pair(name)
         items.append((np.column_stack([x.accel, y.accel]), x.dt, name))
     assert [int(n[3:]) for _, _, n in items] == list(table.RecordSequenceNumber)
-    flat = tg.TargetSpectrum.from_table([0.5, 2.0], [1.0, 1.0])  # 1 g: SF = 1 g / median
+    # P695's own S_MT is a geometric-mean spectrum; 1 g: SF = 1 g / median
+    flat = tg.TargetSpectrum.from_table([0.5, 2.0], [1.0, 1.0], component="geomean")
     result = cs.fema_p695(items, flat, 1.0, pgv=table.PGVPEER.values / 100, periods=[1.0])
     # The table's factors have 2-3 digits, computed from PGVs of more digits than its own.
     np.testing.assert_allclose(result.normalisation, table.NormalizationFactor.values,
