@@ -404,16 +404,33 @@ def check_workers(client) -> None:
         raise ClusterError(f"scheduler {address} has no workers after {WORKERS_TIMEOUT:g} s: "
                            f"start some with `dask worker {address} --nthreads 1{tls}` on "
                            "machines where this project is installed") from None
-    found = client.run(eval, CAN_IMPORT, on_error="return")
+    found = _answers(client, CAN_IMPORT, address)
     missing = sorted(worker for worker, ok in found.items() if ok is not True)
     if missing:
         raise ClusterError(f"workers {', '.join(missing)} cannot import this project "
                            "(engine, pipeline): install it on every worker machine at the same "
                            "commit (`pip install -e /path/to/bumpers`) and restart the workers")
     mine = engine_fingerprint()
-    theirs = client.run(eval, FINGERPRINT, on_error="return")
+    theirs = _answers(client, FINGERPRINT, address)
     other = sorted(worker for worker, fingerprint in theirs.items() if fingerprint != mine)
     if other:
         raise ClusterError(f"workers {', '.join(other)} run another version of this project "
                            f"(engine fingerprint differs from {mine[:12]}): install the same "
                            "commit on every worker and restart them")
+
+
+def _answers(client, code: str, address: str) -> dict:
+    """Each worker's answer to `code` (evaluated there), leaving out the workers that could not
+    be reached: a worker that died since the scheduler listed it is gone, not a worker of
+    another version (the scheduler gives its work to the others). ClusterError when none
+    answers."""
+    import asyncio
+
+    gone = (OSError, TimeoutError, asyncio.TimeoutError)  # dask's CommClosedError is an OSError
+    found = client.run(eval, code, on_error="return")
+    answers = {worker: answer for worker, answer in found.items()
+               if not isinstance(answer, gone)}
+    if found and not answers:
+        raise ClusterError(f"no worker of scheduler {address} could be reached (all of them "
+                           "died or left while being checked): start workers and run again")
+    return answers

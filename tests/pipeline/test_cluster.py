@@ -259,3 +259,36 @@ def test_unfit_clusters_fail_in_one_line(tmp_path, record, monkeypatch):
                 time.sleep(1.0)  # the scheduler forgets the worker
     finally:
         _stop(scheduler)
+
+
+class _Listed:
+    """A client whose scheduler lists workers, some of which died since (a stand-in: what
+    Client.run(..., on_error="return") gives for them is the connection's error)."""
+
+    class scheduler:  # noqa: N801 - as Client.scheduler
+        address = "tcp://127.0.0.1:1"
+
+    def __init__(self, answers):
+        self.answers = answers
+
+    def wait_for_workers(self, n, timeout=None):
+        return None
+
+    def run(self, function, code, on_error="raise"):
+        return {worker: (answer(code) if callable(answer) else answer)
+                for worker, answer in self.answers.items()}
+
+
+def test_a_worker_that_died_during_the_check_is_gone_not_another_version():
+    from distributed.comm.core import CommClosedError
+
+    from pipeline.cluster import FINGERPRINT, check_workers
+    from pipeline.errors import ClusterError
+
+    alive = eval  # a live worker evaluates the check here, in this process
+    check_workers(_Listed({"tcp://a:1": alive, "tcp://b:1": CommClosedError("closed")}))
+    with pytest.raises(ClusterError, match="no worker .* could be reached"):
+        check_workers(_Listed({"tcp://b:1": OSError("refused")}))
+    with pytest.raises(ClusterError, match="another version"):
+        check_workers(_Listed({"tcp://a:1": lambda code: "x" if code == FINGERPRINT
+                               else True}))
