@@ -30,7 +30,7 @@ import numpy as np
 
 from engine.units import CM, G
 from pipeline.assess import derived
-from pipeline.motions.code_suite import archive_variables, code_suite, describe
+from pipeline.motions.code_suite import archive_variables, describe
 
 from .common.options import (
     QUICK_PAIRS,
@@ -38,6 +38,7 @@ from .common.options import (
     add_wall_capacity,
     bare_wall_text,
     chosen_pairs,
+    scaled_suite,
     site_options,
     wall_capacity,
 )
@@ -90,8 +91,7 @@ def options(p) -> None:
 
 def compute(args):
     pairs, names = chosen_pairs(args, QUICK_PAIRS)
-    suite = code_suite(pairs, names, args.building, args.rule, args.sms_g, args.sm1_g, args.tl,
-                       args.dt)
+    suite = scaled_suite(args, pairs, names)
     levels = np.array(QUICK_LEVELS if args.quick else LEVELS)
     fractions = np.array([*GAPS, suite.design.d_tm / suite.design.d_m])
     gaps = fractions * suite.design.d_m

@@ -87,3 +87,44 @@ def site_options(p) -> None:
     p.add_argument("--rule", choices=tuple(RULE_TEXT), default=DEFAULT_RULE,
                    help="how the pairs are scaled: " + "; ".join(
                        f"{k}: {v}" for k, v in RULE_TEXT.items()))
+
+
+SITE_OPTIONS = {  # attribute: (option, what, unit, largest plausible value)
+    "sms_g": ("--sms-g", "S_MS", "g", 5.0),
+    "sm1_g": ("--sm1-g", "S_M1", "g", 4.0),
+    "tl": ("--tl", "T_L", "s", 20.0),
+}
+"""The site's options and the largest value a real site has (ASCE 7-22's maps and
+site-specific spectra stay well below; beyond it, most likely a value in percent of g)."""
+
+
+def checked_site(args) -> None:
+    """Refuse a site option no real site has, in one line naming the option, its unit and,
+    for a spectral value in percent, the conversion (SweepError; before any compute)."""
+    import math
+
+    from pipeline.errors import SweepError
+
+    for name, (option, what, unit, largest) in SITE_OPTIONS.items():
+        value = getattr(args, name)
+        if not (math.isfinite(value) and value > 0):
+            raise SweepError(f"{option}: {what} must be positive ({unit}), got {value:g}")
+        if value > largest:
+            hint = (f": give {unit} ({value:g}% g is {value / 100:g} g)"
+                    if unit == "g" and value / 100 <= largest else "")
+            raise SweepError(f"{option} {value:g} {unit} is implausible for {what} (above "
+                             f"{largest:g} {unit}){hint}")
+
+
+def scaled_suite(args, pairs, names):
+    """The pairs scaled to the site's MCE_R by --rule (pipeline.motions.code_suite), the site
+    options checked first; SweepError, one line, for what the rule refuses."""
+    from pipeline.errors import SweepError
+    from pipeline.motions.code_suite import code_suite
+
+    checked_site(args)
+    try:
+        return code_suite(pairs, names, args.building, args.rule, args.sms_g, args.sm1_g,
+                          args.tl, args.dt)
+    except ValueError as err:
+        raise SweepError(str(err)) from err

@@ -76,7 +76,14 @@ import numpy as np
 from engine.units import CM, KN_PER_MM, G
 from pipeline.motions.code_suite import LEVELS
 
-from ..common.options import add_moat, add_wall_capacity, chosen_pairs, site_options, wall_capacity
+from ..common.options import (
+    add_moat,
+    add_wall_capacity,
+    chosen_pairs,
+    scaled_suite,
+    site_options,
+    wall_capacity,
+)
 from ..common.plot import plt
 from ..common.recipe import Recipe, Verdict, provenance, run_options
 from .archive import dataset, flagged_text, table_lines
@@ -185,18 +192,13 @@ def compute(args):
     import engine
     from pipeline.assess import validity
     from pipeline.errors import SweepError
-    from pipeline.motions.code_suite import code_suite
     from pipeline.motions.code_suite import describe as describe_suite
     from pipeline.motions.target import isolation_design
 
     crit = criteria(args)
     pairs, names = chosen_pairs(args, QUICK_PAIRS)
     building = args.building
-    try:
-        suite = code_suite(pairs, names, building, args.rule, args.sms_g, args.sm1_g, args.tl,
-                           args.dt)
-    except ValueError as err:
-        raise SweepError(str(err)) from err
+    suite = scaled_suite(args, pairs, names)
     if not suite.pairs:
         raise SweepError("the scaling rule kept no pair: nothing to design for")
     if not args.quiet:

@@ -61,7 +61,7 @@ from pipeline.assess.outcomes import (
     effect,
     weighted_quantiles,
 )
-from pipeline.motions.code_suite import LEVELS, archive_variables, code_suite, describe
+from pipeline.motions.code_suite import LEVELS, archive_variables, describe
 
 from ..common.options import (
     QUICK_PAIRS,
@@ -69,6 +69,7 @@ from ..common.options import (
     add_wall_capacity,
     bare_wall_text,
     chosen_pairs,
+    scaled_suite,
     site_options,
     wall_capacity,
 )
@@ -165,8 +166,7 @@ def compute(args):
     from pipeline.assess.validity import Limits, code_story_capacity
 
     pairs, names = chosen_pairs(args, QUICK_PAIRS)
-    suite = code_suite(pairs, names, args.building, args.rule, args.sms_g, args.sm1_g, args.tl,
-                       args.dt)
+    suite = scaled_suite(args, pairs, names)
     grid = make_grid(suite.design, args.quick)
     peaks, swept = run(suite, grid, args)
     limits = Limits(story_shear=code_story_capacity(suite.design, args.building),

@@ -170,3 +170,18 @@ def test_text_records_run_from_the_command_line(tmp_path, capsys):
                         "--out", str(tmp_path / "fig")]) == 0
     with xr.open_dataset(tmp_path / "fig" / "quick" / "strain.nc") as ds:
         assert list(ds.record.values) == ["rec2"]
+
+
+@pytest.mark.parametrize("name", ["suite", "fragility", "design"])
+@pytest.mark.parametrize("argv, words", [
+    (["--sms-g", "-1"], "--sms-g: S_MS must be positive (g), got -1"),
+    (["--sm1-g", "90"], "--sm1-g 90 g is implausible for S_M1 (above 4 g): give g (90% g is "
+                        "0.9 g)"),
+    (["--tl", "80"], "--tl 80 s is implausible for T_L (above 20 s)"),
+])
+def test_a_site_no_real_site_has_is_refused_in_one_line(name, argv, words, tmp_path, capsys):
+    module = importlib.import_module(f"studies.{name}")
+    assert module.main(["--quick", "--quiet", "--out", str(tmp_path), *argv]) == 2
+    (line,) = capsys.readouterr().err.strip().splitlines()
+    assert line == f"{name}: error: {words}"
+    assert not list(tmp_path.iterdir())  # refused before any compute: nothing written
