@@ -55,6 +55,15 @@ def check_writable_folder(folder: Path, option: str) -> None:
     if not os.access(existing, os.W_OK | os.X_OK):
         raise SweepError(f"{option}: cannot write to {folder}: permission denied on "
                          f"{existing}")
+    # The permission bits do not say everything (a read-only file system, /sys or /proc, a
+    # full disk under root): a file actually created and removed does.
+    try:
+        fd, probe = tempfile.mkstemp(dir=existing, prefix=".bumpers-probe.")
+        os.close(fd)
+        os.unlink(probe)
+    except OSError as err:
+        raise SweepError(f"{option}: cannot write to {folder}: {err.strerror or err}") \
+            from None
 
 
 def guard(path, key: str, force: bool = False, option: str = "--force") -> None:

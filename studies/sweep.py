@@ -30,7 +30,13 @@ from pipeline.grid import (
     declarations,
 )
 
-from .common.recipe import accept_negative_numbers, add_text_record_options, interrupted, outputs
+from .common.recipe import (
+    OneLineParser,
+    accept_negative_numbers,
+    add_text_record_options,
+    interrupted,
+    outputs,
+)
 
 # Units the command line also takes in the paper's units, by the SI unit declared: the option
 # --NAME-<suffix> takes values in that unit.
@@ -96,7 +102,7 @@ def add_parameters(p: argparse.ArgumentParser) -> None:
 
 
 def parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(
+    p = OneLineParser(
         prog="python -m studies.sweep",
         description="Simulate the isolated building pounding on its moat wall for every "
                     "combination of the given parameters and records, and write the peak "

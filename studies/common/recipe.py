@@ -26,6 +26,14 @@ from pipeline.cluster import add_tls_options
 from pipeline.records import PAPER_KEYS
 
 
+class OneLineParser(argparse.ArgumentParser):
+    """An argparse parser whose errors are one line (argparse prints the whole usage first:
+    26 lines for a recipe), exit status 2 as argparse's."""
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {message} (--help lists the options)\n")
+
+
 @dataclass(frozen=True)
 class Recipe:
     """name: module and file stem; figure: the paper's figure(s); summary: one line for --help;
@@ -54,7 +62,7 @@ class Recipe:
 
     def parser(self) -> argparse.ArgumentParser:
         epilog = f"Values the paper does not state: {self.chosen}" if self.chosen else None
-        p = argparse.ArgumentParser(
+        p = OneLineParser(
             prog=f"python -m studies.{self.name}",
             description=f"{self.summary} (paper {self.figure}). Writes {self.name}.nc, "
                         f"{self.name}.png and {self.name}.pdf into --out. " + (

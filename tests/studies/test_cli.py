@@ -185,3 +185,23 @@ def test_a_site_no_real_site_has_is_refused_in_one_line(name, argv, words, tmp_p
     (line,) = capsys.readouterr().err.strip().splitlines()
     assert line == f"{name}: error: {words}"
     assert not list(tmp_path.iterdir())  # refused before any compute: nothing written
+
+
+def test_a_malformed_option_is_one_line_and_an_unwritable_output_is_refused(tmp_path, capsys):
+    import os
+
+    from studies import fragility, sweep
+
+    with pytest.raises(SystemExit) as stop:
+        sweep.main(["--records", "kobe", "--gap-cm", "20", "--n-bumpers", "2.5",
+                    "--out", str(tmp_path / "x.nc")])
+    assert stop.value.code == 2
+    (line,) = capsys.readouterr().err.strip().splitlines()
+    assert "--n-bumpers: invalid int value: '2.5'" in line and "--help" in line
+    if not os.path.ismount("/sys"):
+        pytest.skip("no /sys here: a folder that says writable but takes no file")
+    # a folder the permission bits allow root but no file can be created in (sysfs)
+    assert fragility.main(["--quick", "--quiet", "--out", "/sys/x.nc"]) == 2
+    (line,) = capsys.readouterr().err.strip().splitlines()
+    assert line.startswith("fragility: error: out: cannot write to /sys")
+    assert not list(tmp_path.iterdir())
