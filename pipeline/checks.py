@@ -70,8 +70,19 @@ def plausible(name: str, param, array: np.ndarray, option: bool = True) -> np.nd
 
 
 def checked_values(param, array: np.ndarray, name: str) -> np.ndarray:
-    """The declaration's range check, in the sweep's vocabulary."""
+    """The declaration's range check, in the sweep's vocabulary; a ratio given in percent
+    (strain 80) is said to be one."""
     try:
         return param.check(array, name=name)
     except engine.EngineError as err:
-        raise SweepError(str(err)) from None
+        text = str(err)
+        if param.units == "1" and not param.integer:
+            values = np.atleast_1d(np.asarray(array, dtype=float))
+            worst = float(values[np.argmax(np.abs(values))])
+            try:
+                param.check(values / 100, name=name)
+            except engine.EngineError:
+                pass
+            else:
+                text += f": a ratio, not a percentage ({worst:g}% is {worst / 100:g})"
+        raise SweepError(text) from None

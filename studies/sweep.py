@@ -17,6 +17,8 @@ from __future__ import annotations
 import argparse
 import sys
 
+import numpy as np
+
 from engine.impact import M_EFF
 from engine.units import CM, KN_PER_MM
 from pipeline.cluster import add_tls_options
@@ -199,7 +201,29 @@ def parameters(args) -> dict:
                                  f"{', '.join(laws)} laws; give --{name.replace('_', '-')} "
                                  f"in {unit} for impact={args.impact!r}")
             values[name] = _one_or_many(given, factor)
+            _plausible_in_paper_unit(name, args, given, variant)
     return values
+
+
+def _plausible_in_paper_unit(name: str, args, given, variant) -> None:
+    """SweepError for a value given in the paper's unit (--gap-cm, --wall-k-kn-mm) that no
+    real moat or bumper has, saying what it is in SI and, when the number typed is plausible
+    in SI, the option that was most likely meant (a value in m typed after --gap-cm)."""
+    from pipeline.errors import SweepError
+
+    suffix, _, factor, text, _ = variant
+    params = declarations(name)
+    param = params.get(args.impact, next(iter(params.values())))
+    si = np.atleast_1d(np.asarray(given, dtype=float)) * factor
+    bad = param.implausible(si)
+    if bad.size == 0:
+        return
+    typed = float(bad[0]) / factor
+    option = f"--{name.replace('_', '-')}-{suffix}"
+    meant = "" if param.implausible([typed]).size else \
+        f"; did you mean {option} {typed / factor:g} ({typed:g} {param.units})?"
+    raise SweepError(f"{option} {typed:g} {text} is {float(bad[0]):g} {param.units}, "
+                     f"implausible for {name} (outside {param.plausible} {param.units}){meant}")
 
 
 def main(argv: list[str] | None = None) -> int:

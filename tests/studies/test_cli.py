@@ -33,6 +33,21 @@ def test_lengths_in_cm_given_as_m_are_refused(option, value, hint, tmp_path, cap
     assert not (tmp_path / "x.nc").exists() and not (tmp_path / "x.nc.work").exists()
 
 
+@pytest.mark.parametrize("argv, line", [
+    (["--gap-cm", "0.2"], "error: --gap-cm 0.2 cm is 0.002 m, implausible for gap (outside "
+                          "[0.005, 2] m); did you mean --gap-cm 20 (0.2 m)?"),
+    (["--gap-cm", "20", "--thickness-cm", "0.05"], "error: --thickness-cm 0.05 cm is 0.0005 m, "
+     "implausible for thickness (outside [0.005, 2] m); did you mean --thickness-cm 5 (0.05 m)?"),
+    (["--gap-cm", "20", "--strain", "80"], "error: strain must be in (0, 1], got [80.]: a ratio, "
+                                           "not a percentage (80% is 0.8)"),
+])
+def test_slips_in_the_paper_units_and_percentages_say_what_was_meant(argv, line, tmp_path,
+                                                                     capsys):
+    assert sweep_cli.main(["--records", "pacoima", *argv, "--out", str(tmp_path / "x")]) == 2
+    assert capsys.readouterr().err.strip() == line
+    assert not (tmp_path / "x").exists()
+
+
 @pytest.mark.parametrize("argv, hint", [
     (["--wall-k", "1500"], "1500 kN/mm is 1.5e+09 N m-1), or --wall-k-kn-mm 1500"),
     (["--m-eff", "320"], "320 t is 320000 kg), or --m-eff-t 320"),

@@ -53,8 +53,10 @@ ORDER = 4
 
 PARAMETERS = Declaration(
     GAP,
+    # plausible: a rubber pad thinner than 5 mm is a sheet, not a bumper (the paper's test pad
+    # is 10 mm); thicker than 2 m, a block.
     Parameter("thickness", "m", "bumper thickness t", 0.05, "(0, inf)", equation="Eq. 11",
-              sweep="thickness", plausible="(0, 2]"),
+              sweep="thickness", plausible="[0.005, 2]"),
     Parameter("cavity", "m", "depth c_d of the wall cavity holding each bumper", 0.0,
               "[0, inf)", equation="section 5.3", sweep="cavity", plausible="[0, 2]"),
     Parameter("strain", "1", "ultimate compressive strain of the bumper rubber", 0.8,
