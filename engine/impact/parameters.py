@@ -3,10 +3,10 @@ declares a parameter)."""
 from ..parameters import REQUIRED, Parameter
 
 GAP = Parameter("gap", "m", "seismic gap: clearance between base slab and moat wall on either "
-                "side, before any bumper", REQUIRED, "(0, inf)", sweep="gap",
-                plausible="[0.005, 2]")
-# plausible: no moat is built narrower than 5 mm (its wall's tolerances are centimetres) nor
-# wider than 2 m (the largest isolator displacements are about 1.5 m).
+                "side, before any bumper", REQUIRED, "(0, inf)", sweep="gap", plausible="(0, 2]")
+# plausible: no lower bound, since studies compute gaps (a fraction of a weak record's peak
+# can be millimetres: studies.plan); wider than 2 m, no moat (the largest isolator
+# displacements are about 1.5 m).
 M_EFF = Parameter("m_eff", "kg", "effective impact mass m1 m2 / (m1 + m2): the base slab "
                   "against an immovable wall (SPEC decision)", 320e3, "(0, inf)",
                   equation="Eq. 2", plausible="[1e3, 1e9]")
