@@ -226,10 +226,10 @@ def listed_coords(grid: Grid) -> dict:
         elif name in LISTED_PARAMS:
             param = next(LAWS[law].PARAMETERS.numeric[name] for law in LAWS
                          if name in LAWS[law].PARAMETERS.numeric
-                         and law in np.unique(grid.listed["law"]))
+                         and law in grid.impact.split())
             units, long_name = param.units, param.meaning
         else:
-            units, long_name = parameter_meta(np.unique(grid.listed["law"]).tolist(), name)
+            units, long_name = parameter_meta(grid.impact.split(), name)
         unset = "the law's default" if name in LISTED_PARAMS else \
             "not a parameter of the member's law"
         coords[name] = variable(dims, np.asarray(values, dtype=float), units,

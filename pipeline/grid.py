@@ -141,7 +141,8 @@ class Grid:
     unconstrained when asked for; m_eff kg; isolator: the law of the building's isolator,
     whose parameters in coords and fixed replace the building's. A grid of members listed
     one by one (pipeline.listed) has one block along `member`, `listed` its columns for the
-    archive, and `table` (R, M) when each record runs members of its own.
+    archive, and `table` (R, M) when each record runs members of its own; its impact names
+    every law it runs, space-separated.
     """
 
     impact: str

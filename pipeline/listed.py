@@ -77,12 +77,12 @@ def listed_grid(table: Mapping, *, isolator: str = "bilinear", plan: bool = Fals
     k = shape[-1]
     flat = rows.reshape(-1, k)
     block = Block("", ("member",), (k,), flat[0])
-    listed = {"law": laws}
-    listed.update({name: values for name, values in columns.items()})
+    listed = {"law": laws, **columns}
     for name in EXCITATION_PARAMS:  # defaults filled in: the archive says what ran
         if name not in listed and not np.all(np.isnan(rows[name])):
             listed[name] = rows[name][0] if per_record else rows[name]
-    impact = " ".join(dict.fromkeys(str(law) for law in np.unique(rows["law"])))
+    # the grid's laws, as they first appear: what the archive and its provenance name
+    impact = " ".join(dict.fromkeys(rows["law"].ravel().tolist()))
     return Grid(impact, {}, {}, (block,), float(M_EFF.default), isolator, plan,
                 listed=listed, table=flat if per_record else None)
 

@@ -196,9 +196,8 @@ def sweep_attributes(grid: Grid) -> dict:
         "describe everything else" if replaced else
         "the building's for every member (building_isolator_*)")
     if grid.listed is not None:  # several laws, each member its own (pipeline.listed)
-        laws = list(dict.fromkeys(str(x) for x in np.ravel(grid.listed["law"])))
+        laws = grid.impact.split()
         attrs.update({
-            "impact_law": " ".join(laws),
             "swept_parameters": "none: members listed one by one (pipeline.listed), their "
                                 "parameters the coordinates along member",
             "impact_law_defaults": json.dumps({x: law_defaults(x) for x in laws}),

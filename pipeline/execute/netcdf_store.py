@@ -56,6 +56,12 @@ class WorkFolder:
             found.update(known[1])
         return found
 
+    def remove(self) -> None:
+        """The folder gone, and what this process remembers of its files with it."""
+        shutil.rmtree(self.path, ignore_errors=True)
+        for file in [f for f in self.READ if f.parent == self.path]:
+            del self.READ[file]
+
     def count(self) -> int:
         """Simulations kept (members of every readable batch file)."""
         kept = 0
@@ -197,5 +203,5 @@ class NetCDFStore:
         if self.out is not None:
             write_netcdf(ds, self.out)
         if self.own_work_dir:
-            shutil.rmtree(self.kept_in, ignore_errors=True)
+            self.work.remove()
         return ds

@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import shutil
 import sys
 import warnings
 from collections.abc import Callable
@@ -206,7 +205,9 @@ class Recipe:
         if args.replot:
             print("redrew", *figures, "from", archive)
         else:
-            shutil.rmtree(args.work_dir, ignore_errors=True)
+            from pipeline.execute.netcdf_store import WorkFolder
+
+            WorkFolder(args.work_dir).remove()
             print("wrote", archive, *figures, *([f"({QUICK_NOTE})"] if args.quick else []))
         return 0
 

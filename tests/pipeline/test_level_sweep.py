@@ -73,3 +73,13 @@ def test_bad_factors_are_refused_in_one_line(factors, words):
 def test_bad_levels_are_refused():
     with pytest.raises(SweepError, match="level"):
         pipeline.sweep(RECORDS, gap=GAPS, dt=DT, level=[0.0, 1.0], quiet=True)
+
+
+def test_a_finished_sweep_forgets_its_work_folder(tmp_path):
+    from pipeline.execute.netcdf_store import WorkFolder
+
+    out = tmp_path / "a.nc"
+    pipeline.sweep(RECORDS[:1], gap=GAPS, dt=DT, out=out, quiet=True)
+    work = out.with_name("a.nc.work")
+    assert not work.exists()
+    assert not [f for f in WorkFolder.READ if f.parent == work]  # nothing kept in memory
