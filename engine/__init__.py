@@ -3,7 +3,10 @@
 Arrays in, arrays out; SI units (units.py converts the paper's cm, g, kN); a leading batch
 axis B on every state array. Where things live:
 
-    building.py   the shear building: any number of stories, linear or yielding, damping
+    building.py   the shear building: any number of stories on a story law, P-Delta,
+                  collapse, damping
+    stories/      the story laws, one module each in stories/laws/ (linear, bilinear, imk),
+                  and the Stories a building's stories follow
     isolators/    the isolator laws, one module each in isolators/laws/ (bilinear, friction
                   pendulum), the Isolator a building stands on, and the hysteresis they share
     impact/       the moat-wall impact laws, one module each in impact/laws/ (each declares
@@ -28,7 +31,8 @@ from .isolators import Isolator
 from .results import History, PlanResult, Result, TwoBodyResult
 from .scheme import DEFAULT_DT
 from .simulate import simulate, stable_dt, two_body
+from .stories import Stories
 
 __all__ = ["Building", "Contact", "DEFAULT_DT", "EngineError", "History", "Isolator",
-           "PlanResult", "Result", "TwoBodyResult", "UnstableTimeStep", "simulate", "stable_dt",
-           "two_body", "units"]
+           "PlanResult", "Result", "Stories", "TwoBodyResult", "UnstableTimeStep", "simulate",
+           "stable_dt", "two_body", "units"]

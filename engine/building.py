@@ -17,6 +17,8 @@ import numpy as np
 
 from .errors import EngineError
 from .isolators import Isolator
+from .stories import Stories
+from .stories.registry import MAX_FIELDS, MAX_STATE
 from .units import G
 
 MAX_STORIES = 30
@@ -25,11 +27,12 @@ PAPER_MASSES = (320e3, 320e3, 320e3, 320e3, 250e3)
 FIELD_UNITS = {"masses": "kg", "story_stiffness": "N m-1", "k1": "N m-1", "k2": "N m-1",
                "fy_ratio": "1", "zeta_iso": "1", "zeta_sup": "1", "damping": None, "g": "m s-2",
                "isolator": None, "story_yield_force": "N", "story_post_yield_ratio": "1",
-               "story_stiffness_y": "N m-1"}
+               "story_stiffness_y": "N m-1", "stories": None, "story_height": "m",
+               "p_delta": None, "collapse_drift_ratio": "1"}
 """Every Building field and its SI unit (None: text or an Isolator), for files and archives."""
 PER_LEVEL = ("masses",)
 """Fields with one value per level, the isolation slab first."""
-PER_STORY = ("story_stiffness", "story_yield_force", "story_stiffness_y")
+PER_STORY = ("story_stiffness", "story_yield_force", "story_stiffness_y", "story_height")
 """Fields with one value per story, the first story first."""
 
 
@@ -59,6 +62,17 @@ class Building:
         along y for runs in plan, story_stiffness then being along x; the y direction's
         damping follows the same `damping` rule with them. Linear stories only: a circular
         yield surface needs the same stiffness both ways. A planar run is along x.
+    stories : None (linear stories, or the bilinear shorthand story_yield_force) or an
+        engine.Stories: the stories' law and its parameters (engine/stories/laws/: linear,
+        bilinear, imk), the elastic stiffness being story_stiffness either way;
+    story_height : None or N story heights (m), needed by p_delta and collapse_drift_ratio;
+    p_delta : the weight of the levels above each story acting on its drift, a geometric
+        stiffness -P_i / h_i in parallel with story i (P_i = g times the masses of levels
+        i..N; small displacements, constant gravity; the isolators carry no P-Delta term:
+        their law is their test's). Default False: the paper's building;
+    collapse_drift_ratio : None, or the drift ratio |drift_i| / h_i past which a member's run
+        ends as collapsed (e.g. COLLAPSE_DRIFT_RATIO); a non-finite state (a numerical
+        instability) ends a run as collapsed whatever this is.
     """
 
     masses: tuple[float, ...] = PAPER_MASSES
@@ -74,6 +88,10 @@ class Building:
     story_yield_force: tuple[float, ...] | None = None
     story_post_yield_ratio: float = 0.02
     story_stiffness_y: tuple[float, ...] | None = None
+    stories: Stories | None = None
+    story_height: tuple[float, ...] | None = None
+    p_delta: bool = False
+    collapse_drift_ratio: float | None = None
 
     def __post_init__(self):
         masses = np.asarray(self.masses, dtype=float)
@@ -116,16 +134,53 @@ class Building:
             if yields.shape != stiff.shape or not np.all(yields > 0):
                 raise EngineError(f"story_yield_force must be {stiff.size} positive forces in N "
                                   f"(one per story), got {self.story_yield_force!r}")
+        self._check_stories(stiff)
         if self.story_stiffness_y is not None:
             stiff_y = np.asarray(self.story_stiffness_y, dtype=float)
             if stiff_y.shape != stiff.shape or not np.all(stiff_y > 0):
                 raise EngineError(f"story_stiffness_y must be {stiff.size} positive values in "
                                   f"N/m (one per story, along y), got "
                                   f"{self.story_stiffness_y!r}")
-            if self.story_yield_force is not None:
+            if not self.story_law.is_linear:
                 raise EngineError("story_stiffness_y applies to linear stories: yielding "
-                                  "stories (story_yield_force) have a circular yield surface, "
-                                  "the same stiffness both ways")
+                                  "stories have a circular yield surface, the same stiffness "
+                                  "both ways")
+
+    def _check_stories(self, stiff: np.ndarray) -> None:
+        """The story law (the shorthand or `stories`), heights, P-Delta and collapse."""
+        if self.stories is not None:
+            if not isinstance(self.stories, Stories):
+                raise EngineError(f"stories must be an engine.Stories, got {self.stories!r}")
+            if self.story_yield_force is not None \
+                    or self.story_post_yield_ratio != _FIELDS["story_post_yield_ratio"].default:
+                raise EngineError("give the stories either as stories= or by "
+                                  "story_yield_force (and story_post_yield_ratio), not both")
+            law = self.stories
+        elif self.story_yield_force is None:
+            law = Stories.of("linear")
+        else:
+            try:
+                law = Stories.of("bilinear", yield_force=self.story_yield_force,
+                                 post_yield_ratio=self.story_post_yield_ratio)
+            except EngineError as err:
+                raise EngineError(f"story_yield_force: {err}") from None
+        law.fields(stiff)  # per-story lengths and the law's own consistency
+        object.__setattr__(self, "_stories", law)
+        if self.story_height is not None:
+            height = np.asarray(self.story_height, dtype=float)
+            if height.shape != stiff.shape or not np.all(np.isfinite(height) & (height > 0)):
+                raise EngineError(f"story_height must be {stiff.size} positive heights in m "
+                                  f"(one per story), got {self.story_height!r}")
+        if not isinstance(self.p_delta, (bool, np.bool_)):
+            raise EngineError(f"p_delta must be True or False, got {self.p_delta!r}")
+        ratio = self.collapse_drift_ratio
+        if ratio is not None and not (isinstance(ratio, (int, float, np.floating))
+                                      and 0 < ratio <= 1):
+            raise EngineError(f"collapse_drift_ratio must be a drift ratio in (0, 1] (e.g. "
+                              f"0.1 for 10%), got {ratio!r}")
+        if (self.p_delta or ratio is not None) and self.story_height is None:
+            raise EngineError("p_delta and collapse_drift_ratio need story_height (m, one per "
+                              "story)")
 
     @property
     def isotropic(self) -> bool:
@@ -141,6 +196,33 @@ class Building:
             return self
         return dataclasses.replace(self, story_stiffness=tuple(self.story_stiffness_y),
                                    story_stiffness_y=None)
+
+    @property
+    def story_law(self) -> Stories:
+        """The law the stories follow: `stories`, the bilinear shorthand's or linear."""
+        return self._stories
+
+    @property
+    def gravity_stiffness(self) -> np.ndarray:
+        """(N,) P_i / h_i (N/m), the stiffness P-Delta takes from each story (0 without
+        p_delta): P_i = g times the masses of levels i..N, h_i the story's height."""
+        if not self.p_delta:
+            return np.zeros(self.n_stories)
+        above = np.cumsum(np.asarray(self.masses, float)[::-1])[::-1][1:]
+        return self.g * above / np.asarray(self.story_height, float)
+
+    @property
+    def can_collapse(self) -> bool:
+        """Whether the building has a collapse criterion (collapse_drift_ratio)."""
+        return self.collapse_drift_ratio is not None
+
+    @property
+    def collapse_drift(self) -> np.ndarray:
+        """(N,) the drift (m) past which a story has collapsed: collapse_drift_ratio h_i, inf
+        without a collapse criterion."""
+        if self.collapse_drift_ratio is None:
+            return np.full(self.n_stories, np.inf)
+        return self.collapse_drift_ratio * np.asarray(self.story_height, float)
 
     @property
     def isolation(self) -> Isolator:
@@ -166,11 +248,12 @@ class Building:
 
     @property
     def story_yield_drift(self) -> np.ndarray | None:
-        """(N,) yield drifts F_i / k_i (m), or None for linear stories."""
-        if self.story_yield_force is None:
+        """(N,) yield drifts F_i / k_i (m), F_i where the story law starts to yield, or None
+        for linear stories."""
+        if self.story_law.is_linear:
             return None
-        return np.asarray(self.story_yield_force, float) / np.asarray(self.story_stiffness,
-                                                                      float)
+        k = np.asarray(self.story_stiffness, float)
+        return self.story_law.yield_strength(k) / k
 
     @property
     def n_levels(self) -> int:
@@ -273,10 +356,18 @@ def _generalized_eigvals(k: np.ndarray, m) -> np.ndarray:
 class BuildingArrays:
     """Per-member building arrays for a batch of B simulations, L levels each.
 
-    masses (B, L) kg; story_k (B, L - 1) N/m; the isolator's hysteresis fields (B,) each
-    (engine/isolators/hysteresis.py): k_elastic, k_slip N/m, f_limit N, slow_drop, rate s/m;
-    the stories' (B, L - 1) each: story_k_post (post-yield stiffness), story_k_slip,
-    story_f_limit (N; inf for linear stories) and story_yields (B,) bool; damping (B, L, L)
+    masses (B, L) kg; story_k (B, L - 1) N/m: the stories' elastic stiffness less what
+    P-Delta takes (Building.gravity_stiffness; exactly story_stiffness without p_delta); the
+    isolator's hysteresis fields (B,) each (engine/isolators/hysteresis.py): k_elastic, k_slip
+    N/m, f_limit N, slow_drop, rate s/m; the story law (engine/stories/): story_linear (B,)
+    bool (the loops multiply by story_k), story_code (B,) its code, story_fields
+    (B, L - 1, MAX_FIELDS) its constants, story_state (B, L - 1, MAX_STATE) its initial
+    state, story_gravity (B, L - 1) N/m the P-Delta stiffness subtracted from a nonlinear
+    law's force; in plan, the stories as a spring plus a circular slip element:
+    story_k_post (N/m, P-Delta subtracted), story_k_slip (N/m), story_f_limit (N; inf for
+    linear stories), story_yields (B,) bool (stories that yield so) and story_uniaxial (B,)
+    bool (a law without plan_fields: in plan it acts along x and y, uncoupled, with its
+    state along each); collapse_drift (B, L - 1) m (inf: no criterion); damping (B, L, L)
     N*s/m; stiffness (B, L, L) N/m with the isolator at its initial stiffness (for stability
     limits). Every member of a batch has the same number of levels L.
     """
@@ -288,10 +379,17 @@ class BuildingArrays:
     f_limit: np.ndarray
     slow_drop: np.ndarray
     rate: np.ndarray
+    story_linear: np.ndarray
+    story_code: np.ndarray
+    story_fields: np.ndarray
+    story_state: np.ndarray
+    story_gravity: np.ndarray
     story_k_post: np.ndarray
     story_k_slip: np.ndarray
     story_f_limit: np.ndarray
     story_yields: np.ndarray
+    story_uniaxial: np.ndarray
+    collapse_drift: np.ndarray
     damping: np.ndarray
     stiffness: np.ndarray
 
@@ -326,14 +424,26 @@ def _building_row(b: Building) -> tuple:
     computed once per Building; the arrays are copied into the batch, never handed out)."""
     iso = b.isolation.fields(b.total_mass, b.g)
     k = np.asarray(b.story_stiffness, float)
-    if b.story_yield_force is None:
-        post, slip, limit = k, np.zeros_like(k), np.full_like(k, np.inf)
+    law = b.story_law
+    gravity = b.gravity_stiffness
+    # P-Delta folded into the linear springs: k - P/h (k itself, bit for bit, without it).
+    story_k = k - gravity if b.p_delta else k
+    fields = np.zeros((k.size, MAX_FIELDS))
+    fields[:, :law.module.N_FIELDS] = law.fields(k)
+    state = np.zeros((k.size, MAX_STATE))
+    for i in range(k.size):
+        state[i, :law.module.N_STATE] = law.module.initial_state(fields[i])
+    uniaxial = not hasattr(law.module, "plan_fields")
+    if uniaxial:  # never read: in plan such a law acts along x and y, uncoupled
+        post, slip, limit = story_k, np.zeros_like(k), np.full_like(k, np.inf)
     else:
-        ratio = b.story_post_yield_ratio
-        post, slip = ratio * k, (1 - ratio) * k
-        limit = (1 - ratio) * np.asarray(b.story_yield_force, float)
-    return (np.asarray(b.masses, float), k, iso["k_elastic"], iso["k_slip"], iso["f_limit"],
-            iso["slow_drop"], iso["rate"], post, slip, limit, b.story_yield_force is not None,
+        post, slip, limit = (np.asarray(x, float) for x in law.module.plan_fields(
+            k, **law.per_story(k.size)))
+        post = post - gravity if b.p_delta else post
+    return (np.asarray(b.masses, float), story_k, iso["k_elastic"], iso["k_slip"],
+            iso["f_limit"], iso["slow_drop"], iso["rate"], law.is_linear, law.code, fields, state,
+            gravity, post, slip, limit, not law.is_linear and not uniaxial, uniaxial,
+            b.collapse_drift,
             b.damping_matrix(), b.stiffness_matrix())
 
 

@@ -195,12 +195,16 @@ class Declaration(Mapping):
         return "\n".join("    " + e.describe() for e in self.values())
 
 
-def law_constructor(owner: str, law: str, declaration: Declaration, doc: str, build):
+def law_constructor(owner: str, law: str, declaration: Declaration, doc: str, build,
+                    keyword_only: bool = False):
     """A classmethod `<owner>.<law>(...)` whose signature and docstring are the law's
     declaration (in order, each with its default), so that the declaration is the only place
-    defaults and ranges are written; it calls build(cls, law, **arguments)."""
+    defaults and ranges are written; it calls build(cls, law, **arguments). keyword_only:
+    every parameter by name (a declaration may then list required ones after defaults)."""
+    kind = inspect.Parameter.KEYWORD_ONLY if keyword_only \
+        else inspect.Parameter.POSITIONAL_OR_KEYWORD
     signature = inspect.Signature(
-        [inspect.Parameter(name, inspect.Parameter.POSITIONAL_OR_KEYWORD,
+        [inspect.Parameter(name, kind,
                            default=inspect.Parameter.empty if entry.default is REQUIRED
                            else entry.default)
          for name, entry in declaration.items()])

@@ -56,6 +56,15 @@ PEAKS: tuple[Quantity, ...] = (
 )
 """The peaks of every member, over every step of the run, in Result's order."""
 
+COLLAPSE: tuple[Quantity, ...] = (
+    Quantity("collapsed", "1", "the run ended in collapse: a story's drift ratio past the "
+             "building's collapse_drift_ratio, or a numerical instability", dtype=np.bool_),
+    Quantity("collapse_time", "s", "time at which the run ended in collapse (NaN: it did "
+             "not)"),
+)
+"""How each member's run ended, beside its peaks (which stop at the step before a collapse:
+a collapsed run is a collapse, its peaks no amplification)."""
+
 HISTORIES: tuple[Quantity, ...] = (
     Quantity("isolator_disp", "m",
              "isolator displacement (isolation level relative to the ground)"),
@@ -132,13 +141,29 @@ def level_axes(n_levels: int) -> dict[str, tuple[np.ndarray, str, str]]:
                       "story (story i joins level i-1 to level i)")}
 
 
-def empty_peaks(size: int, n_levels: int, moat: str | None = None) -> dict[str, np.ndarray]:
-    """Zeroed (size, ...) arrays of every peak, for a building of n_levels levels; of a run in
-    plan with a `moat` (WALLS), PLAN_PEAKS too."""
-    quantities = PEAKS if moat is None else (*PEAKS, *PLAN_PEAKS)
+def run_quantities(moat: str | None = None, collapse: bool = False) -> tuple[Quantity, ...]:
+    """What a run returns and an archive keeps of it: PEAKS, then PLAN_PEAKS for a run in
+    plan (`moat`), then COLLAPSE for a building with a collapse criterion (so that a building
+    without one, the paper's, keeps the archive it had)."""
+    return (*PEAKS, *(PLAN_PEAKS if moat is not None else ()),
+            *(COLLAPSE if collapse else ()))
+
+
+def empty_collapse(size: int) -> dict[str, np.ndarray]:
+    """No member collapsed yet: collapsed (size,) False, collapse_time (size,) NaN."""
+    return {"collapsed": np.zeros(size, dtype=bool), "collapse_time": np.full(size, np.nan)}
+
+
+def empty_peaks(size: int, n_levels: int, moat: str | None = None,
+                collapse: bool = False) -> dict[str, np.ndarray]:
+    """(size, ...) arrays of every quantity of run_quantities(moat, collapse), zeroed (no
+    member collapsed, collapse_time NaN), for a building of n_levels levels."""
     walls = 1 if moat is None else len(WALLS[moat])
-    return {q.name: np.zeros((size, *q.trailing_shape(n_levels, walls)), dtype=q.dtype)
-            for q in quantities}
+    out = {q.name: np.zeros((size, *q.trailing_shape(n_levels, walls)), dtype=q.dtype)
+           for q in run_quantities(moat, collapse)}
+    if collapse:
+        out["collapse_time"][:] = np.nan
+    return out
 
 
 @dataclass(frozen=True)
@@ -156,7 +181,8 @@ class Result:
     peak_total_accel (B, levels) m/s^2, peak_interstory_drift (B, stories) m,
     peak_isolator_disp (B,) m, max_indentation (B,) m, max_impact_force (B,) N, n_impacts (B,),
     impact_energy (B,) J: work done on the wall contacts, i.e. energy dissipated by impacts
-    once contacts close; dt: the integration step (s); history: None or a dict of time (T,) s,
+    once contacts close; dt: the integration step (s); collapsed (B,) bool and collapse_time
+    (B,) s, NaN where none (COLLAPSE); history: None or a dict of time (T,) s,
     members (M,) and every HISTORIES quantity, (M, T) or (M, T, levels).
     """
 
@@ -169,6 +195,8 @@ class Result:
     impact_energy: np.ndarray
     dt: float
     history: dict | None = None
+    collapsed: np.ndarray | None = None
+    collapse_time: np.ndarray | None = None
 
     def peaks(self) -> dict[str, np.ndarray]:
         """Peak name -> array, in PEAKS order."""

@@ -18,7 +18,14 @@ import xarray as xr
 import engine
 from engine.impact import LAWS
 from engine.isolators import LAWS as ISOLATOR_LAWS
-from engine.results import DIRECTIONS, PEAKS, PLAN_PEAKS, WALLS, Quantity, level_axes
+from engine.results import (
+    DIRECTIONS,
+    PEAKS,
+    WALLS,
+    Quantity,
+    level_axes,
+    run_quantities,
+)
 
 from .grid import (
     EXCITATION_PARAMETERS,
@@ -251,7 +258,7 @@ def build_dataset(grid: Grid, run, results: list[dict[str, np.ndarray]] | None,
     coordinate record_factor.
     """
     records, building, moat = run.records, run.building, run.moat
-    quantities = PEAKS if moat is None else (*PEAKS, *PLAN_PEAKS)
+    quantities = run_quantities(moat, building.can_collapse)
     data_vars = {}
     start = 0
     for block in grid.blocks:
@@ -264,7 +271,8 @@ def build_dataset(grid: Grid, run, results: list[dict[str, np.ndarray]] | None,
 
                 tail = q.trailing_shape(building.n_levels,
                                         len(WALLS[moat]) if moat is not None else 1)
-                fill = np.nan if np.dtype(q.dtype).kind == "f" else -1
+                kind = np.dtype(q.dtype).kind
+                fill = np.nan if kind == "f" else False if kind == "b" else -1
                 peaks[q.name] = da.full((len(records), *block.shape, *tail), fill,
                                         dtype=q.dtype, chunks=(1, *chunks(block), *tail))
                 continue

@@ -7,6 +7,14 @@ type or unit is one BuildingError naming the key and what it expects.
     story_stiffness = [1.2e9, 1.1e9, 1.0e9, 0.9e9, 0.8e9, 0.7e9, 0.6e9, 0.5e9]  # N/m
     story_yield_force = [8e6, 7.5e6, 7e6, 6.2e6, 5.4e6, 4.4e6, 3.3e6, 2e6]  # N (optional)
     # story_stiffness_y = [...]  # N/m along y in plan (optional, linear stories only)
+    # story_height = [4.0, 3.5, 3.5, 3.5, 3.5, 3.5, 3.5, 3.5]  # m (P-Delta, collapse)
+    # p_delta = true
+    # collapse_drift_ratio = 0.10
+    # [stories]             # optional, instead of story_yield_force: a story law
+    # law = "imk"           # engine/stories/laws/; each value one number or one per story
+    # yield_force = [...]   # N
+    # plastic_deformation = 0.09       # m
+    # post_capping_deformation = 0.35  # m
     [isolator]              # optional: the bilinear k1, k2, fy_ratio keys otherwise
     law = "friction_pendulum"
     radius = 2.2            # m
@@ -15,7 +23,8 @@ type or unit is one BuildingError naming the key and what it expects.
     rate = 30.0             # s/m
 
 Every top-level key is an engine.Building field; the [isolator] table names a registered
-isolator law and its declared parameters (engine/isolators/laws/). A JSON file holds the same
+isolator law and its declared parameters (engine/isolators/laws/), the [stories] table a
+story law and its (engine/stories/laws/). A JSON file holds the same
 object.
 """
 from __future__ import annotations
@@ -31,6 +40,7 @@ import engine
 from engine.building import FIELD_UNITS, PER_LEVEL, PER_STORY
 from engine.isolators import LAWS as ISOLATOR_LAWS
 from engine.parameters import REQUIRED, Parameter
+from engine.stories import LAWS as STORY_LAWS
 
 from .checks import plausible
 from .errors import BuildingError, SweepError
@@ -53,6 +63,8 @@ PLAUSIBLE = {
                                    "(0, inf)", plausible="[1e3, 1e10]"),
     "story_stiffness_y": Parameter("story_stiffness_y", "N m-1", "story stiffness along y",
                                    REQUIRED, "(0, inf)", plausible="[1e5, 1e13]"),
+    "story_height": Parameter("story_height", "m", "story height", REQUIRED, "(0, inf)",
+                              plausible="[1.5, 30]"),
 }
 
 
@@ -119,10 +131,11 @@ def building_from(specs: Sequence[str] = ()) -> engine.Building:
     for setting in (s for s in specs if "=" in s):
         name, _, text = setting.partition("=")
         name = name.strip()
-        if name not in FIELD_UNITS or name == "isolator":
-            raise BuildingError(f"--building {setting!r}: NAME must be one of "
-                                f"{', '.join(n for n in FIELD_UNITS if n != 'isolator')} "
-                                "(an isolator law is given in a building file)")
+        tables = ("isolator", "stories")
+        if name not in FIELD_UNITS or name in tables:
+            settable = ", ".join(n for n in FIELD_UNITS if n not in tables)
+            raise BuildingError(f"--building {setting!r}: NAME must be one of {settable} (an "
+                                "isolator or story law is given in a building file)")
         fields[name] = text if FIELD_UNITS[name] is None else \
             _numbers(name, text.split(",") if name in PER_LEVEL + PER_STORY else text,
                      f"--building {setting!r}")
@@ -143,6 +156,11 @@ def building(data: dict, where: str = "building") -> engine.Building:
         if name == "isolator":
             fields[name] = value if isinstance(value, engine.Isolator) \
                 else _isolator(value, where)
+        elif name == "stories":
+            fields[name] = value if isinstance(value, engine.Stories) \
+                else _stories(value, where)
+        elif name == "p_delta":
+            fields[name] = _flag(name, value, where)
         elif FIELD_UNITS[name] is None:
             if not isinstance(value, str):
                 raise BuildingError(f"{where}: {name} must be text, got {value!r}")
@@ -153,6 +171,33 @@ def building(data: dict, where: str = "building") -> engine.Building:
         return engine.Building(**fields)
     except engine.EngineError as err:
         raise BuildingError(f"{where}: {err}") from None
+
+
+def _flag(name: str, value, where: str) -> bool:
+    """True or False from a TOML/JSON boolean or the command line's text."""
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    text = str(value).strip().lower()
+    if text in ("true", "yes", "1"):
+        return True
+    if text in ("false", "no", "0"):
+        return False
+    raise BuildingError(f"{where}: {name} must be true or false, got {value!r}")
+
+
+def _stories(table, where: str) -> engine.Stories:
+    if not isinstance(table, dict) or not isinstance(table.get("law"), str):
+        raise BuildingError(f"{where}: stories must be a table with law = one of "
+                            f"{', '.join(STORY_LAWS)} and that law's parameters")
+    law = table["law"]
+    if law not in STORY_LAWS:
+        raise BuildingError(f"{where}: story law {law!r} is not one of "
+                            f"{', '.join(STORY_LAWS)}")
+    params = {k: v for k, v in table.items() if k != "law"}
+    try:
+        return engine.Stories.of(law, **params)
+    except (engine.EngineError, TypeError, ValueError) as err:
+        raise BuildingError(f"{where}: stories ({law}): {err}") from None
 
 
 def _isolator(table, where: str) -> engine.Isolator:

@@ -247,6 +247,10 @@ def two_body_attributes(title: str, arguments: dict | None = None) -> dict:
             **arguments_attribute("two_body", arguments)}
 
 
+OPTIONAL_FIELDS = ("stories", "story_height", "p_delta", "collapse_drift_ratio")
+"""Building fields left out of the attributes when unused (None or False)."""
+
+
 def building_attributes(building: engine.Building) -> dict:
     """The building's every property, its isolator, their units and the damping decision, as
     attributes. zeta_iso is the ratio in force (the isolator law's default when not given);
@@ -257,6 +261,8 @@ def building_attributes(building: engine.Building) -> dict:
         name = field.name
         if name == "isolator" or (name in ("k1", "k2", "fy_ratio") and not shorthand):
             continue
+        if name in OPTIONAL_FIELDS and getattr(building, name) in (None, False):
+            continue  # unused: a building without them (the paper's) keeps its attributes
         value = building.isolation_zeta if name == "zeta_iso" else getattr(building, name)
         attrs[f"building_{name}"] = _attr_value(value)
     isolation = building.isolation
@@ -271,6 +277,23 @@ def building_attributes(building: engine.Building) -> dict:
     if building.story_stiffness_y is not None:
         attrs["building_units"] += ", story_stiffness_y N/m (along y in plan; story_stiffness " \
             "along x)"
+    if building.stories is not None:
+        law = building.story_law
+        attrs["building_stories"] = law.describe()
+        attrs["building_story_law"] = law.law
+        attrs["building_story_strength"] = law.strength(building.story_stiffness)
+        attrs["building_units"] += ", stories' forces N and deformations m"
+    if building.story_height is not None:
+        attrs["building_units"] += ", story_height m"
+    if building.p_delta:
+        attrs["building_p_delta_text"] = (
+            "P-Delta: the weight of the levels above each story on its drift, a geometric "
+            "stiffness -P_i / h_i in parallel with the story (the isolators carry none)")
+    if building.can_collapse:
+        attrs["building_collapse_text"] = (
+            f"a run ends as collapsed when a story's drift exceeds "
+            f"{building.collapse_drift_ratio:g} of its height, or its state is no longer "
+            "finite; its peaks are those of the steps before")
     attrs["building_yield_displacement"] = building.yield_displacement
     attrs["damping_decision"] = (
         f"paper: isolation dashpot {isolation.dashpot_text}, stiffness-proportional story "

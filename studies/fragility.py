@@ -34,7 +34,9 @@ from pipeline.motions.code_suite import archive_variables, describe
 
 from .common.options import (
     QUICK_PAIRS,
+    add_bound,
     add_moat,
+    add_stories,
     add_wall_capacity,
     bare_wall_text,
     chosen_pairs,
@@ -70,11 +72,15 @@ EVENTS = {
     "story_capacity": "a story exceeds its capacity (its yield drift, or a linear story's "
                       "shear above the code's superstructure capacity)",
     "wall_force": "the wall's largest force exceeds its capacity",
+    "collapse": "the building collapses (a story's drift past the collapse drift); a "
+                "collapsed run counts as every other event too",
 }
 
 
 def options(p) -> None:
     site_options(p)
+    add_bound(p)
+    add_stories(p)
     p.add_argument("--accel-threshold-g", type=float, default=ACCEL_THRESHOLD / G, metavar="G",
                    help=f"floor acceleration event threshold in g (default "
                         f"{ACCEL_THRESHOLD / G:g})")
@@ -91,7 +97,7 @@ def options(p) -> None:
 
 def compute(args):
     pairs, names = chosen_pairs(args, QUICK_PAIRS)
-    suite = scaled_suite(args, pairs, names)
+    suite = scaled_suite(args, pairs, names)  # at --bound: its building, its D_M and D_TM
     levels = np.array(QUICK_LEVELS if args.quick else LEVELS)
     fractions = np.array([*GAPS, suite.design.d_tm / suite.design.d_m])
     gaps = fractions * suite.design.d_m
@@ -105,14 +111,18 @@ def run(suite, levels, gaps, args):
     with each count of bumpers at every gap (m), on the pipeline's executor (pipeline.sweep:
     resumable, here or on dask). Returns (peak name -> (R, L, W, ...) float arrays, the walls
     W in the order: no wall, the bare wall at each gap, then each BUMPER_COUNTS' gaps; the
-    sweep's Dataset, whose provenance the archive keeps)."""
+    sweep's Dataset, whose provenance the archive keeps). The building at the suite's bound
+    (suite.building)."""
     import pipeline
 
     ds = pipeline.sweep(suite.pairs, moat=args.moat, gap=gaps, thickness=THICKNESS,
                         n_bumpers=list(BUMPER_COUNTS), baseline=True, unconstrained=True,
-                        level=levels, factors=suite.factors, **run_options(args))
+                        level=levels, factors=suite.factors,
+                        **{**run_options(args), "building": suite.building})
     peaks = {}
-    for name in (*PEAK_NAMES, "peak_total_accel", "peak_interstory_drift"):
+    for name in (*PEAK_NAMES, "peak_total_accel", "peak_interstory_drift", "collapsed"):
+        if name not in ds:  # a building without a collapse criterion
+            continue
         free, bare = ds["unconstrained_" + name], ds["baseline_" + name]
         bumpers = [ds[name].sel(n_bumpers=n) for n in BUMPER_COUNTS]
         walls = [free.expand_dims("wall", 2), *(b.rename(gap="wall") for b in (bare, *bumpers))]
@@ -129,8 +139,9 @@ def _dataset(suite, levels, fractions, gaps, peaks, args):
     from pipeline.assess.fragility_outcomes import fit_outcomes
     from pipeline.assess.validity import FLAGS, Limits, code_story_capacity, flags_of, shape_factor
 
-    building = args.building
-    capacity = code_story_capacity(suite.design, building)
+    building = suite.building  # at the suite's bound
+    # the superstructure's strength from the code's largest base shear over the bounds
+    capacity = code_story_capacity(suite.basis.force_design, building)
     wall_force = wall_capacity(args)
     limits = Limits(story_shear=capacity, wall_force=wall_force)
     # configurations: member 0 no wall, then each barrier's gaps (BARRIERS order)
@@ -161,7 +172,7 @@ def _dataset(suite, levels, fractions, gaps, peaks, args):
         data[f"event_{name}"] = variable(dims, value.astype(np.int8), "1",
                                          f"1 where {EVENTS[name]}")
     flagged = flags_of(peaks, building, limits, n_bumpers=_bumper_counts(n_gaps)[None, None, :],
-                       area=AREA)
+                       area=AREA, thickness=THICKNESS)
     for name, value in flagged.items():
         data[name] = variable(dims, by_config(value).astype(np.int8), "1",
                               f"1 where {FLAGS[name]} ({limits.describe()})")
@@ -238,7 +249,7 @@ def _events(peaks, building, args, capacity, wall_force, by_config) -> dict:
     crushed = derived.crushed(peaks["max_indentation"], DELTA_U)
     n_gaps = (peaks["n_impacts"].shape[2] - 1) // len(BARRIERS)
     crushed[:, :, :1 + n_gaps] = False  # no bumpers there
-    if building.story_yield_force is not None:
+    if not building.story_law.is_linear:
         beyond = np.any(drift_all > building.story_yield_drift, axis=-1)
     else:
         beyond = (drift_all * np.asarray(building.story_stiffness)).max(axis=-1) > capacity
@@ -248,6 +259,12 @@ def _events(peaks, building, args, capacity, wall_force, by_config) -> dict:
            "story_capacity": beyond}
     if wall_force is not None:
         out["wall_force"] = peaks["max_impact_force"] > wall_force
+    if "collapsed" in peaks:
+        # A collapse is past every damage state (as FEMA P-58 counts it): its run's peaks
+        # stop before it, so they would understate every other event.
+        fell = peaks["collapsed"].astype(bool)
+        out = {name: value | fell for name, value in out.items()}
+        out["collapse"] = fell
     return {name: by_config(value) for name, value in out.items()}
 
 

@@ -66,6 +66,8 @@ def backend(request) -> str:
 LONG_FIRST = ("tests/reference/test_references.py",        # 35
               "tests/engine/test_opensees.py",             # 34
               "tests/engine/test_plan_references.py",      # 34
+              "tests/reference/test_opensees_pdelta.py",   # 21
+              "tests/reference/test_opensees_imk.py",      # 18
               "tests/engine/test_stories.py",              # 23
               "tests/engine/test_plan.py",                 # 21
               "tests/studies/test_sweeps.py",              # 20

@@ -1,19 +1,24 @@
 """The physics both compiled loops (numba_loop.py, numba_plan.py) call, compiled for scalars
 from the modules that write it once: the isolator's and the stories' slip elements
 (isolators/hysteresis.py), the scheme's contact solve and onset weight (scheme.py), and the
-impact laws' force terms chained into one dispatch on a member's law code (the registry).
+impact laws' force terms and the story laws' forces, each chained into one dispatch on a
+member's law code (the registries).
 
 JIT: the options of the cached kernels; LINK: those of the functions compiled into them.
 """
 from __future__ import annotations
+
+import types
 
 from numba import njit
 
 from .. import scheme
 from ..impact import registry
 from ..isolators import hysteresis
+from ..stories import registry as story_registry
 
-PHYSICS_FILES = [m.__file__ for m in (hysteresis, scheme, registry, *registry.LAWS.values())]
+PHYSICS_FILES = [m.__file__ for m in (hysteresis, scheme, registry, *registry.LAWS.values(),
+                                      story_registry, *story_registry.LAWS.values())]
 """The sources a cached kernel compiles besides its own file (numba_support's cache key)."""
 
 JIT = {"cache": True, "nogil": True, "error_model": "numpy"}
@@ -54,3 +59,43 @@ def _law_dispatch():
 
 
 law_terms = _law_dispatch()
+
+
+def _no_story(code, drift, state, row):
+    return 0.0
+
+
+def _link_story(code, force, otherwise):
+    """A dispatch that runs a story law's force for stories of law `code`, else `otherwise`."""
+    def dispatch(law, drift, state, row):
+        if law == code:
+            return force(drift, state, row)
+        return otherwise(law, drift, state, row)
+    return njit(**LINK)(dispatch)
+
+
+def compiled_in_module(function):
+    """`function` compiled for scalars, with the plain functions of its own module that it
+    calls compiled alongside (a law may write its physics as several small functions; numba
+    would otherwise refuse them as untyped globals). The module itself is left as it is."""
+    module_name = function.__module__
+    scope = dict(function.__globals__)
+    for name in function.__code__.co_names:
+        value = scope.get(name)
+        if isinstance(value, types.FunctionType) and value.__module__ == module_name:
+            scope[name] = compiled_in_module(value)
+    rebuilt = types.FunctionType(function.__code__, scope, function.__name__,
+                                 function.__defaults__, function.__closure__)
+    return njit(**LINK)(rebuilt)
+
+
+def _story_dispatch():
+    """The story force (N) of the member's story law, dispatched on its code: every law of
+    the story registry, chained."""
+    dispatch = njit(**LINK)(_no_story)
+    for code, module in enumerate(story_registry.LAWS.values()):
+        dispatch = _link_story(code, compiled_in_module(module.force), dispatch)
+    return dispatch
+
+
+story_force = _story_dispatch()

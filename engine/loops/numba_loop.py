@@ -23,6 +23,7 @@ from numba import carray, njit
 from ..impact.contact import LAW_ARGUMENTS
 from ..results import PEAKS
 from ..scheme import banded_operators, step_operators
+from ..stories.registry import MAX_FIELDS, MAX_STATE
 from . import compiled
 from .compiled import (
     JIT,
@@ -34,8 +35,9 @@ from .compiled import (
     onset_weight,
     plastic_spring,
     slip_limit,
+    story_force,
 )
-from .numba_support import install_cache_locator, run_members, stack_doubles
+from .numba_support import data_pointer, install_cache_locator, run_members, stack_doubles
 
 # Cached kernels go stale when any physics source they compile changes, not only this file.
 install_cache_locator(Path(__file__), [compiled.__file__, *PHYSICS_FILES])
@@ -43,13 +45,13 @@ install_cache_locator(Path(__file__), [compiled.__file__, *PHYSICS_FILES])
 
 
 # Columns of the per-member scalar parameters.
-(_COMPLIANCE, _K_ELASTIC, _K_SLIP, _F_LIMIT, _SLOW_DROP, _RATE, _STORIES_YIELD, _GAP, _SCALE,
- _LAW_ARGS) = range(10)
+(_COMPLIANCE, _K_ELASTIC, _K_SLIP, _F_LIMIT, _SLOW_DROP, _RATE, _STORIES_NONLINEAR, _GAP,
+ _SCALE, _LAW_ARGS) = range(10)
 _N_PAR = _LAW_ARGS + len(LAW_ARGUMENTS)
 # Columns of the per-member scalar state carried between chunks of steps (the displacements
 # and velocities of every level are arrays of their own).
-_FP, _V_IMP, _DELTA_PREV, _IN_CONTACT = range(4)
-_N_STATE = 4
+_FP, _V_IMP, _DELTA_PREV, _IN_CONTACT, _COLLAPSED, _COLLAPSE_TIME = range(6)
+_N_STATE = 6
 # The peaks: per level (peak_total_accel), per story (peak_interstory_drift), the scalar
 # float peaks in PEAKS order in one matrix, the integer count (n_impacts) in its own array.
 _SCALAR_PEAKS = tuple(q.name for q in PEAKS if q.along is None and q.dtype is not np.int64)
@@ -81,26 +83,35 @@ def _solve_banded(bd, r, v, out, n_levels, dt):
 
 
 @njit(**JIT)
-def _member(levels, b, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u_all, v_all,
-            f_story_all, state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every,
-            h_u, h_acc, h_f, h_d):
+def _member(levels, law_tag, b, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u_all,
+            v_all, story_fields, story_state, state, peak_level, peak_story, peak_scalar, n_impacts,
+            hist_row, every, h_u, h_acc, h_f, h_d):
     """Steps s0 <= step < s1 of member b: the NumPy loop's step, on scalars and the member's
     own small arrays (L levels, L - 1 stories; `levels` is a tuple of L zeros, so that L is a
-    compile-time constant). Sums run in the order of the scalar kernel this loop replaced,
-    and a member's result never depends on the batch."""
+    compile-time constant; `law_tag` a tuple of (story law code + 1) zeros, so that the
+    member's story law is one too and its force is the only one compiled into this kernel:
+    one compilation per number of levels and story law). Sums run in the order of the scalar
+    kernel this loop replaced, and a member's result never depends on the batch. A member
+    that has collapsed stops."""
+    st = state[b]
+    if st[_COLLAPSED] != 0.0:
+        return
     n_levels = len(levels)
     ot = op[b]
     bd = bands[b]
     banded = bd.shape[1] > 0
     w = wall[b]
     m = mass[b]
-    k_story, k_post, k_slip_story, f_limit_story = story[b, 0], story[b, 1], story[b, 2], \
-        story[b, 3]
+    k_story, gravity, collapse_drift = story[b, 0], story[b, 1], story[b, 2]
+    # The story law's constants and state as views of a shape known when the kernel compiles.
+    s_fields = carray(data_pointer(story_fields[b]), (n_levels - 1, MAX_FIELDS))
+    s_state = carray(data_pointer(story_state[b]), (n_levels - 1, MAX_STATE))
     p = par[b]
     comp = p[_COMPLIANCE]
     k_el, k_slip, f_limit, gap = p[_K_ELASTIC], p[_K_SLIP], p[_F_LIMIT], p[_GAP]
     slow_drop, rate = p[_SLOW_DROP], p[_RATE]
-    stories_yield = p[_STORIES_YIELD] != 0.0
+    nonlinear = p[_STORIES_NONLINEAR] != 0.0
+    story_law = len(law_tag) - 1
     scale = p[_SCALE]
     q = _LAW_ARGS
     k, n, m_eff, delta_u, k_w = p[q], p[q + 1], p[q + 2], p[q + 3], p[q + 4]
@@ -108,7 +119,6 @@ def _member(levels, b, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u
     code = law[b]
     hrow = hist_row[b]
 
-    st = state[b]
     fp, v_imp, delta_prev = st[_FP], st[_V_IMP], st[_DELTA_PREV]
     in_contact = st[_IN_CONTACT] != 0.0
     pk = peak_scalar[b]
@@ -123,22 +133,31 @@ def _member(levels, b, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u
     pd = carray(stack_doubles(levels), (n_levels - 1,))
     for i in range(n_levels):
         u[i], v[i], pa[i] = u_all[b, i], v_all[b, i], peak_level[b, i]
-    f_story = carray(stack_doubles(levels), (n_levels - 1,))  # yielding stories' slip
     for i in range(n_levels - 1):
         pd[i] = peak_story[b, i]
-        f_story[i] = f_story_all[b, i]
     chain = carray(stack_doubles(levels), (n_levels,))  # isolator, stories 1..N
     drift = carray(stack_doubles(levels), (n_levels - 1,))
     r = carray(stack_doubles(levels), (n_levels,))
     nxt = carray(stack_doubles(levels), (n_levels,))
+    fallen = False
     for step in range(s0, s1):
+        # A story past its collapse drift, or a state no longer finite (NaN fails the
+        # comparison), ends the member's run: its peaks are those of the steps before.
+        for i in range(n_levels - 1):
+            drift[i] = u[i + 1] - u[i]
+            if not abs(drift[i]) <= collapse_drift[i]:
+                fallen = True
+        if fallen:
+            st[_COLLAPSED] = 1.0
+            st[_COLLAPSE_TIME] = step * dt
+            break
         a = ag[step] * scale  # x 1.0 is exact: unscaled members are unchanged
         # Structure without wall force: p - f(u_n), then the free velocities v_{n+1/2}.
         chain[0] = isolator_force(u[0], fp, k_el)
         for i in range(n_levels - 1):
-            drift[i] = u[i + 1] - u[i]
-            if stories_yield:  # post-yield spring plus slip element
-                chain[i + 1] = isolator_force(drift[i], f_story[i], k_post[i])
+            if nonlinear:  # the story law's force, less what P-Delta takes
+                chain[i + 1] = story_force(story_law, drift[i], s_state[i], s_fields[i]) \
+                    - gravity[i] * drift[i]
             else:
                 chain[i + 1] = k_story[i] * drift[i]
         for i in range(n_levels - 1):
@@ -205,13 +224,9 @@ def _member(levels, b, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u
 
         # Advance: the isolator's slip element sees this step's displacement increment, its
         # limit at this step's sliding speed (exactly f_limit without speed dependence: the
-        # branch only spares the bilinear law an exp); yielding stories their drift increments.
+        # branch only spares the bilinear law an exp).
         limit = f_limit if slow_drop == 0.0 else slip_limit(f_limit, slow_drop, rate, nxt[0])
         fp = plastic_spring(fp, dt * nxt[0], k_slip, limit)
-        if stories_yield:
-            for i in range(n_levels - 1):
-                f_story[i] = plastic_spring(f_story[i], dt * (nxt[i + 1] - nxt[i]),
-                                             k_slip_story[i], f_limit_story[i])
         for i in range(n_levels):
             v[i] = nxt[i]
             u[i] = u[i] + dt * nxt[i]
@@ -220,7 +235,6 @@ def _member(levels, b, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u
         u_all[b, i], v_all[b, i], peak_level[b, i] = u[i], v[i], pa[i]
     for i in range(n_levels - 1):
         peak_story[b, i] = pd[i]
-        f_story_all[b, i] = f_story[i]
     st[_FP], st[_V_IMP], st[_DELTA_PREV] = fp, v_imp, delta_prev
     st[_IN_CONTACT] = 1.0 if in_contact else 0.0
     pk[_P_ISO], pk[_P_INDENT], pk[_P_FORCE], pk[_P_ENERGY] = p_iso, p_indent, p_force, energy
@@ -228,17 +242,17 @@ def _member(levels, b, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u
 
 
 @njit(**JIT)
-def _run(levels, members, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u, v,
-         f_story, state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u,
-         h_acc, h_f, h_d):
+def _run(levels, law_tag, members, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u, v,
+         story_fields, story_state, state, peak_level, peak_story, peak_scalar, n_impacts,
+         hist_row, every, h_u, h_acc, h_f, h_d):
     """Steps s0 <= step < s1 of the members in `members` (indices), one after the other. One
     compilation per number of levels (the length of `levels` is part of its type): loops of
     known length, the member's arrays on the stack. It releases the GIL: run_simulation hands
     batches of members to threads (numba_support.run_members)."""
     for b in members:
-        _member(levels, b, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u, v, f_story,
-                state, peak_level, peak_story, peak_scalar, n_impacts, hist_row, every, h_u,
-                h_acc, h_f, h_d)
+        _member(levels, law_tag, b, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u, v,
+                story_fields, story_state, state, peak_level, peak_story, peak_scalar,
+                n_impacts, hist_row, every, h_u, h_acc, h_f, h_d)
 
 
 @njit(**JIT)
@@ -281,7 +295,7 @@ def member_parameters(arrays, contact, compliance, scale) -> np.ndarray:
     par[:, _F_LIMIT] = arrays.f_limit
     par[:, _SLOW_DROP] = arrays.slow_drop
     par[:, _RATE] = arrays.rate
-    par[:, _STORIES_YIELD] = arrays.story_yields
+    par[:, _STORIES_NONLINEAR] = ~arrays.story_linear
     par[:, _GAP] = contact.clear_gap
     par[:, _SCALE] = scale
     for i, name in enumerate(LAW_ARGUMENTS):
@@ -308,10 +322,12 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
     par = member_parameters(arrays, contact, compliance, scale)
     law = np.ascontiguousarray(contact.law, dtype=np.int64)
     u, v = np.zeros((size, n_levels)), np.zeros((size, n_levels))
-    f_story = np.zeros((size, n_levels - 1))
-    # Per story: elastic stiffness, post-yield stiffness, slip stiffness, slip limit.
-    story = np.ascontiguousarray(np.stack([arrays.story_k, arrays.story_k_post,
-                                           arrays.story_k_slip, arrays.story_f_limit], axis=1))
+    # Per story: the linear stiffness (P-Delta folded in), P-Delta's stiffness (subtracted
+    # from a nonlinear law's force), the collapse drift; the story law's constants and state.
+    story = np.ascontiguousarray(np.stack([arrays.story_k, arrays.story_gravity,
+                                           arrays.collapse_drift], axis=1))
+    story_fields = np.ascontiguousarray(arrays.story_fields, dtype=np.float64)
+    story_state = np.array(arrays.story_state, dtype=np.float64, order="C")
     state = np.zeros((size, _N_STATE))
     state[:, _V_IMP] = 1.0
     peak_level, peak_story = np.zeros((size, n_levels)), np.zeros((size, n_levels - 1))
@@ -333,15 +349,23 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
 
     args = (ag, float(dt), np.ascontiguousarray(op.transpose(0, 2, 1)), bands,
             np.ascontiguousarray(wall_response), np.ascontiguousarray(arrays.masses), story,
-            law, par, u, v, f_story, state, peak_level, peak_story, peak_scalar, n_impacts,
-            hist_row, every, h_u, h_acc, h_f, h_d)
-    run_members(size, n_steps, progress,
-                lambda members, s0, s1: _run(levels, members, s0, s1, *args))
+            law, par, u, v, story_fields, story_state, state, peak_level, peak_story,
+            peak_scalar, n_impacts, hist_row, every, h_u, h_acc, h_f, h_d)
+    codes = arrays.story_code
+
+    def steps(members, s0, s1):
+        # One kernel per story law (law_tag): each member runs the one its stories follow.
+        for code in np.unique(codes[members]):
+            _run(levels, (0,) * (int(code) + 1), members[codes[members] == code], s0, s1,
+                 *args)
+    run_members(size, n_steps, progress, steps)
 
     by_name = {"peak_total_accel": peak_level, "peak_interstory_drift": peak_story,
                "n_impacts": n_impacts,
                **{name: peak_scalar[:, i].copy() for i, name in enumerate(_SCALAR_PEAKS)}}
     result = {q.name: by_name[q.name] for q in PEAKS}
+    result["collapsed"] = state[:, _COLLAPSED] != 0.0
+    result["collapse_time"] = np.where(result["collapsed"], state[:, _COLLAPSE_TIME], np.nan)
     hist = None
     if history is not None:
         hist = {"time": np.arange(n_out) * every * dt, "isolator_disp": h_u[inverse],

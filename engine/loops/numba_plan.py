@@ -32,6 +32,7 @@ from ..results import (
     empty_plan_history,
 )
 from ..scheme import step_operators
+from ..stories.registry import MAX_FIELDS, MAX_STATE
 from . import compiled
 from .compiled import (
     JIT,
@@ -42,6 +43,7 @@ from .compiled import (
     onset_weight,
     radial_return,
     slip_limit,
+    story_force,
 )
 from .numba_support import (
     add2,
@@ -61,12 +63,12 @@ install_cache_locator(Path(__file__), [compiled.__file__, *PHYSICS_FILES])
 
 # Per-member scalars, and per wall direction: the clear gap, then the law's arguments.
 (_COMPLIANCE, _COMPLIANCE_Y, _ANISOTROPIC, _MU_WALL, _K_ELASTIC, _K_SLIP, _F_LIMIT, _SLOW_DROP,
- _RATE, _STORIES_YIELD, _COS, _SIN, _N_PAR) = range(13)
+ _RATE, _STORIES_YIELD, _STORIES_UNIAXIAL, _COS, _SIN, _N_PAR) = range(14)
 _GAP, _LAW_ARGS = 0, 1
 _N_WALL_PAR = _LAW_ARGS + len(LAW_ARGUMENTS)
-# State carried between chunks: the isolator's slip force (x, y), then per wall direction its
-# impact velocity, previous indentation and contact flag.
-_FPX, _FPY, _WALL_STATE = 0, 1, 2
+# State carried between chunks: the isolator's slip force (x, y), whether the member collapsed
+# and when, then per wall direction its impact velocity, previous indentation and contact flag.
+_FPX, _FPY, _COLLAPSED, _COLLAPSE_TIME, _WALL_STATE = 0, 1, 2, 3, 4
 # Scalar float peaks: resultant isolator displacement (squared while running, as every
 # displacement and acceleration peak: run_plan roots them), indentation, force, energy.
 _P_ISO, _P_INDENT, _P_FORCE, _P_ENERGY = range(4)
@@ -102,8 +104,9 @@ def _friction(nx, w, comp, comp_y, limit, nrm_x, nrm_y):
 
 
 @njit(**JIT)
-def _member(levels, pairs, circular, b, s0, s1, ag, dt, op, wall, story_k, mass, story, law,
-            par, wall_par, u_all, v_all, f_story_all, state, peak_level, peak_level_xy,
+def _member(levels, pairs, circular, law_tag, b, s0, s1, ag, dt, op, wall, story_k, mass,
+            story, law, par, wall_par, u_all, v_all, f_story_all, story_fields, story_state,
+            state, peak_level, peak_level_xy,
             peak_story, peak_story_xy, peak_iso_xy, peak_scalar, n_impacts, peak_wall, hist_row,
             every, h_u, h_acc, h_f, h_d):
     """Steps s0 <= step < s1 of member b (see the module docstring). Like the planar kernel,
@@ -113,7 +116,13 @@ def _member(levels, pairs, circular, b, s0, s1, ag, dt, op, wall, story_k, mass,
     identical arithmetic done on pairs, both lanes at once (numba_support.add2 and kin). Peaks
     are kept squared, per direction and resultant: the square root of the largest square is
     the largest magnitude, bit for bit (sqrt(x * x) == |x| in binary floating point), and
-    run_plan roots them at the end."""
+    run_plan roots them at the end. Stories of a uniaxial law (one without plan_fields,
+    engine/stories/) act along x and y each on their own (two springs of the law per story,
+    uncoupled), its force compiled in for the member's law only (law_tag, as the planar
+    kernel's). A member that has collapsed stops."""
+    st = state[b]
+    if st[_COLLAPSED] != 0.0:
+        return
     n_levels = len(levels)
     n_st = n_levels - 1
     ot = carray(data_pointer(op[b]), (2 * n_levels, n_levels, 2))
@@ -129,11 +138,16 @@ def _member(levels, pairs, circular, b, s0, s1, ag, dt, op, wall, story_k, mass,
     stories_yield = p[_STORIES_YIELD] != 0.0
     cs, sn = p[_COS], p[_SIN]
     k_post, k_slip_story, f_limit_story = story[b, 1], story[b, 2], story[b, 3]
+    collapse_square = story[b, 4]  # the collapse drift squared: no root per step
+    gravity = story[b, 5]
+    uniaxial = p[_STORIES_UNIAXIAL] != 0.0
+    story_law = len(law_tag) - 1
+    s_fields = carray(data_pointer(story_fields[b]), (n_levels - 1, MAX_FIELDS))
+    s_state = carray(data_pointer(story_state[b]), (n_levels - 1, 2, MAX_STATE))
     n_walls = law.shape[1]
     codes = law[b]
     half_dt = 0.5 * dt
 
-    st = state[b]
     fpx, fpy = st[_FPX], st[_FPY]
     # per wall direction: impact velocity, previous indentation, in contact (1.0 or 0.0),
     # and the clear gap
@@ -180,12 +194,28 @@ def _member(levels, pairs, circular, b, s0, s1, ag, dt, op, wall, story_k, mass,
         pd2[i] = peak_story[b, i]
 
     for step in range(s0, s1):
-        acc = (cs * ag[step, 0] - sn * ag[step, 1], sn * ag[step, 0] + cs * ag[step, 1])
-        store_pair(c, 0, add2(mul2((k_el, k_el), load_pair(u, 0)), (fpx, fpy)))
+        # A story whose drift vector is past its collapse drift, or a state no longer finite,
+        # ends the member's run (numba_loop.py's rule, on the drift's magnitude).
+        fallen = False
         for i in range(n_st):
             drift = sub2(load_pair(u, i + 1), load_pair(u, i))
             store_pair(dr, i, drift)
-            if stories_yield:
+            if not drift[0] * drift[0] + drift[1] * drift[1] <= collapse_square[i]:
+                fallen = True
+        if fallen:
+            st[_COLLAPSED] = 1.0
+            st[_COLLAPSE_TIME] = step * dt
+            break
+        acc = (cs * ag[step, 0] - sn * ag[step, 1], sn * ag[step, 0] + cs * ag[step, 1])
+        store_pair(c, 0, add2(mul2((k_el, k_el), load_pair(u, 0)), (fpx, fpy)))
+        for i in range(n_st):
+            drift = load_pair(dr, i)
+            if uniaxial:  # the law along x and along y, less what P-Delta takes
+                c[i + 1, 0] = story_force(story_law, drift[0], s_state[i, 0], s_fields[i]) \
+                    - gravity[i] * drift[0]
+                c[i + 1, 1] = story_force(story_law, drift[1], s_state[i, 1], s_fields[i]) \
+                    - gravity[i] * drift[1]
+            elif stories_yield:
                 store_pair(c, i + 1, add2(mul2((k_post[i], k_post[i]), drift),
                                           load_pair(fs, i)))
             else:
@@ -323,16 +353,17 @@ def _member(levels, pairs, circular, b, s0, s1, ag, dt, op, wall, story_k, mass,
 
 
 @njit(**JIT)
-def _run(levels, pairs, circular, members, s0, s1, ag, dt, op, wall, story_k, mass, story, law,
-         par, wall_par, u, v, f_story, state, peak_level, peak_level_xy, peak_story,
-         peak_story_xy, peak_iso_xy, peak_scalar, n_impacts, peak_wall, hist_row, every, h_u,
-         h_acc, h_f, h_d):
+def _run(levels, pairs, circular, law_tag, members, s0, s1, ag, dt, op, wall, story_k, mass,
+         story, law, par, wall_par, u, v, f_story, story_fields, story_state, state, peak_level,
+         peak_level_xy, peak_story, peak_story_xy, peak_iso_xy, peak_scalar, n_impacts,
+         peak_wall, hist_row, every, h_u, h_acc, h_f, h_d):
     """Steps s0 <= step < s1 of the members in `members` (indices), one after the other. It
     releases the GIL (nogil), so that run_plan's threads run batches of members at once: the
     same parallelism as numba's parallel loops, at a third of their compile time."""
     for b in members:
-        _member(levels, pairs, circular, b, s0, s1, ag, dt, op, wall, story_k, mass, story,
-                law, par, wall_par, u, v, f_story, state, peak_level, peak_level_xy,
+        _member(levels, pairs, circular, law_tag, b, s0, s1, ag, dt, op, wall, story_k, mass,
+                story, law, par, wall_par, u, v, f_story, story_fields, story_state, state,
+                peak_level, peak_level_xy,
                 peak_story, peak_story_xy, peak_iso_xy, peak_scalar, n_impacts, peak_wall,
                 hist_row, every, h_u, h_acc, h_f, h_d)
 
@@ -363,6 +394,7 @@ def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, histor
     par[:, _F_LIMIT], par[:, _SLOW_DROP], par[:, _RATE] = (arrays.f_limit, arrays.slow_drop,
                                                            arrays.rate)
     par[:, _STORIES_YIELD] = arrays.story_yields
+    par[:, _STORIES_UNIAXIAL] = arrays.story_uniaxial
     # cos and sin times the scale, as the NumPy loop forms them (the same bits)
     par[:, _COS], par[:, _SIN] = np.cos(angle) * scale, np.sin(angle) * scale
     n_dir = len(contacts)
@@ -373,7 +405,13 @@ def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, histor
         for i, name in enumerate(LAW_ARGUMENTS):
             wall_par[:, d, _LAW_ARGS + i] = getattr(c, name)
     story = np.ascontiguousarray(np.stack([arrays.story_k, arrays.story_k_post,
-                                           arrays.story_k_slip, arrays.story_f_limit], axis=1))
+                                           arrays.story_k_slip, arrays.story_f_limit,
+                                           arrays.collapse_drift**2, arrays.story_gravity],
+                                          axis=1))
+    story_fields = np.ascontiguousarray(arrays.story_fields, dtype=np.float64)
+    # each story's law state twice: along x and along y
+    story_state = np.ascontiguousarray(np.repeat(arrays.story_state[:, :, None, :], 2, axis=2),
+                                       dtype=np.float64)
     n_dirs = len(DIRECTIONS)
     u, v = np.zeros((size, n_levels, n_dirs)), np.zeros((size, n_levels, n_dirs))
     f_story = np.zeros((size, n_levels - 1, n_dirs))
@@ -393,21 +431,28 @@ def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, histor
         every = int(history.every)
     hist = empty_plan_history(rows, n_steps, every, dt, n_levels)
     args = (np.ascontiguousarray(ag, dtype=np.float64), float(dt), op_xy, wall_xy, story_xy,
-            np.ascontiguousarray(arrays.masses), story, law, par, wall_par, u, v, f_story, state,
+            np.ascontiguousarray(arrays.masses), story, law, par, wall_par, u, v, f_story,
+            story_fields, story_state, state,
             peaks["peak_total_accel"], peaks["peak_total_accel_xy"],
             peaks["peak_interstory_drift"], peaks["peak_interstory_drift_xy"],
             peaks["peak_isolator_disp_xy"], scalar, peaks["n_impacts"],
             peaks["max_impact_force_wall"], hist_row, every, hist["isolator_disp"],
             hist["total_accel"], hist["impact_force"], hist["indentation"])
     circular = moat == "circular"
+    codes = arrays.story_code  # one kernel per story law (law_tag), as the planar loop
     run_members(size, n_steps, progress,
-                lambda members, s0, s1: _run(levels, pairs, circular, members, s0, s1, *args))
+                lambda members, s0, s1: [
+                    _run(levels, pairs, circular, (0,) * (int(code) + 1),
+                         members[codes[members] == code], s0, s1, *args)
+                    for code in np.unique(codes[members])])
     for i, name in enumerate(("peak_isolator_disp", "max_indentation", "max_impact_force",
                               "impact_energy")):
         peaks[name] = scalar[:, i].copy()
     for name in ("peak_total_accel", "peak_interstory_drift", "peak_isolator_disp",
                  "peak_total_accel_xy", "peak_interstory_drift_xy", "peak_isolator_disp_xy"):
         peaks[name] = np.sqrt(peaks[name])  # kept squared by the kernel
+    peaks["collapsed"] = state[:, _COLLAPSED] != 0.0
+    peaks["collapse_time"] = np.where(peaks["collapsed"], state[:, _COLLAPSE_TIME], np.nan)
     if history is None:
         return peaks, None
     hist = {"time": hist["time"], **{q.name: hist[q.name][inverse] for q in PLAN_HISTORIES},

@@ -13,8 +13,9 @@ import numpy as np
 from ..building import BuildingArrays
 from ..impact.contact import fill_force_terms, law_blocks
 from ..isolators.hysteresis import isolator_force, plastic_spring_force, slip_limit
-from ..results import empty_peaks
+from ..results import empty_collapse, empty_peaks
 from ..scheme import implicit_force, onset_weight, step_operators
+from ..stories.registry import BY_CODE as STORY_LAWS_BY_CODE
 
 
 def ground_motion(accel, accel_dt: float, dt: float, n_steps: int) -> np.ndarray:
@@ -53,11 +54,15 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
     rhs = np.zeros((size, 2 * n_levels))  # [p - f(u_n), v_{n-1/2}]
     chain = np.zeros((size, n_levels + 1))  # forces in isolator, stories 1..N, free end
     f_plastic = np.zeros(size)
-    f_story = np.zeros((size, n_levels - 1))  # slip forces of yielding stories
-    yields = b.story_yields
-    # Decided once, not every step: whether any story yields, and whether any isolator's slip
-    # limit depends on speed (without, slip_limit is f_limit exactly: no exp needed).
-    any_yields = bool(yields.any())
+    # Nonlinear stories: each member's law (its `force`, called story by story: the law's
+    # physics as written, for scalars) on its own copy of the initial state.
+    state = b.story_state.copy()
+    nonlinear = [(m, STORY_LAWS_BY_CODE[b.story_code[m]].force)
+                 for m in np.flatnonzero(~b.story_linear)]
+    collapse = empty_collapse(size)
+    collapsed, collapse_time = collapse["collapsed"], collapse["collapse_time"]
+    # Decided once, not every step: whether any isolator's slip limit depends on speed
+    # (without, slip_limit is f_limit exactly: no exp needed).
     any_speed = bool(np.any(b.slow_drop != 0))
     elastic = np.zeros(size)
     dashpot = np.zeros(size)
@@ -85,15 +90,30 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
     report_every = max(n_steps // 100, 1)
 
     for step in range(n_steps):
+        drift = np.diff(u, axis=1)
+        # A story past its collapse drift, or a state no longer finite, ends the run: the
+        # member is set at rest, unshaken, from this step on, its peaks those of the steps
+        # before (NaN fails the comparison).
+        fallen = ~np.all(np.abs(drift) <= b.collapse_drift, axis=1) & ~collapsed
+        if fallen.any():
+            collapsed |= fallen
+            collapse_time[fallen] = step * dt
+            scale = np.where(collapsed, 0.0, scale)
+            for array in (u, v_half, f_plastic):
+                array[fallen] = 0.0
+            drift = np.diff(u, axis=1)
         a = ag[step] * scale  # (B,): x 1.0 is exact, unscaled members are unchanged
         u0 = u[:, 0]
         # Structure without wall force this step: p - f and the free velocities.
         chain[:, 0] = isolator_force(u0, f_plastic, b.k_elastic)
-        drift = np.diff(u, axis=1)
         np.multiply(b.story_k, drift, out=chain[:, 1:n_levels])
-        if any_yields:  # bilinear stories: post-yield spring plus slip element
-            chain[yields, 1:n_levels] = isolator_force(drift[yields], f_story[yields],
-                                                       b.story_k_post[yields])
+        for m, force in nonlinear:  # the law's force, less what P-Delta takes
+            if not collapsed[m]:
+                for i in range(n_levels - 1):
+                    chain[m, i + 1] = force(drift[m, i], state[m, i], b.story_fields[m, i]) \
+                        - b.story_gravity[m, i] * drift[m, i]
+            else:
+                chain[m, 1:n_levels] = 0.0
         np.subtract(chain[:, 1:], chain[:, :-1], out=rhs[:, :n_levels])
         rhs[:, :n_levels] -= mass * a[:, None]
         rhs[:, n_levels:] = v_half
@@ -139,14 +159,10 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
             hist["indentation"][:, k] = np.maximum(delta[hist_members], 0.0)
 
         # Advance: the isolator's slip element sees this step's displacement increment, its
-        # limit at this step's sliding speed; yielding stories their drift increments.
+        # limit at this step's sliding speed.
         limit = slip_limit(b.f_limit, b.slow_drop, b.rate, v_next[:, 0]) if any_speed \
             else b.f_limit
         f_plastic = plastic_spring_force(f_plastic, dt * v_next[:, 0], b.k_slip, limit)
-        if any_yields:
-            f_story[yields] = plastic_spring_force(
-                f_story[yields], dt * np.diff(v_next[yields], axis=1),
-                b.story_k_slip[yields], b.story_f_limit[yields])
         v_half = v_next
         u = u + dt * v_next
         if progress is not None and step % report_every == 0:
@@ -154,7 +170,7 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
     if progress is not None:
         progress(n_steps, n_steps)
 
-    return peaks, hist
+    return {**peaks, **collapse}, hist
 
 
 def run_two_body(contact, v, dt, m_eff, max_steps):

@@ -29,8 +29,9 @@ import numpy as np
 from ..building import BuildingArrays
 from ..impact.contact import fill_force_terms, law_blocks
 from ..isolators.hysteresis import radial_return, slip_limit
-from ..results import DIRECTIONS, PEAKS, PLAN_PEAKS, WALLS, empty_plan_history
+from ..results import DIRECTIONS, PEAKS, PLAN_PEAKS, WALLS, empty_collapse, empty_plan_history
 from ..scheme import implicit_force, onset_weight, step_operators
+from ..stories.registry import BY_CODE as STORY_LAWS_BY_CODE
 
 
 def ground_motion(accel, accel_dt: float, dt: float, n_steps: int) -> np.ndarray:
@@ -113,6 +114,11 @@ def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, an
     f_story = np.zeros((size, n_levels - 1, n_dir))
     yields = b.story_yields
     any_yields, any_speed = bool(yields.any()), bool(np.any(b.slow_drop != 0))
+    collapse = empty_collapse(size)
+    # Stories of a uniaxial law: the law along x and along y (uncoupled), each with its state.
+    state = np.repeat(b.story_state[:, :, None, :], n_dir, axis=2)
+    uniaxial = [(m, STORY_LAWS_BY_CODE[b.story_code[m]].force)
+                for m in np.flatnonzero(b.story_uniaxial)]
 
     peaks = {q.name: np.zeros((size, *q.trailing_shape(n_levels, len(WALLS[moat]))),
                               dtype=q.dtype) for q in (*PEAKS, *PLAN_PEAKS)}
@@ -124,15 +130,32 @@ def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, an
     report_every = max(n_steps // 100, 1)
     for step in range(n_steps):
         # The member's ground motion: the pair rotated by its angle, times its scale.
+        drift = np.diff(u, axis=1)
+        # A story whose drift vector is past its collapse drift, or a state no longer finite,
+        # ends the run: the member is set at rest, unshaken (numpy_loop.py's rule).
+        fallen = ~np.all(drift[..., 0] * drift[..., 0] + drift[..., 1] * drift[..., 1]
+                         <= b.collapse_drift**2, axis=1) & ~collapse["collapsed"]
+        if fallen.any():
+            collapse["collapsed"] |= fallen
+            collapse["collapse_time"][fallen] = step * dt
+            cos, sin = (np.where(collapse["collapsed"], 0.0, x) for x in (cos, sin))
+            for array in (u, v_half, f_plastic, f_story):
+                array[fallen] = 0.0
+            drift = np.diff(u, axis=1)
         a = np.column_stack([cos * ag[step, 0] - sin * ag[step, 1],
                              sin * ag[step, 0] + cos * ag[step, 1]])
         u0 = u[:, 0]
         chain[:, 0] = b.k_elastic[:, None] * u0 + f_plastic
-        drift = np.diff(u, axis=1)
         chain[:, 1:n_levels] = story_k * drift
         if any_yields:
             chain[yields, 1:n_levels] = (b.story_k_post[yields][:, :, None] * drift[yields]
                                          + f_story[yields])
+        for m, force in uniaxial:  # the law's force, less what P-Delta takes
+            for i in range(n_levels - 1):
+                for e in range(n_dir):
+                    chain[m, i + 1, e] = 0.0 if collapse["collapsed"][m] else \
+                        force(drift[m, i, e], state[m, i, e], b.story_fields[m, i]) \
+                        - b.story_gravity[m, i] * drift[m, i, e]
         rhs[:, :n_levels] = chain[:, 1:] - chain[:, :-1] - mass[:, :, None] * a[:, None, :]
         rhs[:, n_levels:] = v_half
         if b_y is None:
@@ -208,7 +231,7 @@ def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, an
         progress(n_steps, n_steps)
     if hist is not None:
         hist["members"] = np.asarray(history.members, dtype=int)
-    return peaks, hist
+    return {**peaks, **collapse}, hist
 
 
 def _friction(v_next, respond, comp_xy, limit, normal):

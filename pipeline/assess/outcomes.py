@@ -47,6 +47,21 @@ def effect(with_bumpers, without, tol: float = TOLERANCE) -> np.ndarray:
     return out
 
 
+def with_collapse(effects, collapsed_with, collapsed_without) -> np.ndarray:
+    """The effects (int8, `effect`'s) where a run collapsed: a collapse is a collapse, never
+    a large amplification. HURT where only the run with bumpers collapsed, HELPED where only
+    the one without, NEUTRAL where both did (nothing to tell them apart); the others as they
+    were. Arrays broadcast."""
+    c_with = np.asarray(collapsed_with, bool)
+    c_without = np.asarray(collapsed_without, bool)
+    out = np.array(np.broadcast_to(effects, np.broadcast_shapes(
+        np.shape(effects), c_with.shape, c_without.shape)), dtype=np.int8)
+    out[c_with & ~c_without] = HURT
+    out[c_without & ~c_with] = HELPED
+    out[c_with & c_without] = NEUTRAL
+    return out
+
+
 def where_contact(impacts_with, impacts_without) -> np.ndarray:
     """bool: contact in at least one of the two configurations (n_impacts > 0)."""
     return (np.asarray(impacts_with) > 0) | (np.asarray(impacts_without) > 0)

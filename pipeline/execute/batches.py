@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 import engine
-from engine.results import PEAKS, PLAN_PEAKS
+from engine.results import run_quantities
 
 from ..grid import buildings_for, contact_for
 
@@ -35,7 +35,8 @@ def simulate_batch(accel: np.ndarray, accel_dt: float, members: np.ndarray,
                    factor: float | None = None, progress=None,
                    report: tuple[str, str] | None = None) -> dict[str, np.ndarray]:
     """Peaks of (b,) members (grid.MEMBER_DTYPE) under one record (m/s^2 every accel_dt s):
-    peak name -> (b, ...) array (engine.results.PEAKS). building: the sweep's; a member's
+    peak name -> (b, ...) array (engine.results.run_quantities: PEAKS, with collapsed and
+    collapse_time for a building that can collapse). building: the sweep's; a member's
     isolator parameters replace its own (grid.buildings_for). moat: None for a planar run
     (accel (N,)), else the moat of a run in plan under a record pair (accel (N, 2), each
     member at its angle): PEAKS as resultants, then PLAN_PEAKS. factor: the record's
@@ -58,8 +59,16 @@ def simulate_batch(accel: np.ndarray, accel_dt: float, members: np.ndarray,
     result = engine.simulate(accel, accel_dt, contact_for(members),
                              building=buildings_for(members, building), dt=dt,
                              progress=progress, scale=member_scale(members, factor), **plan)
+    if not building.can_collapse and np.any(result.collapsed):
+        # Without a collapse criterion only a numerical instability ends a run: its peaks
+        # would be those of a run cut short, so the sweep stops rather than store them.
+        first = int(np.argmax(result.collapsed))
+        raise engine.EngineError(
+            f"a member became numerically unstable at t = {result.collapse_time[first]:g} s "
+            f"(its state was no longer finite); give the building a collapse_drift_ratio to "
+            f"count such runs as collapses")
     return {q.name: np.asarray(getattr(result, q.name), dtype=q.dtype)
-            for q in (PEAKS if moat is None else (*PEAKS, *PLAN_PEAKS))}
+            for q in run_quantities(moat, building.can_collapse)}
 
 
 def member_scale(members: np.ndarray, factor: float | None) -> np.ndarray | None:

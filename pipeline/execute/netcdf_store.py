@@ -146,7 +146,8 @@ class NetCDFStore:
         self.key = sweep_key(grid.every_member, self.contexts)
         self.total = len(run.records) * grid.n_members
         self.copies: dict = {}  # see pending
-        self.results = [empty_peaks(grid.n_members, run.building.n_levels, run.moat)
+        self.results = [empty_peaks(grid.n_members, run.building.n_levels, run.moat,
+                                    run.building.can_collapse)
                         for _ in run.records]
 
     def pending(self, sizes: list[int]) -> list[batches.Batch]:

@@ -19,14 +19,23 @@ option, labelled as removing the record-to-record scatter).
 
 Pairs that share an earthquake are weighted 1 / (their number) in every statistic
 (pipeline.assess.fragility.event_weights): no event dominates, every pair still runs.
+
+The building's code quantities are its design basis (pipeline.motions.bounds): T_M, D_M, D_TM
+from the isolators' hysteresis (the model's isolation dashpot shown beside, not counted) at
+upper-bound, nominal and lower-bound isolator properties; a suite is made for one bound (the
+lower by default: displacements, gaps, contact), whose building the study runs
+(CodeSuite.building) and whose D_M, D_TM set its gaps; the ASCE 7 rule's period range runs from
+0.75 T_M (upper bound) to 1.25 T_M (lower bound) whatever the bound run.
 """
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
 
 from . import rules as scaling_rules
+from .bounds import DEFAULT_BOUND
 
 SITE = {"s_ms": 1.5, "s_m1": 0.9, "t_long": 8.0}
 """The default site: S_MS g, S_M1 g, T_L s."""
@@ -42,8 +51,12 @@ DEFAULT_RULE = next(iter(scaling_rules.RULES))
 class CodeSuite:
     """Pairs scaled to the MCE_R by a rule: pairs (RecordPair), names, factors (R,) at the
     MCE_R, weights (R,) per earthquake, the target (pipeline.motions.target.TargetSpectrum), the
-    building's code quantities (pipeline.motions.target.IsolationDesign), the scaling (a
-    pipeline.motions.code_scaling.ScaledPairs, or None for the displacement rule) and the rule."""
+    building's code quantities at the bound run (design: pipeline.motions.target.IsolationDesign)
+    and at every bound (basis: pipeline.motions.bounds.DesignBasis), the scaling (a
+    pipeline.motions.code_scaling.ScaledPairs, or None for the displacement rule) and the rule.
+    `building`: the engine.Building the study runs (at the bound's isolator properties; with
+    superstructure, a pipeline.motions.superstructure.SuperstructureDesign, its stories those
+    the code designs: `with_superstructure`)."""
 
     pairs: list
     names: list
@@ -55,35 +68,57 @@ class CodeSuite:
     scaled: object
     rule: str
     site: dict
+    basis: object
+    superstructure: object = None
+
+    @property
+    def building(self):
+        """The engine.Building the study runs: the given one at the bound's properties, on
+        the code-designed stories when the suite has a superstructure."""
+        return self.basis.building if self.superstructure is None \
+            else self.superstructure.building
+
+    def with_superstructure(self, story_law: str, **options) -> CodeSuite:
+        """This suite running the superstructure the code designs on its building
+        (pipeline.motions.superstructure.for_basis); options: r_i, overstrength, p_delta,
+        collapse_drift_ratio."""
+        from .superstructure import for_basis
+
+        design = for_basis(self.basis, story_law, **options)
+        return dataclasses.replace(self, superstructure=design)
 
 
 def code_suite(pairs, names, building, rule: str = DEFAULT_RULE, s_ms: float = SITE["s_ms"],
                s_m1: float = SITE["s_m1"], t_long: float = SITE["t_long"],
-               dt: float | None = None) -> CodeSuite:
+               dt: float | None = None, bound: str = DEFAULT_BOUND,
+               factors=None) -> CodeSuite:
     """Scale the pairs (RecordPair) to the site's MCE_R by the rule (see the module
-    docstring). Pairs the rule excludes (factor limits) are dropped and listed in
-    .scaled.excluded."""
+    docstring), for the building (engine.Building, at nominal properties) run at `bound`
+    (pipeline.motions.bounds.BOUND_NAMES; factors: its PropertyFactors, default the module's).
+    Pairs the rule excludes (factor limits) are dropped and listed in .scaled.excluded."""
     from pipeline.assess.fragility_outcomes import event_weights
-    from pipeline.motions.target import asce7_target, isolation_design
+    from pipeline.motions.bounds import design_basis
+    from pipeline.motions.target import asce7_target
 
     scaling = scaling_rules.rule(rule)  # ValueError listing the rules for another name
-    # The model's isolation dashpot is part of its isolation system: the code's effective
-    # damping beta_M counts every energy the system dissipates (section 17.5.3), so D_M and
-    # T_M are those of the building that is run.
-    design = isolation_design(s_m1, building, dashpot=True)
+    # D_M and T_M from the isolators' hysteresis at each bound (ASCE 7-22 17.2.8.4, 17.5.3):
+    # the model's isolation dashpot is numerical damping no prototype test measures, shown
+    # beside (basis.with_dashpot), never counted.
+    basis = design_basis(s_m1, building, bound, factors)
     target = asce7_target(s_ms, s_m1, t_long, level="MCE_R")
-    chosen, factors, scaled = scaling.factors(pairs, target, design, building, dt)
+    chosen, kept, scaled = scaling.factors(pairs, target, basis, basis.building, dt)
     pairs = [pairs[i] for i in chosen]
     names = [names[i] for i in chosen]
     events = [str(p.event) for p in pairs]
-    return CodeSuite(pairs, names, factors, event_weights(events), events, target, design,
-                     scaled, rule, {"s_ms": s_ms, "s_m1": s_m1, "t_long": t_long})
+    return CodeSuite(pairs, names, kept, event_weights(events), events, target, basis.design,
+                     scaled, rule, {"s_ms": s_ms, "s_m1": s_m1, "t_long": t_long}, basis)
 
 
 def archive_variables(suite: CodeSuite) -> tuple[dict, dict, dict]:
     """(data variables, coordinates, attributes) saying how the suite was scaled: each
     record's MCE_R factor and weight, the target and the suite's scaled spectrum over
-    `period`, the rule, its clause and period range, the building's T_M, D_M, D_TM."""
+    `period`, the rule, its clause and period range, the building's T_M, D_M, D_TM at the
+    bound run (and at every bound, with the dashpot beside: DesignBasis.attributes)."""
     from pipeline.archive import variable
 
     data = {
@@ -100,7 +135,10 @@ def archive_variables(suite: CodeSuite) -> tuple[dict, dict, dict]:
              "D_M": suite.design.d_m, "D_TM": suite.design.d_tm,
              "beta_M": suite.design.beta_m, "S_MS_g": suite.site["s_ms"],
              "S_M1_g": suite.site["s_m1"], "T_L": suite.site["t_long"],
-             "levels": ", ".join(f"{k} {v:.4g} x MCE_R" for k, v in LEVELS.items())}
+             "levels": ", ".join(f"{k} {v:.4g} x MCE_R" for k, v in LEVELS.items()),
+             **suite.basis.attributes(),
+             **({"superstructure": "the building's own stories (linear: the paper's model)"}
+                if suite.superstructure is None else suite.superstructure.attributes())}
     if suite.scaled is not None:
         s = suite.scaled
         data["target_sa"] = variable("period", s.target, "m s-2",
@@ -119,11 +157,15 @@ def archive_variables(suite: CodeSuite) -> tuple[dict, dict, dict]:
 
 
 def describe(suite: CodeSuite) -> str:
-    """One line: the rule, the site, T_M, D_M and the factors' spread."""
+    """One line: the rule, the site, the bound run, T_M, D_M (and with the model's dashpot
+    counted, beside) and the factors' spread."""
     f = suite.factors
     site = suite.site
+    basis = suite.basis
+    dashpot = "" if basis.with_dashpot is None else \
+        f" ({basis.with_dashpot[basis.bound].d_m * 100:.3g} cm with the model's dashpot counted)"
     return (f"{len(suite.pairs)} pairs scaled to the MCE_R by {suite.rule} (S_MS "
             f"{site['s_ms']:g} g, S_M1 {site['s_m1']:g} g, T_L {site['t_long']:g} s); "
-            f"T_M {suite.design.t_m:.3g} s, D_M {suite.design.d_m * 100:.3g} cm, D_TM "
-            f"{suite.design.d_tm * 100:.3g} cm; factors {f.min():.3g}-{f.max():.3g} (median "
-            f"{np.median(f):.3g})")
+            f"{basis.bound}-bound isolator properties: T_M {suite.design.t_m:.3g} s, D_M "
+            f"{suite.design.d_m * 100:.3g} cm{dashpot}, D_TM {suite.design.d_tm * 100:.3g} cm; "
+            f"factors {f.min():.3g}-{f.max():.3g} (median {np.median(f):.3g})")

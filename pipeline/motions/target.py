@@ -210,7 +210,8 @@ class IsolationDesign:
 
 
 def isolation_design(s_m1: float, building=None, *, torsion_factor: float = TORSION_FACTOR,
-                     dashpot: bool = False) -> IsolationDesign:
+                     dashpot: bool = False,
+                     supplemental_damping: float = 0.0) -> IsolationDesign:
     """D_M and T_M of an isolated building by the code's equivalent-linear procedure.
 
     ASCE 7-22 section 17.5.3: D_M = G S_M1 T_M / (4 pi^2 B_M), T_M = 2 pi sqrt(W / (k_M G_b))
@@ -220,7 +221,12 @@ def isolation_design(s_m1: float, building=None, *, torsion_factor: float = TORS
     E / (2 pi k_M D_M^2), E the energy dissipated per cycle at D_M (the law's
     energy_per_cycle, where each law states its loop). dashpot=True adds the model's isolation
     dashpot (damping="paper": c = 2 zeta_iso sqrt(k_0 M)): E = pi c w_M D^2, i.e.
-    c w_M / (2 k_M) more damping; the code's procedure counts hysteresis only (default).
+    c w_M / (2 k_M) more damping; the code's procedure counts hysteresis only (default): a
+    prototype test of a bearing does not measure the model's dashpot (dashpot=True is there to
+    show what counting it would give, pipeline.motions.bounds). supplemental_damping: the
+    effective damping ratio of supplemental dampers the building has (added to beta_M;
+    default 0: the building files declare none). Upper- and lower-bound properties:
+    pipeline.motions.bounds.design_basis calls this at each.
 
     D_M depends on itself through k_M and B_M: it is the root of D - G S_M1 T_M(D) /
     (4 pi^2 B_M(D)), found by brentq after a scan of (1 micron, the bound at the post-yield
@@ -237,6 +243,9 @@ def isolation_design(s_m1: float, building=None, *, torsion_factor: float = TORS
     import engine
 
     _positive(s_m1=s_m1)
+    if not (math.isfinite(supplemental_damping) and 0 <= supplemental_damping < 1):
+        raise ValueError(f"supplemental_damping must be a ratio in [0, 1), got "
+                         f"{supplemental_damping!r}")
     if not (math.isfinite(torsion_factor) and torsion_factor >= 1):
         raise ValueError(f"torsion_factor must be >= 1, got {torsion_factor!r}")
     b = engine.Building() if building is None else building
@@ -248,7 +257,7 @@ def isolation_design(s_m1: float, building=None, *, torsion_factor: float = TORS
         k = float(iso.effective_stiffness(mass, b.g, d))
         t = 2 * math.pi * math.sqrt(mass / k)
         beta = iso.energy_per_cycle(mass, b.g, d) / (2 * math.pi * k * d * d) \
-            + c_iso * (2 * math.pi / t) / (2 * k)
+            + c_iso * (2 * math.pi / t) / (2 * k) + supplemental_damping
         return k, t, beta, damping_coefficient(beta)
 
     def excess(d):

@@ -1,14 +1,24 @@
 """What the studies beyond the paper (suite, fragility, design, plan) share on their command
 lines and in their archives, declared once: the moat in plan (--moat), the wall's force
 capacity (--wall-capacity-mn), the site and the scaling rule (--sms-g, --sm1-g, --tl, --rule),
-the default record pairs (the FEMA P695 far-field set) and the bare wall's description in the
-archives' long names."""
+the isolator properties' bound a study runs (--bound, --lambda-max, --lambda-min), the
+superstructure (--stories, --r-i, --overstrength), the default
+record pairs (the FEMA P695 far-field set) and the bare wall's description in the archives'
+long names."""
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 
 from engine.results import WALLS
 from engine.units import KN_PER_MM
+from pipeline.motions.bounds import (
+    BOUND_NAMES,
+    BOUND_TEXT,
+    DEFAULT_BOUND,
+    LAMBDA_MAX,
+    LAMBDA_MIN,
+)
 from pipeline.motions.code_suite import DEFAULT_RULE, RULE_TEXT, SITE
 
 PAIR_SET = "far-field"
@@ -89,6 +99,76 @@ def site_options(p) -> None:
                        f"{k}: {v}" for k, v in RULE_TEXT.items()))
 
 
+def add_bound(p) -> None:
+    """--bound: the isolator properties the study runs and takes its gaps from (default the
+    lower bound: displacements, gaps, contact); --lambda-max, --lambda-min: the property
+    modification factors on Q_d and K_d (pipeline.motions.bounds)."""
+    p.add_argument("--bound", choices=BOUND_NAMES, default=DEFAULT_BOUND,
+                   help="the isolator properties the building runs at and the code's D_M, "
+                        "D_TM (the gaps) come from: " + "; ".join(
+                            f"{k}: {v}" for k, v in BOUND_TEXT.items())
+                        + f" (default {DEFAULT_BOUND}); T_M, D_M and D_TM at all three are "
+                        "stored")
+    p.add_argument("--lambda-max", type=float, default=LAMBDA_MAX, metavar="FACTOR",
+                   help="upper-bound property modification factor on the isolators' "
+                        "characteristic strength Q_d and post-yield stiffness K_d (friction "
+                        "pendulum: the friction), ASCE 7-22 17.2.8.4 (default "
+                        f"{LAMBDA_MAX:g}, UNVERIFIED: see pipeline.motions.bounds)")
+    p.add_argument("--lambda-min", type=float, default=LAMBDA_MIN, metavar="FACTOR",
+                   help="lower-bound property modification factor on Q_d and K_d (default "
+                        f"{LAMBDA_MIN:g}, UNVERIFIED: see pipeline.motions.bounds)")
+
+
+STORY_CHOICES = ("imk", "bilinear", "linear")
+"""--stories: the code-designed building on the deteriorating or the hardening story law, or
+the building's own stories (linear: the paper's model)."""
+
+
+def add_stories(p) -> None:
+    """--stories, --r-i, --overstrength: the superstructure a study runs
+    (pipeline.motions.superstructure)."""
+    from pipeline.motions.superstructure import (
+        COLLAPSE_DRIFT_RATIO,
+        OVERSTRENGTH,
+        R_I,
+        STORY_HEIGHT,
+    )
+
+    p.add_argument("--stories", choices=STORY_CHOICES, default=STORY_CHOICES[0],
+                   help="the superstructure: imk (default) the building the code designs on "
+                        "its isolation (ASCE 7-22 17.5.4-17.5.5: story strengths --overstrength "
+                        "x the design shears) on deteriorating stories (modified IMK), with "
+                        "P-Delta and collapse at a story drift of "
+                        f"{COLLAPSE_DRIFT_RATIO:g} of its height ({STORY_HEIGHT:g} m stories "
+                        "unless the building gives heights); in plan each story's law acts "
+                        "along x and y, uncoupled; bilinear: the same strengths, hardening "
+                        "stories; linear: the building's own stories (the paper's model)")
+    p.add_argument("--r-i", type=float, default=R_I, metavar="R_I",
+                   help="the superstructure's response modification R_I, 1 to 2 (ASCE 7-22 "
+                        f"17.5.4.2; default {R_I:g})")
+    p.add_argument("--overstrength", type=float, default=OVERSTRENGTH, metavar="FACTOR",
+                   help="story strength over its design shear (default "
+                        f"{OVERSTRENGTH:g}: a stated choice, see "
+                        "pipeline.motions.superstructure)")
+
+
+def property_factors(args):
+    """The pipeline.motions.bounds.PropertyFactors of --lambda-max, --lambda-min (the
+    module's defaults for a study without them); SweepError, one line, for factors the code
+    does not allow (max >= 1 >= min > 0)."""
+    from pipeline.errors import SweepError
+    from pipeline.motions.bounds import PropertyFactors
+
+    high = getattr(args, "lambda_max", LAMBDA_MAX)
+    low = getattr(args, "lambda_min", LAMBDA_MIN)
+    if not (math.isfinite(high) and high >= 1):
+        raise SweepError(f"--lambda-max must be >= 1 (the upper bound's factor), got {high:g}")
+    if not (math.isfinite(low) and 0 < low <= 1):
+        raise SweepError(f"--lambda-min must be in (0, 1] (the lower bound's factor), got "
+                         f"{low:g}")
+    return PropertyFactors.uniform(high, low)
+
+
 SITE_OPTIONS = {  # attribute: (option, what, unit, largest plausible value)
     "sms_g": ("--sms-g", "S_MS", "g", 5.0),
     "sm1_g": ("--sm1-g", "S_M1", "g", 4.0),
@@ -101,8 +181,6 @@ site-specific spectra stay well below; beyond it, most likely a value in percent
 def checked_site(args) -> None:
     """Refuse a site option no real site has, in one line naming the option, its unit and,
     for a spectral value in percent, the conversion (SweepError; before any compute)."""
-    import math
-
     from pipeline.errors import SweepError
 
     for name, (option, what, unit, largest) in SITE_OPTIONS.items():
@@ -117,14 +195,26 @@ def checked_site(args) -> None:
 
 
 def scaled_suite(args, pairs, names):
-    """The pairs scaled to the site's MCE_R by --rule (pipeline.motions.code_suite), the site
-    options checked first; SweepError, one line, for what the rule refuses."""
+    """The pairs scaled to the site's MCE_R by --rule (pipeline.motions.code_suite), for the
+    building run at --bound (a study without add_bound's options: the nominal bound, the
+    building as given) on the superstructure of --stories (without add_stories: the
+    building's own stories), the site options checked first; SweepError, one line, for what the
+    rule refuses. The study runs the suite's `building` (CodeSuite.building); its archive
+    says the design basis (pipeline.motions.code_suite.archive_variables), which the recipe
+    prints."""
     from pipeline.errors import SweepError
     from pipeline.motions.code_suite import code_suite
 
     checked_site(args)
+    factors = property_factors(args)
     try:
-        return code_suite(pairs, names, args.building, args.rule, args.sms_g, args.sm1_g,
-                          args.tl, args.dt)
+        suite = code_suite(pairs, names, args.building, args.rule, args.sms_g, args.sm1_g,
+                           args.tl, args.dt, bound=getattr(args, "bound", "nominal"),
+                           factors=factors)
+        stories = getattr(args, "stories", "linear")
+        if stories != "linear":
+            suite = suite.with_superstructure(stories, r_i=args.r_i,
+                                              overstrength=args.overstrength)
+        return suite
     except ValueError as err:
         raise SweepError(str(err)) from err

@@ -185,6 +185,8 @@ class Recipe:
         if args.replot:
             for line in _substitutions(ds):
                 print(line)
+        if "design_basis" in ds.attrs:  # a study on the code's design (studies.common.options)
+            print("design basis:", ds.attrs["design_basis"])
         print(ds.attrs["paper_check"])
         fig = self.plot(ds)
         if ds.attrs.get("quick"):

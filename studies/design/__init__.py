@@ -40,13 +40,17 @@ Search bounds, from physical limits (Bounds; each named where the optimum meets 
   not reach them by the code's own estimate (the service constraint checks it on the pairs);
   thickness >= 3 cm (its usable stroke, under 2 cm, is of the order of the gap's tolerances);
 - c/t <= 1 - the rubber's usable strain (the least of its crush strain and the strain at the
-  stress limit, 0.59 for the paper's rubber): a deeper cavity lets the slab bear on the wall's
-  edge before the rubber reaches it (paper 5.3: deep enough to use the rubber, no deeper);
+  stress limit, which depends on the pad's shape: 0.589 at S 1.0, 0.765 at S 0.5, 0.469 at S
+  1.5 for the paper's rubber with k = 1): a deeper cavity lets the slab bear on the wall's edge
+  before the rubber reaches it (paper 5.3: deep enough to use the rubber, no deeper); so a
+  cavity also bounds S from below;
 - 0.5 <= S <= 1.5 (--shape-factor): the law's stiffness A K_r / t^n is calibrated on a pad
-  of S = 1.0 (Kajita et al., 40 x 40 x 10 mm; the paper's bumper: 0.75); by Gent's compression
-  modulus E (1 + 2 S^2) a pad of S 0.5 is half as stiff and one of S 1.5 1.8 times as stiff:
-  beyond the range the law is off by more than a factor of 2, and below S 0.5 (side < 2 t) the
-  pad is a column that bulges and buckles;
+  of S = 1.0 (Kajita et al., 40 x 40 x 10 mm; the paper's bumper: 0.75). The search runs the
+  law with the pad's shape (--shape-k, the bumper law's shape_k: Gent & Lindley's compression
+  modulus E (1 + 2 k S^2), k = 1 by default): a pad of S 0.5 is half as stiff as Eq. 11 says,
+  one of S 1.5 1.8 times as stiff; beyond the range the correction exceeds a factor of 2 and
+  rests on a relation fitted on small strains, and below S 0.5 (side < 2 t) the pad is a
+  column that bulges and buckles;
 - 2 <= n and 2 n x side <= the wall's length (--wall-length-m, default 18 m: a square slab of
   320 t at a typical 10 kPa floor weight is 17.7 m a side): the bumpers stand at least one
   side apart, free to bulge, one near each end at least;
@@ -69,15 +73,20 @@ zeros), which the tests check against a direct run.
 """
 from __future__ import annotations
 
+import functools
 import json
 
 import numpy as np
 
+from engine.impact.laws import rubber_bumper
+from engine.impact.laws.rubber_bumper import GENT_LINDLEY_K
 from engine.units import CM, KN_PER_MM, G
 from pipeline.motions.code_suite import LEVELS
 
 from ..common.options import (
+    add_bound,
     add_moat,
+    add_stories,
     add_wall_capacity,
     chosen_pairs,
     scaled_suite,
@@ -116,6 +125,8 @@ from .space import (
 
 GAP_FRACTION = 0.8
 """Default gap / D_M: short of the code's clearance D_TM (1.15 D_M), where bumpers matter."""
+SHAPE_K = rubber_bumper.PARAMETERS.shape_k
+"""The bumper law's declaration of the rubber's shape factor k (--shape-k)."""
 
 
 def options(p) -> None:
@@ -127,6 +138,8 @@ def options(p) -> None:
     gap.add_argument("--gap-dm", type=float, default=None, metavar="RATIO",
                      help=f"the gap as a ratio to the code's D_M (default {GAP_FRACTION:g})")
     add_moat(p)
+    add_bound(p)
+    add_stories(p)
     p.add_argument("--objective", choices=tuple(OBJECTIVES), default="p84",
                    help="what is minimised: the weighted 84th percentile (p84, default) or "
                         "median over the pairs of the largest peak floor acceleration at the "
@@ -156,6 +169,9 @@ def options(p) -> None:
                    metavar=("LO", "HI"), help="the bumpers' shape factor range searched "
                    f"(default {SHAPE_FACTOR[0]:g} {SHAPE_FACTOR[1]:g}: the law's calibration "
                    "within a factor of 2 in stiffness)")
+    p.add_argument("--shape-k", type=float, default=GENT_LINDLEY_K, metavar="K",
+                   help=f"{SHAPE_K.meaning} (default {GENT_LINDLEY_K:g}: Gent & Lindley's "
+                        "unfilled rubber, beta = 2; unverified for the paper's rubber)")
     p.add_argument("--wall-length-m", type=float, default=WALL_LENGTH, metavar="M",
                    help=f"length of each moat wall, m, bounding the count (default "
                         f"{WALL_LENGTH:g})")
@@ -197,8 +213,8 @@ def compute(args):
 
     crit = criteria(args)
     pairs, names = chosen_pairs(args, QUICK_PAIRS)
-    building = args.building
-    suite = scaled_suite(args, pairs, names)
+    suite = scaled_suite(args, pairs, names)  # at --bound, on the --stories superstructure
+    building = suite.building
     if not suite.pairs:
         raise SweepError("the scaling rule kept no pair: nothing to design for")
     if not args.quiet:
@@ -211,29 +227,35 @@ def compute(args):
         value = getattr(args, name)
         if value is not None and not value > 0:
             raise SweepError(f"--{name.replace('_', '-')} must be positive, got {value:g}")
+    try:
+        shape_k = float(SHAPE_K.check(args.shape_k, "--shape-k"))
+    except engine.EngineError as err:
+        raise SweepError(str(err)) from None
     wall_force = wall_capacity(args)
     # the code's displacement at the service level, by the procedure that gave D_M
     service = isolation_design(suite.site["s_m1"] * LEVELS["service"], building,
-                               dashpot=suite.design.dashpot)
-    bounds = Bounds(gap=gap, clearance=service.d_m,
-                    usable_strain=usable_strain(strain, None if args.no_stress_limit
-                                                else stress),
+                               dashpot=False)
+    # the strain at the stress limit depends on the pad's shape (space.usable_strain)
+    usable = strain if args.no_stress_limit else \
+        functools.partial(usable_strain, strain, stress, shape_k=shape_k)
+    bounds = Bounds(gap=gap, clearance=service.d_m, usable_strain=usable,
                     wall_length=args.wall_length_m, shape_factor=shape_range(args))
-    if gap - bounds.clearance <= THICKNESS_MIN * bounds.usable_strain:
+    if gap - bounds.clearance <= THICKNESS_MIN * bounds.least_usable:
         raise SweepError(f"the gap {gap / CM:.3g} cm leaves no room for bumpers: they must "
                          f"leave D_S = {bounds.clearance / CM:.3g} cm clear (the code's "
                          "displacement at the service level)")
-    linear = building.story_yield_force is None
+    linear = building.story_law.is_linear
     limits = validity.Limits(
         bumper_stress=stress,
-        story_shear=validity.code_story_capacity(suite.design, building) if linear else None,
+        story_shear=validity.code_story_capacity(suite.basis.force_design, building)
+        if linear else None,
         wall_force=wall_force)
     problem = Problem(suite, building, engine.DEFAULT_DT if args.dt is None else args.dt,
                       args.moat, limits, options=run_options(args))
     problem.run_free()
     references = problem.run(reference_members(gap, suite.design.d_tm))
     bare = {name: values[:, :, 1] for name, values in references.items()}
-    search = Search(problem, crit, bounds, gap, strain, bare)
+    search = Search(problem, crit, bounds, gap, strain, bare, shape_k)
     coarse = grid(QUICK if args.quick else COARSE, bounds)
     if not coarse["thickness"].size:
         raise SweepError("no layout of the grid fits the bounds: " + bounds.text())
@@ -256,9 +278,22 @@ def check(ds) -> list[Verdict]:
                  f"cm, D_TM {ds.attrs['D_TM'] / CM:.3g} cm); {ds.sizes['record']} pairs; "
                  f"{ds.sizes['candidate']} candidates",
                  f"criteria: {ds.attrs['criteria']}", f"bounds: {ds.attrs['bounds']}",
-                 *table_lines(ds), f"optimum: {ds.attrs['optimum_nature']}"]:
+                 *table_lines(ds), f"optimum: {ds.attrs['optimum_nature']}",
+                 shape_text(ds)]:
         print(line)
     return [_design_verdict(ds), _cavity_verdict(ds), _wall_verdict(ds), _narrow_verdict(ds)]
+
+
+def shape_text(ds) -> str:
+    """The shape factor of the chosen pads (the closest ones if none is feasible) and what it
+    makes of their stiffness."""
+    i = int(ds.attrs["closest_candidate"])
+    which = "chosen" if int(ds.attrs["chosen_candidate"]) >= 0 else "closest (infeasible)"
+    s, t = float(ds.shape_factor[i]), float(ds.thickness[i])
+    return (f"shape factor of the {which} pads: S {s:.3g} (side {float(ds.side[i]) / CM:.3g} "
+            f"cm, t {t / CM:.3g} cm): k_st {float(ds.shape_ratio[i]):.3g} x the paper's Eq. 11 "
+            f"(Gent & Lindley, k = {float(ds.attrs['bumper_shape_k']):g}, against the "
+            f"calibration pad's S {float(ds.attrs['bumper_shape_factor_cal']):g})")
 
 
 def _design_verdict(ds) -> Verdict:
@@ -274,7 +309,9 @@ def _design_verdict(ds) -> Verdict:
                        f"({ds.attrs['optimum']}) fails {', '.join(fails)}, its bumpers over "
                        f"the stress limit under {over} of {ds.sizes['record']} pairs at the "
                        f"MCE_R; {nature_text}", False,
-                       {"closest": ds.attrs["optimum"], "fails": fails})
+                       {"closest": ds.attrs["optimum"], "fails": fails,
+                        "shape_factor": float(ds.shape_factor[i]),
+                        "shape_ratio": float(ds.shape_ratio[i])})
     over = int(ds.n_invalid_bumper_stress.isel(level=MCE, candidate=chosen))
     code = REFERENCES.index("code clearance D_TM")
     return Verdict("design", "A bumper layout meets the constraints at the gap",
@@ -288,7 +325,9 @@ def _design_verdict(ds) -> Verdict:
                    f"design: {flagged_text(ds, 'reference_', 'reference', code, MCE) or 'none'})"
                    f"; optimum {nature_text}", True,
                    {"chosen": ds.attrs["optimum"], "objective": float(ds.objective[chosen]),
-                    "optimum": json.loads(ds.attrs["optimum_bounds"])})
+                    "optimum": json.loads(ds.attrs["optimum_bounds"]),
+                    "shape_factor": float(ds.shape_factor[chosen]),
+                    "shape_ratio": float(ds.shape_ratio[chosen])})
 
 
 def _stat(ds) -> str:
@@ -412,6 +451,8 @@ recipe = Recipe(
     chosen=(f"gap {GAP_FRACTION:g} D_M; the 22 FEMA P695 far-field pairs as recorded (quick: "
             f"{', '.join(QUICK_PAIRS)}); coarse grid t 4-20 cm, c/t 0-0.4, 4-32 bumpers, S "
             "0.5-1.5, k_w 500 and 2500 kN/mm, then a pattern search; strain and COR the "
-            f"law's defaults; wall length {WALL_LENGTH:g} m"),
+            f"law's defaults; the pads' stiffness scaled by their shape factor, Gent & "
+            f"Lindley's k = {GENT_LINDLEY_K:g} (unverified for the paper's rubber); wall length "
+            f"{WALL_LENGTH:g} m"),
 )
 main = recipe.main

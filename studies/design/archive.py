@@ -28,7 +28,7 @@ def dataset(search: Search, references: dict, rounds: int, args):
     ref_stats = statistics(references, suite.weights, search.bare)
     table = search.table
     t = table["thickness"]
-    members = bumper_members(table, search.gap, search.strain)
+    members = bumper_members(table, search.gap, search.strain, search.shape_k)
     data, coords, attrs = archive_variables(suite)
     coords.update({
         "record": variable("record", np.array(suite.names), "1", "record pair"),
@@ -46,6 +46,9 @@ def dataset(search: Search, references: dict, rounds: int, args):
         "cavity": ("m", "depth of the wall cavity holding each bumper", table["cavity_ratio"] * t),
         "side": ("m", "side of the square bumper, 4 S t", 4 * table["shape_factor"] * t),
         "bumper_area": ("m2", "contact area of one bumper", members.area),
+        "shape_ratio": ("1", "the pads' static stiffness over the paper's Eq. 11, (1 + 2 k S^2) "
+                        "/ (1 + 2 k S_cal^2) (Gent & Lindley 1959; the bumper law's "
+                        "shape_ratio)", _shape_ratio(members)),
         "clear_gap": ("m", "clear gap in front of the bumpers, gap - (t - c)",
                       members.contact.clear_gap),
         "delta_u": ("m", "crush limit min(strain t, t - c)", members.contact.delta_u),
@@ -91,14 +94,32 @@ def dataset(search: Search, references: dict, rounds: int, args):
         service_contact_allowed=search.criteria.service_contact,
         hurt_design_allowed=search.criteria.hurt_design,
         validity_limits=problem.limits.describe(), bumper_stress_limit=problem.limits.bumper_stress,
-        bounds=search.bounds.text(), usable_strain=search.bounds.usable_strain,
+        bounds=search.bounds.text(),
+        usable_strain=search.bounds.usable(float(table["shape_factor"][best])),
+        bumper_shape_k=search.shape_k,
+        bumper_shape_factor_cal=_law().shape_factor_cal.default,
         wall_length=search.bounds.wall_length, D_S=search.bounds.clearance,
         search_rounds=rounds,
         chosen_candidate=chosen, closest_candidate=best,
         optimum_nature=found.text(), optimum_interior=int(found.interior),
         optimum_bounds=json.dumps(found.as_dict()),
-        optimum=describe(table, best))
+        optimum=describe(table, best, search.shape_k))
     return labelled_dataset(data, coords, attrs)
+
+
+def _law():
+    """The bumper law's declaration."""
+    from engine.impact import LAWS
+
+    return LAWS["bumper"].PARAMETERS
+
+
+def _shape_ratio(members) -> np.ndarray:
+    """(K,) the candidates' shape ratio, as the bumper law computes it from their columns."""
+    from engine.impact import LAWS
+
+    c = members.columns
+    return LAWS["bumper"].shape_ratio(c["area"], c["thickness"], c["shape_k"])
 
 
 def _fails(judged) -> list[list[str]]:

@@ -36,16 +36,21 @@ assert tuple(LEVELS) == ("service", "design", "MCE_R")
 class Members:
     """Walls to run, K of them: contact (engine.Contact, for their clear gaps); columns: the
     same walls as a table of listed members (pipeline.listed: law and parameters, (K,) each);
-    n_bumpers, area (K,) for the stress (inf and 1 for a bare wall: no bumper stress)."""
+    n_bumpers, area, thickness (K,) for the stress and strain (inf, 1 and inf for a bare wall:
+    no bumper stress or strain)."""
 
     contact: object
     columns: dict
     n_bumpers: np.ndarray
     area: np.ndarray
+    thickness: np.ndarray
 
 
-def bumper_members(table: dict, gap: float, strain: float) -> Members:
-    """The candidates of a table (VARIABLES -> (K,)) as bumpers at the gap (m)."""
+def bumper_members(table: dict, gap: float, strain: float, shape_k: float = 0.0) -> Members:
+    """The candidates of a table (VARIABLES -> (K,)) as bumpers at the gap (m), of a rubber
+    whose stiffness scales with the pad's shape by the factor shape_k (the bumper law's
+    Gent-Lindley k; 0: the paper's Eq. 11). The shape factor S of the table is the law's
+    sqrt(area) / (4 t) of the pads: side 4 S t."""
     import engine
 
     t = table["thickness"]
@@ -53,12 +58,14 @@ def bumper_members(table: dict, gap: float, strain: float) -> Members:
     cavity = table["cavity_ratio"] * t
     contact = engine.Contact.bumper(gap, thickness=t, cavity=cavity,
                                     n_bumpers=table["n_bumpers"].astype(int),
-                                    k_w=table["wall_k"], strain=strain, area=side ** 2)
+                                    k_w=table["wall_k"], strain=strain, area=side ** 2,
+                                    shape_k=shape_k)
     k = t.size
     columns = {"law": np.full(k, "bumper"), "gap": np.full(k, gap, dtype=float),
                "thickness": t, "cavity": cavity, "n_bumpers": table["n_bumpers"],
-               "wall_k": table["wall_k"], "strain": np.full(k, strain), "area": side ** 2}
-    return Members(contact, columns, table["n_bumpers"].astype(float), side ** 2)
+               "wall_k": table["wall_k"], "strain": np.full(k, strain), "area": side ** 2,
+               "shape_k": np.full(k, float(shape_k))}
+    return Members(contact, columns, table["n_bumpers"].astype(float), side ** 2, t)
 
 
 def reference_members(gap: float, d_tm: float) -> Members:
@@ -69,7 +76,7 @@ def reference_members(gap: float, d_tm: float) -> Members:
     contact = engine.Contact.concat([engine.Contact.none(1), engine.Contact.linear([gap, d_tm])])
     columns = {"law": np.array(["none", "linear", "linear"]),
                "gap": np.array([np.nan, gap, d_tm])}
-    return Members(contact, columns, np.full(3, np.inf), np.ones(3))
+    return Members(contact, columns, np.full(3, np.inf), np.ones(3), np.full(3, np.inf))
 
 
 @dataclass
@@ -102,7 +109,7 @@ class Problem:
         ds = self._sweep(_listed(members.columns, reach, self.levels))
         shape = (len(self.suite.pairs), n_l, k)
         peaks = _peaks(ds, shape, self.building, self.limits, members.n_bumpers,
-                       members.area)
+                       members.area, members.thickness)
         peaks["crushed"] = crushed(peaks["max_indentation"], members.contact.delta_u)
         return peaks
 
@@ -113,7 +120,7 @@ class Problem:
         ds = self._sweep({"law": np.full(n_l, "none"), "level": self.levels})
         shape = (len(self.suite.pairs), n_l)
         peaks = _peaks(ds, shape, self.building, self.limits, np.full(n_l, np.inf),
-                       np.ones(n_l))
+                       np.ones(n_l), np.full(n_l, np.inf))
         peaks["crushed"] = np.zeros(shape, dtype=bool)
         peaks["reach"] = (ds.peak_isolator_disp_xy.max("direction").values
                           if self.moat == "rectangular" else
@@ -141,15 +148,18 @@ def _listed(columns: dict, reach: np.ndarray, levels: np.ndarray) -> dict:
     return table
 
 
-def _peaks(ds, shape: tuple, building, limits, n_bumpers, area) -> dict[str, np.ndarray]:
+def _peaks(ds, shape: tuple, building, limits, n_bumpers, area,
+           thickness) -> dict[str, np.ndarray]:
     """PEAKS and the validity flags of a sweep's Dataset over (record, member), each shaped
     `shape` (the members split as the caller listed them)."""
     from pipeline.assess import validity
 
     peaks = {name: ds[name].values.reshape(*shape, *ds[name].shape[2:]) for name in
              ("peak_total_accel", "peak_interstory_drift", "max_impact_force",
-              "peak_isolator_disp", "max_indentation", "n_impacts")}
-    flags = validity.flags_of(peaks, building, limits, n_bumpers=n_bumpers, area=area)
+              "peak_isolator_disp", "max_indentation", "n_impacts", "collapsed")
+             if name in ds}
+    flags = validity.flags_of(peaks, building, limits, n_bumpers=n_bumpers, area=area,
+                              thickness=thickness)
     return {"peak_floor_accel": largest_floor_accel(peaks["peak_total_accel"]),
             "peak_isolator_disp": peaks["peak_isolator_disp"],
             "peak_interstory_drift": largest_story_drift(peaks["peak_interstory_drift"]),
@@ -171,27 +181,35 @@ def weighted_fraction(condition, weights) -> np.ndarray:
 def statistics(peaks: dict, weights, bare: dict | None = None) -> dict[str, np.ndarray]:
     """Per level and member, (L, K) each, over the pairs (weights (R,)): the 16th, 50th and
     84th weighted percentiles of the largest peak floor acceleration (m/s^2); the weighted
-    fractions uncrushed, within the stress limit, within both, and with contact; the number of
+    fractions uncrushed, within the stress limit, within both (and standing), and with contact
+    (a collapsed run: infinite acceleration, never within the limits); the number of
     pairs (unweighted) flagged by each validity flag; with `bare` (the bare wall at the gap,
     (R, L) peaks), the weighted fractions of all the pairs the member helps and hurts against
     it, and of those counted (contact in one of the two; pipeline.assess.outcomes)."""
     from pipeline.assess import outcomes, validity
 
-    accel = peaks["peak_floor_accel"]
+    # A collapsed run is a collapse: the worst floor acceleration there is in the quantiles
+    # (never its peak before the collapse), and in the comparison with the bare wall it is
+    # hurt or helped by the collapse itself (pipeline.assess.outcomes.with_collapse).
+    collapsed = peaks["invalid_collapse"]
+    accel = np.where(collapsed, np.inf, peaks["peak_floor_accel"])
     q16, med, q84 = weighted_quantiles(accel, weights, QUANTILES)
     over = peaks["invalid_bumper_stress"]
     out = {"p16_peak_floor_accel": q16, "median_peak_floor_accel": med,
            "p84_peak_floor_accel": q84,
            "fraction_uncrushed": weighted_fraction(~peaks["crushed"], weights),
            "fraction_within_stress": weighted_fraction(~over, weights),
-           "fraction_within_limits": weighted_fraction(~over & ~peaks["crushed"], weights),
+           "fraction_within_limits": weighted_fraction(
+               ~over & ~peaks["crushed"] & ~peaks["invalid_collapse"], weights),
            "fraction_contact": weighted_fraction(peaks["n_impacts"] > 0, weights),
            "fraction_valid": weighted_fraction(~np.any([peaks[f] for f in OTHER_FLAGS],
                                                        axis=0), weights)}
     for name in validity.FLAGS:
         out[f"n_{name}"] = peaks[name].sum(axis=0)
     if bare is not None:
-        effect = outcomes.effect(accel, bare["peak_floor_accel"][..., None])
+        effect = outcomes.with_collapse(
+            outcomes.effect(peaks["peak_floor_accel"], bare["peak_floor_accel"][..., None]),
+            collapsed, bare["invalid_collapse"][..., None])
         counted = outcomes.where_contact(peaks["n_impacts"], bare["n_impacts"][..., None])
         out["fraction_helped"] = weighted_fraction(counted & (effect == outcomes.HELPED),
                                                    weights)
@@ -203,7 +221,7 @@ def statistics(peaks: dict, weights, bare: dict | None = None) -> dict[str, np.n
 def ranking(objective, secondary, n_bumpers, wall_k, feasible) -> np.ndarray:
     """(K,) rank of each feasible candidate (1 = best), 0 for the infeasible: by the objective,
     then the other statistic (the 84th percentile for the median, and back), then fewer
-    bumpers (equal dynamics: the stiffness depends on n x area only), then the stiffer wall
+    bumpers (equal statistics: larger pads do what more of them do), then the stiffer wall
     (k_w plays no part while the bumpers are uncrushed, and a stiff wall needs no special
     construction)."""
     order = [i for i in np.lexsort((-np.asarray(wall_k), n_bumpers, secondary, objective))
@@ -248,13 +266,14 @@ class Search:
     gap: float
     strain: float
     bare: dict
+    shape_k: float = 0.0
     table: dict = field(default_factory=lambda: {v: np.zeros(0) for v in VARIABLES})
     stage: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
     peaks: dict | None = None
 
     def add(self, table: dict, stage: int) -> int:
         """Evaluate the candidates of `table` not evaluated yet; how many were new. Candidates
-        with the same dynamics (t, c, n x area, k_w) run once."""
+        with the same dynamics and flags (t, c, n x area, shape ratio, k_w) run once."""
         new, seen = [], set()
         for i in range(len(table["thickness"])):
             key = _key(row(table, i))
@@ -264,11 +283,12 @@ class Search:
         if not new:
             return 0
         part = {v: np.asarray(table[v], float)[new] for v in VARIABLES}
-        keys = [_dynamics(row(part, i)) for i in range(len(new))]
+        keys = [_dynamics(row(part, i), self.shape_k) for i in range(len(new))]
         unique = list(dict.fromkeys(keys))
         first = {k: keys.index(k) for k in unique}
         runs = self.problem.run(bumper_members(
-            {v: part[v][[first[k] for k in unique]] for v in VARIABLES}, self.gap, self.strain))
+            {v: part[v][[first[k] for k in unique]] for v in VARIABLES}, self.gap, self.strain,
+            self.shape_k))
         back = [unique.index(k) for k in keys]
         runs = {name: values[:, :, back] for name, values in runs.items()}
         self.table = {v: np.concatenate([self.table[v], part[v]]) for v in VARIABLES}
@@ -322,12 +342,17 @@ def _key(config: dict) -> tuple:
     return tuple(float(f"{config[v]:.9g}") for v in VARIABLES)
 
 
-def _dynamics(config: dict) -> tuple:
-    """What the engine sees of a layout: t, c, n x area, k_w (rounded)."""
+def _dynamics(config: dict, shape_k: float = 0.0) -> tuple:
+    """What the engine and the flags see of a layout: t, c, n x area (the stress), the
+    stiffness's shape ratio (the bumper law's; with n x area, k_imp), k_w (rounded)."""
+    from engine.impact import LAWS
+
     t = config["thickness"]
     area = (4 * config["shape_factor"] * t) ** 2
+    ratio = float(LAWS["bumper"].compression_ratio(config["shape_factor"], shape_k))
     return tuple(float(f"{x:.9g}") for x in (t, config["cavity_ratio"] * t,
-                                             config["n_bumpers"] * area, config["wall_k"]))
+                                             config["n_bumpers"] * area, ratio,
+                                             config["wall_k"]))
 
 
 # ---------------------------------------------------------------------- the optimum's nature
@@ -443,7 +468,8 @@ STAT_TEXT = {
     "fraction_within_stress": ("1", "weighted fraction of the pairs with the bumpers' contact "
                                     "stress within the limit"),
     "fraction_within_limits": ("1", "weighted fraction of the pairs with the bumpers "
-                                    "uncrushed and within the stress limit"),
+                                    "uncrushed and within the stress limit, and the building "
+                                    "standing"),
     "fraction_contact": ("1", "weighted fraction of the pairs with contact"),
     "fraction_valid": ("1", "weighted fraction of the pairs without a validity flag other than "
                             "the bumper stress (floor acceleration, story shear, wall force)"),
@@ -456,10 +482,15 @@ STAT_TEXT = {
 }
 
 
-def describe(table, i: int) -> str:
-    """One candidate as a designer reads it."""
+def describe(table, i: int, shape_k: float | None = None) -> str:
+    """One candidate as a designer reads it; with the rubber's shape_k (the bumper law's), what
+    its pads' stiffness is of the paper's Eq. 11 (their shape ratio)."""
+    from engine.impact import LAWS
+
     t, r = float(table["thickness"][i]), float(table["cavity_ratio"][i])
     s = float(table["shape_factor"][i])
+    ratio = "" if shape_k is None else \
+        f", k_st {float(LAWS['bumper'].compression_ratio(s, shape_k)):.3g} x Eq. 11's"
     return (f"{int(table['n_bumpers'][i])} x {4 * s * t / CM:.3g} cm square, t "
-            f"{t / CM:.3g} cm (S {s:.3g}), cavity {r * t / CM:.3g} cm (c/t {r:.3g}), k_w "
-            f"{float(table['wall_k'][i]) / KN_PER_MM:.4g} kN/mm")
+            f"{t / CM:.3g} cm (S {s:.3g}{ratio}), cavity {r * t / CM:.3g} cm (c/t {r:.3g}), "
+            f"k_w {float(table['wall_k'][i]) / KN_PER_MM:.4g} kN/mm")

@@ -4,6 +4,7 @@ variables, their grids and steps, the physical bounds (Bounds) and the user's co
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -87,7 +88,8 @@ PEAKS = {  # what is kept per member: units, long name
 SERVICE, DESIGN, MCE = 0, 1, 2  # indices of LEVELS
 
 
-OTHER_FLAGS = ("invalid_floor_accel", "invalid_story_shear", "invalid_wall_force")
+OTHER_FLAGS = ("invalid_floor_accel", "invalid_story_shear", "invalid_wall_force",
+               "invalid_collapse")
 
 
 CRITERIA = ("within_limits", "service", "hurt_design", "valid")
@@ -148,16 +150,43 @@ def criteria(args) -> Criteria:
 @dataclass(frozen=True)
 class Bounds:
     """The physical limits of a bumper layout (module docstring): gap m; clearance m, the least
-    clear gap the bumpers leave (D_S); usable_strain -, the rubber's; wall_length m."""
+    clear gap the bumpers leave (D_S); usable_strain -, the rubber's, or a function of the pad's
+    shape factor S giving it (the stress limit is reached at a strain that depends on the
+    pad's shape: `usable_strain` below); wall_length m."""
 
     gap: float
     clearance: float
-    usable_strain: float
+    usable_strain: float | Callable[[float], float]
     wall_length: float = WALL_LENGTH
     thickness_min: float = THICKNESS_MIN
     shape_factor: tuple[float, float] = SHAPE_FACTOR
     n_min: int = N_MIN
     wall_k: tuple[float, float] = WALL_K
+
+    def usable(self, s: float) -> float:
+        """The rubber's usable strain (-) in a pad of shape factor s."""
+        return float(self.usable_strain(s) if callable(self.usable_strain)
+                     else self.usable_strain)
+
+    @property
+    def least_usable(self) -> float:
+        """The least usable strain over the shape factor range (-): the stiffest pad's."""
+        return min(self.usable(s) for s in self.shape_factor)
+
+    def least_shape(self, cavity_ratio: float) -> float:
+        """The least shape factor of the range whose pad may sit in a cavity of depth
+        cavity_ratio x t: usable strain <= 1 - c/t (the usable strain falls as S grows,
+        bisected to 1e-12); the range's upper end when none may."""
+        s_lo, s_hi = self.shape_factor
+        if self.usable(s_lo) <= 1 - cavity_ratio or not callable(self.usable_strain):
+            return s_lo
+        if self.usable(s_hi) > 1 - cavity_ratio:
+            return s_hi
+        lo, hi = s_lo, s_hi
+        while hi - lo > 1e-12 * hi:
+            mid = 0.5 * (lo + hi)
+            lo, hi = (lo, mid) if self.usable(mid) <= 1 - cavity_ratio else (mid, hi)
+        return hi
 
     def limits(self, config: dict) -> dict[str, tuple[tuple[float, str], tuple[float, str]]]:
         """Per variable, ((lower bound, why), (upper bound, why)) given the other variables of
@@ -167,22 +196,24 @@ class Bounds:
         room = self.gap - self.clearance  # what the bumpers may protrude, m
         clear = "the clearance: thickness - cavity <= gap - D_S (the code's service level)"
         wall = f"the wall's length: 2 n x side <= {self.wall_length:g} m"
-        usable = (f"the cavity: c/t <= 1 - the usable strain {self.usable_strain:.3g} (the "
+        usable = (f"the cavity: c/t <= 1 - the usable strain {self.usable(s):.3g} (the "
                   "slab would bear on the wall before the rubber reaches it)")
         along = self.wall_length / (8 * n * s)  # 8 n S t <= L: the count's limit on t
         s_lo, s_hi = self.shape_factor
         shape = f"the shape factor range [{s_lo:g}, {s_hi:g}] of the law's calibration"
+        cavity = (f"the cavity: c/t {r:.3g} <= 1 - the usable strain, which falls as S grows "
+                  "(a softer pad would not be used up before the slab bears on the wall)")
         paper_k = (f"the paper's walls, {self.wall_k[0] / KN_PER_MM:g}-"
                    f"{self.wall_k[1] / KN_PER_MM:g} kN/mm (5.5)")
         return {
             "thickness": ((self.thickness_min, "the thinnest bumper searched"),
                           min((room / (1 - r), clear), (along, wall))),
             "cavity_ratio": (max((0.0, "no cavity"), (1 - room / t, clear)),
-                             (1 - self.usable_strain, usable)),
+                             (1 - self.usable(s), usable)),
             "n_bumpers": ((float(self.n_min), f"{self.n_min} bumpers per wall"),
                           (self.wall_length / (8 * s * t), wall)),
-            "shape_factor": ((s_lo, shape), min((s_hi, shape),
-                                                (self.wall_length / (8 * n * t), wall))),
+            "shape_factor": (max((s_lo, shape), (self.least_shape(r), cavity)),
+                             min((s_hi, shape), (self.wall_length / (8 * n * t), wall))),
             "wall_k": ((self.wall_k[0], paper_k), (self.wall_k[1], paper_k)),
         }
 
@@ -195,24 +226,35 @@ class Bounds:
         return True
 
     def text(self) -> str:
+        s_lo, s_hi = self.shape_factor
+        cavity = (f"c/t <= {1 - self.usable(s_lo):.3g}" if self.usable(s_lo) == self.usable(s_hi)
+                  else f"c/t <= {1 - self.usable(s_lo):.3g} (S {s_lo:g}) to "
+                       f"{1 - self.usable(s_hi):.3g} (S {s_hi:g})")
         return (f"thickness - cavity <= {(self.gap - self.clearance) / CM:.3g} cm (gap "
                 f"{self.gap / CM:.3g} cm - D_S {self.clearance / CM:.3g} cm); thickness >= "
-                f"{self.thickness_min / CM:g} cm; c/t <= {1 - self.usable_strain:.3g}; shape "
-                f"factor {self.shape_factor[0]:g}-{self.shape_factor[1]:g}; {self.n_min} <= n, "
+                f"{self.thickness_min / CM:g} cm; {cavity}; shape "
+                f"factor {s_lo:g}-{s_hi:g}; {self.n_min} <= n, "
                 f"2 n side <= {self.wall_length:g} m; k_w {self.wall_k[0] / KN_PER_MM:g}-"
                 f"{self.wall_k[1] / KN_PER_MM:g} kN/mm")
 
 
-def usable_strain(strain: float, stress_limit: float | None) -> float:
+def usable_strain(strain: float, stress_limit: float | None, shape_factor: float | None = None,
+                  shape_k: float | None = None) -> float:
     """The strain (-) the rubber may reach: its crush strain, or less where the impact law's
-    stress alpha K_r eps^n (independent of the pad's size) reaches the limit (Pa; None: no
-    limit). 0.589 for the paper's rubber at 30.9 MPa."""
+    stress alpha K_r rho(S) eps^n reaches the limit (Pa; None: no limit), rho(S) the law's
+    compression_ratio of a pad of shape factor S with the rubber's factor shape_k (None: the
+    law's default, and the law's calibration shape; independent of the pad's size). 0.589 for
+    the paper's rubber at 30.9 MPa without shape effect (or at S = S_cal, 1.0); with
+    Gent & Lindley's k = 1: 0.765 at S 0.5, 0.469 at S 1.5."""
     from engine.impact import LAWS
 
     law = LAWS["bumper"].PARAMETERS
     if stress_limit is None:
         return strain
-    at_limit = (stress_limit / (law.alpha.default * law.k_r.default)) ** (1 / law.n.default)
+    ratio = 1.0 if shape_factor is None else float(LAWS["bumper"].compression_ratio(
+        shape_factor, law.shape_k.default if shape_k is None else shape_k))
+    at_limit = (stress_limit / (law.alpha.default * law.k_r.default * ratio)) \
+        ** (1 / law.n.default)
     return min(strain, at_limit)
 
 

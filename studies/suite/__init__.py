@@ -60,12 +60,15 @@ from pipeline.assess.outcomes import (
     amplification,
     effect,
     weighted_quantiles,
+    with_collapse,
 )
 from pipeline.motions.code_suite import LEVELS, archive_variables, describe
 
 from ..common.options import (
     QUICK_PAIRS,
+    add_bound,
     add_moat,
+    add_stories,
     add_wall_capacity,
     bare_wall_text,
     chosen_pairs,
@@ -88,10 +91,12 @@ from .figure import plot
 from .verdicts import check
 
 GAPS = (0.4, 0.5, 0.6, 0.8, 1.0, 1.2)
-"""Clear gaps as fractions of D_M; the code's clearance D_TM is added among them. Below 0.6:
-the nonlinear building in plan reaches a median 0.6 D_M at the MCE_R (the code's D_M counts
-the isolators' hysteresis only, not the model's isolation dashpot), so that contact happens at
-the narrower gaps; 0.4 D_M leaves 5.5 cm in front of the 5 cm bumpers."""
+"""Clear gaps as fractions of D_M (at the bound run, --bound); the code's clearance D_TM is
+added among them. Below 0.6: the nonlinear building in plan reaches a median 0.6 D_M at the
+MCE_R (0.61 at the lower bound, 0.49-0.73, the 22 far-field pairs; the code's D_M counts the
+isolators' hysteresis only, not the model's isolation dashpot), so that contact happens at the
+narrower gaps; 0.4 D_M leaves 7.4 cm in front of the 5 cm bumpers at the lower bound (D_M
+31.0 cm, lambda_min 0.8), 5.5 cm at nominal properties (D_M 26.2 cm)."""
 QUICK_GAPS = (0.4, 0.6)
 QUICK_LEVELS = ("design", "MCE_R")
 QUICK_COUNTS = (4, 32)
@@ -102,6 +107,8 @@ PEAKS = ("peak_isolator_disp", "peak_total_accel", "peak_interstory_drift", "max
 
 def options(p) -> None:
     site_options(p)
+    add_bound(p)
+    add_stories(p)
     add_moat(p)
     add_wall_capacity(p)
 
@@ -166,12 +173,13 @@ def compute(args):
     from pipeline.assess.validity import Limits, code_story_capacity
 
     pairs, names = chosen_pairs(args, QUICK_PAIRS)
-    suite = scaled_suite(args, pairs, names)
+    suite = scaled_suite(args, pairs, names)  # at --bound: its building, its D_M and D_TM
     grid = make_grid(suite.design, args.quick)
     peaks, swept = run(suite, grid, args)
-    limits = Limits(story_shear=code_story_capacity(suite.design, args.building),
+    # the superstructure's strength from the code's largest base shear over the bounds
+    limits = Limits(story_shear=code_story_capacity(suite.basis.force_design, suite.building),
                     wall_force=wall_capacity(args))
-    ds = assemble(grid, peaks, suite.names, suite.weights, args.building, limits)
+    ds = assemble(grid, peaks, suite.names, suite.weights, suite.building, limits)
     data, coords, attrs = archive_variables(suite)
     attrs.update(moat=args.moat, suite=describe(suite))
     return ds.assign_coords(coords).assign(data).assign_attrs({**provenance(swept), **attrs})
@@ -182,16 +190,19 @@ def run(suite, grid: Grid, args):
     (pipeline.sweep: resumable from the recipe's work folder, in this process or on dask with
     --workers N >= 2 or --scheduler): the bumpers over (gap, n_bumpers, wall_k), the bare wall
     per gap and the building without wall, each at every level, a pair's members scaled by its
-    MCE_R factor x the level. Returns (configuration -> peak name -> array, see Grid.split;
-    the sweep's Dataset, whose provenance the archive keeps)."""
+    MCE_R factor x the level; the building at the suite's bound (suite.building). Returns
+    (configuration -> peak name -> array, see Grid.split; the sweep's Dataset, whose
+    provenance the archive keeps)."""
     import pipeline
 
     ds = pipeline.sweep(suite.pairs, moat=args.moat, gap=grid.gaps, thickness=THICKNESS,
                         n_bumpers=list(grid.counts), wall_k=list(grid.wall_ks),
                         baseline=True, unconstrained=True, level=grid.levels,
-                        factors=suite.factors, **run_options(args))
+                        factors=suite.factors,
+                        **{**run_options(args), "building": suite.building})
     blocks = {"free": "unconstrained_", "bare": "baseline_", "bumpers": ""}
-    return {config: {name: ds[prefix + name].values for name in PEAKS}
+    return {config: {name: ds[prefix + name].values for name in PEAKS + ("collapsed",)
+                     if prefix + name in ds}
             for config, prefix in blocks.items()}, ds
 
 
@@ -227,7 +238,7 @@ def assemble(grid: Grid, peaks: dict, names, weights, building, limits):
             data[prefix + name] = variable(DIMS[config] + along.get(name, ()),
                                            peaks[config][name], q.units,
                                            f"{q.long_name} {said[config]} (resultant)")
-        flagged = flags_of(peaks[config], building, limits, area=AREA,
+        flagged = flags_of(peaks[config], building, limits, area=AREA, thickness=THICKNESS,
                            n_bumpers=counts if config == "bumpers" else None)
         for name, value in flagged.items():
             data[prefix + name] = variable(DIMS[config], value.astype(np.int8), "1",
@@ -298,8 +309,14 @@ def add_statistics(ds):
     names = list(RESPONSES)
     dims = DIMS["bumpers"]
     pairs = [_with_without(ds, r) for r in names]
-    amp = np.stack([amplification(a, b) for a, b in pairs])
-    eff = np.stack([effect(a, b) for a, b in pairs])
+    # A collapse is a collapse, never a large amplification: where a run collapsed the
+    # effect is the collapse's (with_collapse) and the amplification is not a number.
+    fell = ds["invalid_collapse"].transpose(*dims).values.astype(bool)
+    fell_bare = ds["bare_invalid_collapse"].broadcast_like(ds["invalid_collapse"]) \
+        .transpose(*dims).values.astype(bool)
+    either = fell | fell_bare
+    amp = np.stack([np.where(either, np.nan, amplification(a, b)) for a, b in pairs])
+    eff = np.stack([with_collapse(effect(a, b), fell, fell_bare) for a, b in pairs])
     touch = contact(ds).transpose(*dims).values
     valid = ~(outside(ds, "bumpers") | outside(ds, "bare")).transpose(*dims).values
     w = ds.record_weight.values
@@ -319,12 +336,22 @@ def add_statistics(ds):
         ("response", "outcome", *dims[1:]), _shares(eff, touch, w), "1",
         "weighted share of the pairs (record_weight) helped, neutral, hurt, or with no contact")
     out["amplification_quantile"] = variable(
-        ("response", "quantile", *dims[1:]), _quantiles(amp, touch, w), "1",
+        ("response", "quantile", *dims[1:]), _quantiles(amp, touch & ~either, w), "1",
         "weighted 16th, 50th, 84th percentiles of the amplification over the pairs with "
-        "contact, runs outside the model's range included (see counted_outside_range; NaN: "
-        "no contact)")
-    out["quantile_pairs"] = variable(dims[1:], touch.sum(axis=0), "1",
+        "contact and no collapse, runs outside the model's range included (see "
+        "counted_outside_range; NaN: no contact)")
+    out["quantile_pairs"] = variable(dims[1:], (touch & ~either).sum(axis=0), "1",
                                      "pairs behind amplification_quantile")
+    out["collapse_share"] = variable(
+        ("configuration", *dims[1:]), np.stack([
+            _weighted_mean(fell, np.ones_like(fell), w),
+            _weighted_mean(fell_bare, np.ones_like(fell), w)]), "1",
+        "weighted share of the pairs whose run collapsed, with the bumpers and against the "
+        "bare wall (counted as the collapse's effect in outcome_share: hurt where only the "
+        "bumpers' run collapsed, helped where only the bare wall's, neutral where both)")
+    out = out.assign_coords(configuration=variable(
+        "configuration", np.array(["bumpers", "bare"]), "1", "with the bumpers, or against "
+        "the bare wall at the same gap"))
     out["counted_outside_range"] = variable(
         dims[1:], _weighted_mean(~valid, touch, w), "1", "weighted share of the pairs with "
         "contact whose bumper or bare-wall run is outside the model's range (NaN: none)")

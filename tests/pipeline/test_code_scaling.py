@@ -320,7 +320,7 @@ def test_rule_modules_keep_the_pairs_their_scaling_keeps():
     rng = np.random.default_rng(5)
     items = [Pair(rng.normal(size=(800, 2)) * (1 + i), 0.01, f"p{i}") for i in range(4)]
     flat = tg.TargetSpectrum.from_table([0.1, 5.0], [0.5, 0.5])
-    design = SimpleNamespace(t_m=1.0, d_m=0.3)
+    design = SimpleNamespace(t_m=1.0, d_m=0.3, t_m_bounds=(1.0, 1.0))  # a DesignBasis' fields
     for name, scale in (("asce7", cs.asce7_isolated), ("p695", cs.fema_p695)):
         chosen, factors, scaled = scaling_rules.rule(name).factors(items, flat, design, None,
                                                                   None)

@@ -51,11 +51,26 @@ def test_flags_of_takes_the_peaks_as_the_engine_names_them():
                               n_bumpers=4, area=0.0225)
     assert {k: v.tolist() for k, v in got.items()} == {k: v.tolist()
                                                        for k, v in expected.items()}
-    assert [v.tolist() for v in got.values()] == [[False, True], [False, True], [False, True],
-                                                  [False, False]]
+    # stress, strain (no thickness given: not checked), floor acceleration, story, wall,
+    # collapse (a building without a criterion: none)
+    assert [v.tolist() for v in got.values()] == [[False, True], [False, False], [False, True],
+                                                  [False, True], [False, False], [False, False]]
+    # a collapsed run is flagged as such
+    fell = validity.flags_of({**peaks, "collapsed": np.array([False, True])}, building, limits)
+    assert fell["invalid_collapse"].tolist() == [False, True]
     # stories with a yield force bound their own shear: not checked
     yielding = engine.Building(story_yield_force=[1e6] * building.n_stories)
     assert not validity.flags_of(peaks, yielding, limits)["invalid_story_shear"].any()
+
+
+def test_a_collapse_is_the_collapses_effect_never_an_amplification():
+    effects = np.array([outcomes.NEUTRAL, outcomes.HELPED, outcomes.HURT, outcomes.HELPED])
+    with_bumpers = np.array([True, True, False, True])
+    bare = np.array([False, False, True, True])
+    got = outcomes.with_collapse(effects, with_bumpers, bare)
+    assert got.tolist() == [outcomes.HURT, outcomes.HURT, outcomes.HELPED, outcomes.NEUTRAL]
+    untouched = outcomes.with_collapse(effects, np.zeros(4, bool), np.zeros(4, bool))
+    assert untouched.tolist() == effects.tolist()
 
 
 def test_quantiles_are_the_median_and_one_sigma_either_side():

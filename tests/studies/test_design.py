@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from pipeline.assess import validity
 from pipeline.assess.outcomes import weighted_quantiles
 from studies import design
 from studies.common.recipe import verdicts
@@ -163,7 +164,8 @@ def test_weighted_statistics():
 
 @pytest.fixture(scope="module")
 def archive(tmp_path_factory):
-    return run_recipe(design, ["--quick"], tmp_path_factory.mktemp("design"))
+    # a gap narrower than the default, where the quick search's stress limit still binds
+    return run_recipe(design, ["--quick", "--gap-dm", "0.5"], tmp_path_factory.mktemp("design"))
 
 
 def test_archive(archive):
@@ -183,8 +185,8 @@ def test_archive(archive):
     np.testing.assert_allclose(ds.fraction_within_limits.values,
                                search.weighted_fraction(within.values, w))
     # every flag counted, per level and candidate, references too
-    for name in ("invalid_bumper_stress", "invalid_floor_accel", "invalid_story_shear",
-                 "invalid_wall_force"):
+    for name in ("invalid_bumper_stress", "invalid_bumper_strain", "invalid_floor_accel",
+                 "invalid_story_shear", "invalid_wall_force"):
         np.testing.assert_array_equal(ds[f"n_{name}"].values, ds[name].sum("record").values)
         np.testing.assert_array_equal(ds[f"reference_n_{name}"].values,
                                       ds[f"reference_{name}"].sum("record").values)
@@ -192,6 +194,15 @@ def test_archive(archive):
     stress = ds.max_impact_force / (ds.n_bumpers * ds.bumper_area)
     np.testing.assert_array_equal(ds.invalid_bumper_stress.values,
                                   (stress > ds.attrs["bumper_stress_limit"]).values)
+    # and past the calibration's strain: indentation > 0.8 t (a crushed bumper, here)
+    strained = ds.max_indentation > validity.RUBBER_STRAIN_LIMIT * ds.thickness
+    np.testing.assert_array_equal(ds.invalid_bumper_strain.values, strained.values)
+    assert not (ds.invalid_bumper_strain.astype(bool) & (ds.crushed == 0)).any()
+    # the pads' stiffness: Eq. 11 x the law's shape ratio of their shape factor
+    from engine.impact.laws import rubber_bumper
+    assert ds.attrs["bumper_shape_k"] == rubber_bumper.GENT_LINDLEY_K
+    np.testing.assert_allclose(ds.shape_ratio.values, rubber_bumper.compression_ratio(
+        ds.shape_factor.values, ds.attrs["bumper_shape_k"]), rtol=1e-12)
     # no wall, the bare wall and the code's design are never hit at the service level
     assert int(ds.reference_n_impacts.isel(level=0).sum()) == 0
     assert ds.attrs["D_TM"] > ds.attrs["D_M"] > ds.attrs["design_gap"]
@@ -234,6 +245,8 @@ def test_numbers_equal_direct_engine_runs(archive):
     run (no contact)."""
     import engine
     from pipeline.checks import resolve_pairs
+    from pipeline.motions.bounds import design_basis
+    from pipeline.motions.superstructure import for_basis
 
     ds = archive
     i = int(ds.attrs["chosen_candidate"])
@@ -243,11 +256,13 @@ def test_numbers_equal_direct_engine_runs(archive):
     bumpers = engine.Contact.bumper(
         float(ds.attrs["design_gap"]), thickness=t, cavity=float(ds.cavity[i]),
         n_bumpers=int(ds.n_bumpers[i]), k_w=float(ds.wall_k[i]),
-        area=float(ds.bumper_area[i]))
+        area=float(ds.bumper_area[i]), shape_k=float(ds.attrs["bumper_shape_k"]))
     code = engine.Contact.linear(float(ds.reference_gap[2]))
     levels = ds.level.values
+    # the code-designed building (--stories imk, the default) at the archive's bound
+    building = for_basis(design_basis(0.9, engine.Building(), ds.attrs["isolator_bound"])).building
     res = engine.simulate(pair.accel, pair.dt, engine.Contact.concat([bumpers] * 3 + [code] * 3),
-                          engine.Building(), moat="rectangular",
+                          building, moat="rectangular",
                           scale=float(ds.scale_factor[p]) * np.tile(levels, 2))
     assert ds.n_impacts.values[p, :, i].tolist()[0] == 0  # not run at the service level
     assert ds.n_impacts.values[p, 2, i] > 0

@@ -29,6 +29,12 @@ def test_archive(quick):
     assert list(ds.level.values) == list(fragility.QUICK_LEVELS) and ds.sizes["record"] == 4
     assert ds.gap_fraction.values[-1] == pytest.approx(ds.attrs["D_TM"] / ds.attrs["D_M"])
     assert ds.attrs["scaling_rule"] == "asce7" and ds.attrs["quick"] == 1
+    # the bound run (lower by default), its T_M, D_M, D_TM, the others and the dashpot beside
+    assert ds.attrs["isolator_bound"] == "lower"
+    for name in ("T_M", "D_M", "D_TM"):
+        assert ds.attrs[name] == ds.attrs[f"{name}_lower"]
+    assert ds.attrs["D_M_lower"] > ds.attrs["D_M_nominal"] > ds.attrs["D_M_upper"]
+    assert ds.attrs["D_M_with_dashpot"] < ds.attrs["D_M"]
     assert_udunits(ds)
     (verdict,) = json.loads(ds.attrs["paper_verdicts"])
     assert verdict["verdict"] in ("agrees", "differs", "not tested")
@@ -37,13 +43,15 @@ def test_archive(quick):
 def test_scaling_and_one_member_are_the_engines(quick):
     ds = quick
     pairs, names = resolve_pairs(list(ds.record.values))
-    suite = code_suite(pairs, names, engine.Building())
+    # the default bound (lower), on the superstructure the code designs (--stories imk)
+    suite = code_suite(pairs, names, engine.Building()).with_superstructure("imk")
     np.testing.assert_allclose(ds.scale_factor.values, suite.factors, rtol=1e-12)
     r, level, g = 1, 1.0, 0
     gap = float(ds.gap.isel(gap_fraction=g))
+    assert ds.gap.values[-1] == suite.design.d_tm  # the lower bound's D_TM
     run = engine.simulate(pairs[r].accel, pairs[r].dt,
                           engine.Contact.bumper([gap], thickness=0.05, n_bumpers=4),
-                          scale=suite.factors[r] * level, moat="rectangular")
+                          suite.building, scale=suite.factors[r] * level, moat="rectangular")
     got = ds.isel(record=r, gap_fraction=g).sel(level=level, barrier="4 bumpers")
     assert float(got.peak_isolator_disp) == run.peak_isolator_disp[0]
     assert float(got.max_impact_force) == run.max_impact_force[0]

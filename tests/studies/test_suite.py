@@ -73,16 +73,24 @@ def test_statistics_recomputed_by_hand(archive):
 
 def test_member_equals_a_direct_engine_run(archive):
     """A suite member = engine.simulate of the pair at its MCE_R factor x the level, with the
-    same bumpers at the same gap: the same numbers, bit for bit."""
+    same bumpers at the same gap, the building at the archive's bound (lower by default): the
+    same numbers, bit for bit, on the superstructure the code designs."""
     from pipeline.checks import resolve_pairs
+    from pipeline.motions.bounds import design_basis
+    from pipeline.motions.superstructure import for_basis
 
     ds = archive
+    assert ds.attrs["isolator_bound"] == "lower" and ds.attrs["D_M"] == ds.attrs["D_M_lower"]
+    # the code-designed building (the default --stories imk) at the archive's bound
+    superstructure = for_basis(design_basis(0.9, engine.Building(), ds.attrs["isolator_bound"]))
+    building = superstructure.building
+    assert ds.attrs["story_law"] == building.story_law.describe()
     (pair,), _ = resolve_pairs([PAIRS[1]])
     at = {"record": PAIRS[1], "level": "MCE_R", "n_bumpers": 32, "wall_k": 5e8}
     member = ds.sel(**at).isel(gap_fraction=0)
     wall = engine.Contact.bumper([float(member.gap)], thickness=0.05, n_bumpers=32, k_w=5e8)
-    direct = engine.simulate(pair.accel, pair.dt, wall, scale=[float(member.scale_factor)],
-                             moat="rectangular")
+    direct = engine.simulate(pair.accel, pair.dt, wall, building,
+                             scale=[float(member.scale_factor)], moat="rectangular")
     np.testing.assert_array_equal(member.peak_total_accel.values, direct.peak_total_accel[0])
     np.testing.assert_array_equal(member.max_indentation.values, direct.max_indentation[0])
 

@@ -13,6 +13,38 @@ Bumper stiffness, Eq. 11-12: k_st = A K_r / t^n, k_imp = alpha k_st, and bumpers
 act in parallel. With the paper's material (K_r = 55,835 kN/m^2, n = 2.65, alpha = 2.25) one
 150 x 150 x 50 mm bumper gives 0.089 kN/mm^2.65.
 
+The pad's shape (beyond the paper; issue 27, point 7). Eq. 11 makes the stress a function of
+the strain alone, sigma = K_r (delta / t)^n, whatever the pad's shape: true of the pad K_r and n
+were fitted on (Kajita et al. 2006, 40 x 40 x 10 mm), not of others. A bonded rubber block
+compresses with the modulus E_c = E (1 + 2 k S^2): Gent & Lindley 1959 ("The compression of
+bonded rubber blocks", Proc. Instn Mech. Engrs 173, 111-122) give E_c = E (1 + beta S^2) for
+a block of square, circular or moderately rectangular section, beta = 2 for unfilled rubber
+and somewhat less for rubber filled with carbon black; the design handbooks (Lindley,
+"Engineering design with natural rubber", MRPRA; Gent, "Engineering with Rubber") write
+it 1 + 2 k S^2 with a hardness-dependent factor k (k = 1: beta = 2; one such table gives k 0.54
+at 65 and 0.52 at 75 Shore A for SRF-black natural rubber). S is the shape factor: loaded area
+over the area free to bulge, side / (4 t) for a square pad (the law's bumpers are square: S =
+sqrt(A) / (4 t)). Taken as scaling the whole power law by the same factor, the static
+stiffness of a pad of shape factor S is
+
+    k_st(S) = A K_r / t^n x (1 + 2 k S^2) / (1 + 2 k S_cal^2)              (shape_ratio)
+
+S_cal the shape factor of the pad K_r was fitted on (`shape_factor_cal`, 1.0: Kajita's 40 x 40
+x 10 mm pad) and k the rubber's factor (`shape_k`). Bulk compressibility, 1 / E_c = 1 / (E (1
++ 2 k S^2)) + 1 / B (Gent & Lindley 1959; Kelly & Konstantinidis 2011), is negligible
+at these shape factors: E_c <= 5.5 E for S <= 1.5, a few MPa, against B ~ 2000 MPa.
+- `shape_k` defaults to 0: no shape effect, the paper's Eq. 11 as published (as for a pad whose
+  faces slip freely), so that the paper's recipes, whose pads have S 0.75 (the bumpers), 1.0
+  (Kajita's test pad) and 1.25 (damping_calibration's block), keep their numbers bit for bit:
+  the ratio is then 1 / 1 = 1.0 exactly. GENT_LINDLEY_K (1.0, beta = 2) is the published
+  value for unfilled rubber, the one studies.design uses; the rubber of Kajita et al. is not
+  characterised beyond its fit (its hardness is not given), and 1.0 is the upper end of the
+  handbooks' range (about 0.5-1; a softer pad at low S, a stiffer one at high S than any
+  filled rubber): UNVERIFIED for this rubber.
+- Where S computes to S_cal the ratio is exactly 1.0 for any k (numerator and denominator are
+  the same float): Kajita's pad (sqrt(0.04^2) / (4 x 0.01) = 1.0) keeps its 0.2 kN/mm^2.65
+  whatever k.
+
 Geometry (SPEC section 2): bumpers of thickness t are fixed to the wall, set into a cavity of
 depth c_d (0 by default), so they protrude t - c_d and the clear gap is gap - (t - c_d); they
 are crushed at delta_u = min(strain t, t - c_d), past which the slab bears on the wall (k_w).
@@ -77,6 +109,15 @@ PARAMETERS = Declaration(
               equation="Eq. 4"),
     Parameter("alpha", "1", "impact-to-static stiffness ratio alpha", 2.25, "(0, inf)",
               equation="Eq. 12"),
+    # 0: the paper's Eq. 11 (no shape effect); GENT_LINDLEY_K = 1 for unfilled rubber, about
+    # 0.5-1 for filled ones by hardness (module docstring).
+    Parameter("shape_k", "1", "Gent-Lindley factor k of the rubber's compression modulus E (1 + "
+              "2 k S^2) scaling k_st with the pad's shape factor S = sqrt(A) / (4 t) (0: none, "
+              "the paper's Eq. 11)", 0.0, "[0, inf)", equation="Eq. 11, Gent & Lindley 1959",
+              plausible="[0, 1]"),
+    Parameter("shape_factor_cal", "1", "shape factor S of the pad K_r and n were fitted on "
+              "(Kajita et al.'s 40 x 40 x 10 mm: 1.0)", 1.0, "(0, inf)",
+              equation="Eq. 11, Gent & Lindley 1959", plausible="[0.05, 20]"),
     Option("c_imp_rule", C_IMP_RULES, "eq9",
            "impact damping coefficient C_imp: the paper's Eq. 9, or calibrated to realise "
            "the COR exactly"),
@@ -86,18 +127,52 @@ PARAMETERS = Declaration(
 )
 
 
-_RUBBER = {name: PARAMETERS[name].default for name in ("k_r", "n", "alpha")}
+_RUBBER = {name: PARAMETERS[name].default
+           for name in ("k_r", "n", "alpha", "shape_k", "shape_factor_cal")}
+
+GENT_LINDLEY_K = 1.0
+"""Gent & Lindley's (1959) factor for a bonded block of unfilled rubber, square, circular or
+moderately rectangular (E_c = E (1 + 2 S^2)): the shape_k the design study uses (module
+docstring; UNVERIFIED for the paper's rubber, whose hardness is not given)."""
 
 
-def static_stiffness(area, thickness, k_r=_RUBBER["k_r"], n=_RUBBER["n"]):
-    """Eq. 11: k_st = A K_r / t^n in N/m^n (area m^2, thickness m, k_r Pa)."""
-    return area * k_r / np.asarray(thickness, dtype=float) ** n
+def shape_factor(area, thickness):
+    """Shape factor S (-) of a square pad: loaded area over the area free to bulge,
+    A / (4 sqrt(A) t) = side / (4 t) (area m^2, thickness m). The paper's 150 x 150 x 50 mm
+    bumper: 0.75; Kajita et al.'s 40 x 40 x 10 mm test pad: 1.0."""
+    return np.sqrt(np.asarray(area, dtype=float)) / (4 * np.asarray(thickness, dtype=float))
+
+
+def compression_ratio(s, shape_k=_RUBBER["shape_k"],
+                      shape_factor_cal=_RUBBER["shape_factor_cal"]):
+    """(1 + 2 k S^2) / (1 + 2 k S_cal^2): the compression modulus of a pad of shape factor S
+    over that of the pad K_r was fitted on, S_cal (Gent & Lindley 1959; module docstring).
+    Exactly 1.0 for k = 0 and for S = S_cal. Broadcast."""
+    k = np.asarray(shape_k, dtype=float)
+    s = np.asarray(s, dtype=float)
+    return (1 + 2 * k * s**2) / (1 + 2 * k * np.asarray(shape_factor_cal, dtype=float) ** 2)
+
+
+def shape_ratio(area, thickness, shape_k=_RUBBER["shape_k"],
+                shape_factor_cal=_RUBBER["shape_factor_cal"]):
+    """`compression_ratio` of a square pad of area A (m^2) and thickness t (m), S = sqrt(A) /
+    (4 t): what its k_st is of Eq. 11's."""
+    return compression_ratio(shape_factor(area, thickness), shape_k, shape_factor_cal)
+
+
+def static_stiffness(area, thickness, k_r=_RUBBER["k_r"], n=_RUBBER["n"],
+                     shape_k=_RUBBER["shape_k"], shape_factor_cal=_RUBBER["shape_factor_cal"]):
+    """Eq. 11 with the pad's shape: k_st = A K_r / t^n x shape_ratio in N/m^n (area m^2,
+    thickness m, k_r Pa; shape_k 0, the default: the paper's Eq. 11 exactly)."""
+    eq11 = area * k_r / np.asarray(thickness, dtype=float) ** n
+    return eq11 * shape_ratio(area, thickness, shape_k, shape_factor_cal)
 
 
 def impact_stiffness(area, thickness, k_r=_RUBBER["k_r"], n=_RUBBER["n"],
-                     alpha=_RUBBER["alpha"], count=1):
+                     alpha=_RUBBER["alpha"], count=1, shape_k=_RUBBER["shape_k"],
+                     shape_factor_cal=_RUBBER["shape_factor_cal"]):
     """Eq. 12 for `count` identical bumpers acting in parallel: alpha * count * k_st (N/m^n)."""
-    return alpha * count * static_stiffness(area, thickness, k_r, n)
+    return alpha * count * static_stiffness(area, thickness, k_r, n, shape_k, shape_factor_cal)
 
 
 def damping_prefactor(cor, m_eff):
@@ -115,7 +190,7 @@ def damping_constants(cor, m_eff, n, rule="eq9"):
 
 
 def contact_fields(gap, thickness, strain, n_bumpers, k_w, cor, m_eff, cavity, area, k_r, n,
-                   alpha, c_imp_rule, c_imp):
+                   alpha, shape_k, shape_factor_cal, c_imp_rule, c_imp):
     """The Contact fields of this law from its checked, broadcast (B,) parameters."""
     if np.any(cavity >= thickness):
         raise EngineError(f"cavity must be smaller than thickness, got cavity {cavity} m, "
@@ -128,8 +203,9 @@ def contact_fields(gap, thickness, strain, n_bumpers, k_w, cor, m_eff, cavity, a
         c_imp_coef, c_imp_exponent = damping_constants(cor, m_eff, n, c_imp_rule)
     else:
         c_imp_coef, c_imp_exponent = c_imp, 0.0
-    return {"clear_gap": gap - protrusion, "k": impact_stiffness(area, thickness, k_r, n, alpha,
-                                                                 n_bumpers),
+    return {"clear_gap": gap - protrusion,
+            "k": impact_stiffness(area, thickness, k_r, n, alpha, n_bumpers, shape_k,
+                                  shape_factor_cal),
             "n": n, "delta_u": np.minimum(strain * thickness, protrusion), "k_w": k_w,
             "c_imp_coef": c_imp_coef, "c_imp_exponent": c_imp_exponent}
 

@@ -11,9 +11,11 @@ A rule module holds:
     CLAUSE: str               the clause of the standard it implements, or why it is none
     factors(pairs, target, design, building, dt) -> (chosen, factors, scaled)
         pairs: records.RecordPair list (.accel (N, 2) m/s^2, .dt s, .name); target: the MCE_R
-        target (pipeline.motions.target.TargetSpectrum); design: the building's code quantities
-        (pipeline.motions.target.IsolationDesign: T_M s, D_M m, ...); building: engine.Building;
-        dt: integration step (s) of any engine run, None for engine.DEFAULT_DT.
+        target (pipeline.motions.target.TargetSpectrum); design: the building's design basis
+        (pipeline.motions.bounds.DesignBasis: t_m s, d_m m, d_tm m at the bound run, t_m_bounds
+        (T_M upper bound, T_M lower bound) s); building: the engine.Building run (at that
+        bound's isolator properties); dt: integration step (s) of any engine run, None for
+        engine.DEFAULT_DT.
         chosen: indices (list of int) of the pairs kept, in their order; factors (K,) -: each
         kept pair's factor at the MCE_R (both components); scaled: the
         pipeline.motions.code_scaling.ScaledPairs that justifies them, or None when the rule has no

@@ -3,6 +3,9 @@
 the stated fraction of the MCE_R target over the stated period range around T_M
 (pipeline.motions.code_scaling.asce7_isolated with ASCE7_22_ISOLATED, which holds the numbers and
 the clause; pairs whose factor falls outside its limits are left out and listed there).
+
+The range runs from 0.75 T_M with upper-bound to 1.25 T_M with lower-bound isolator properties
+(the design basis' t_m_bounds, pipeline.motions.bounds), whichever bound the study runs.
 """
 from __future__ import annotations
 
@@ -21,8 +24,9 @@ CLAUSE = ASCE7_22_ISOLATED.clause
 
 
 def factors(pairs, target, design, building, dt):
-    """(chosen, factors (K,), ScaledPairs): the pairs scaled at T_M = design.t_m (s) to the
-    target (see the package's docstring); building and dt are not needed."""
-    scaled = asce7_isolated(pairs, target, design.t_m)
+    """(chosen, factors (K,), ScaledPairs): the pairs scaled to the target over 0.75 T_M
+    (upper bound) to 1.25 T_M (lower bound), (T_M upper, T_M lower) = design.t_m_bounds (s; see
+    the package's docstring); building and dt are not needed."""
+    scaled = asce7_isolated(pairs, target, design.t_m_bounds)
     chosen, kept = scaled.factors_of(pairs)
     return chosen, kept, scaled

@@ -28,8 +28,9 @@ CLAUSE = ("none: not a code rule; the building's unconstrained resultant peak is
 
 
 def factors(pairs, target, design, building, dt):
-    """(every index, factors (R,), None): each pair's factor to D_M = design.d_m (m) on the
-    building at step dt (s, None for engine.DEFAULT_DT); the target is not needed."""
+    """(every index, factors (R,), None): each pair's factor to D_M = design.d_m (m, at the
+    bound run) on the building (at that bound's properties) at step dt (s, None for
+    engine.DEFAULT_DT); the target is not needed."""
     chosen = list(range(len(pairs)))
     kept = np.array([to_displacement(p, design.d_m, building, dt) for p in pairs])
     return chosen, kept, None

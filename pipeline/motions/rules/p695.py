@@ -19,8 +19,8 @@ CLAUSE = FEMA_P695.clause
 
 def factors(pairs, target, design, building, dt):
     """(chosen, factors (K,), ScaledPairs): the pairs normalised and anchored at
-    T = design.t_m (s) on the target (see the package's docstring); every pair is kept;
-    building and dt are not needed."""
+    T = design.t_m (s: T_M at the bound run) on the target (see the package's docstring);
+    every pair is kept; building and dt are not needed."""
     scaled = fema_p695(pairs, target, design.t_m)
     chosen, kept = scaled.factors_of(pairs)
     return chosen, kept, scaled

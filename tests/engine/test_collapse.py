@@ -1,0 +1,114 @@
+"""P-Delta and collapse in the engine, against closed forms and between the loops: P-Delta on
+linear stories is a story of stiffness k - P/h (bit for bit, planar and in plan); a collapsed
+member stops with its peaks, in both loops, at the same step; the building's checks.
+(OpenSeesPy cross-checks with a leaning column: tests/reference/test_opensees_pdelta.py.)"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import engine
+from engine import Building, Contact, Stories
+
+T = np.arange(0.0, 6.0, 0.01)
+AG = 3.0 * np.sin(2 * np.pi * 0.7 * T) * np.exp(-0.05 * T)
+AG_XY = np.column_stack([AG, 0.6 * np.cos(2 * np.pi * 0.5 * T)])
+HEIGHTS = (4.0, 3.5, 3.5, 3.5)
+
+
+def test_gravity_stiffness_is_the_weight_above_over_the_height():
+    b = Building(story_height=HEIGHTS, p_delta=True)
+    masses = np.asarray(b.masses)
+    expected = [b.g * masses[i:].sum() / HEIGHTS[i - 1] for i in range(1, 5)]
+    np.testing.assert_allclose(b.gravity_stiffness, expected, rtol=1e-15)
+    assert np.all(Building(story_height=HEIGHTS).gravity_stiffness == 0)
+
+
+@pytest.mark.parametrize("backend", ["numba", "numpy"])
+@pytest.mark.parametrize("plan", [False, True])
+def test_p_delta_on_linear_stories_is_a_softer_story(backend, plan):
+    """With no story dashpots (their rule reads the elastic stiffness), P-Delta on linear
+    stories k is the linear story k - P/h, bit for bit, in a plane and in plan."""
+    pd = Building(zeta_sup=0.0, story_height=HEIGHTS, p_delta=True)
+    soft = Building(zeta_sup=0.0, story_stiffness=tuple(np.asarray(pd.story_stiffness)
+                                                        - pd.gravity_stiffness))
+    contact = Contact.bumper(np.array([0.08, 5.0]))
+    ag = AG_XY if plan else AG
+    a = engine.simulate(ag, 0.01, contact, pd, backend=backend, scale=[1.0, 1.3])
+    b = engine.simulate(ag, 0.01, contact, soft, backend=backend, scale=[1.0, 1.3])
+    for name, value in a.peaks().items():
+        assert np.array_equal(value, getattr(b, name)), name
+    assert not a.collapsed.any() and np.all(np.isnan(a.collapse_time))
+    # And it is not the building without P-Delta.
+    c = engine.simulate(ag, 0.01, contact, Building(zeta_sup=0.0), backend=backend,
+                        scale=[1.0, 1.3])
+    assert not np.array_equal(a.peak_interstory_drift, c.peak_interstory_drift)
+
+
+def _falling(ratio=0.05):
+    """Elastic-perfectly-plastic weak stories under their own weight: past yield the story's
+    stiffness is -P/h, and a strong enough shake runs it away."""
+    return Building(stories=Stories.bilinear(yield_force=1.0e6, post_yield_ratio=0.0),
+                    story_height=HEIGHTS, p_delta=True, collapse_drift_ratio=ratio)
+
+
+@pytest.mark.parametrize("plan", [False, True])
+def test_collapse_ends_the_run_at_the_same_step_in_both_loops(plan):
+    ag = AG_XY if plan else AG
+    contact = Contact.none(4)
+    scale = [0.1, 0.8, 1.5, 3.0]
+    runs = {be: engine.simulate(ag, 0.01, contact, _falling(), backend=be, scale=scale)
+            for be in ("numba", "numpy")}
+    a, b = runs["numba"], runs["numpy"]
+    assert a.collapsed.tolist() == b.collapsed.tolist() == [False, True, True, True]
+    np.testing.assert_array_equal(a.collapse_time, b.collapse_time)
+    assert np.isnan(a.collapse_time[0]) and np.all(np.diff(a.collapse_time[1:]) < 0)
+    # The peaks stop at the step before: no drift beyond the collapse drift is reported.
+    limit = 0.05 * np.asarray(HEIGHTS)
+    assert np.all(a.peak_interstory_drift <= limit + 1e-12)
+    for name, value in a.peaks().items():
+        np.testing.assert_allclose(value, getattr(b, name), rtol=1e-9, atol=1e-12,
+                                   err_msg=name)
+
+
+def test_a_collapsed_member_is_the_same_in_any_batch():
+    alone = engine.simulate(AG, 0.01, Contact.none(1), _falling(), scale=[1.5])
+    batch = engine.simulate(AG, 0.01, Contact.none(3), _falling(), scale=[0.1, 1.5, 3.0],
+                            progress=lambda step, n: None)  # in chunks of steps
+    assert alone.collapse_time[0] == batch.collapse_time[1]
+    assert np.array_equal(alone.peak_interstory_drift[0], batch.peak_interstory_drift[1])
+
+
+def test_without_a_criterion_the_weak_building_runs_on():
+    b = Building(stories=Stories.bilinear(yield_force=1.0e6, post_yield_ratio=0.0),
+                 story_height=HEIGHTS, p_delta=True)
+    r = engine.simulate(AG, 0.01, Contact.none(1), b, scale=[1.5])
+    assert not r.collapsed[0]
+    assert r.peak_interstory_drift.max() > 0.05 * 4.0  # it went past the 5% above
+
+
+def test_the_building_says_what_is_wrong():
+    with pytest.raises(engine.EngineError, match="need story_height"):
+        Building(p_delta=True)
+    with pytest.raises(engine.EngineError, match="need story_height"):
+        Building(collapse_drift_ratio=0.1)
+    with pytest.raises(engine.EngineError, match="story_height must be 4 positive"):
+        Building(story_height=(3.0, 3.0))
+    with pytest.raises(engine.EngineError, match=r"in \(0, 1\]"):
+        Building(story_height=HEIGHTS, collapse_drift_ratio=10)
+    with pytest.raises(engine.EngineError, match="either as stories= or by story_yield"):
+        Building(stories=Stories.linear(), story_yield_force=(1e6,) * 4)
+    with pytest.raises(engine.EngineError, match="one number or 4"):
+        Building(stories=Stories.bilinear(yield_force=(1e6, 2e6)))
+    with pytest.raises(engine.EngineError, match="unknown story law"):
+        Stories.of("elastoplastic")
+
+
+def test_the_shorthand_is_the_bilinear_law():
+    short = Building(story_yield_force=(2e6,) * 4, story_post_yield_ratio=0.05)
+    law = Building(stories=Stories.bilinear(yield_force=2e6, post_yield_ratio=0.05))
+    a = engine.simulate(AG, 0.01, Contact.none(1), short)
+    b = engine.simulate(AG, 0.01, Contact.none(1), law)
+    assert np.array_equal(a.peak_interstory_drift, b.peak_interstory_drift)
+    assert short.story_law.describe() == "bilinear(yield_force = (2e+06, 2e+06, 2e+06, " \
+        "2e+06) N, post_yield_ratio = 0.05)"
