@@ -153,12 +153,9 @@ def building(data: dict, where: str = "building") -> engine.Building:
     for name, value in data.items():
         if value is None:  # the field's default (JSON null)
             continue
-        if name == "isolator":
-            fields[name] = value if isinstance(value, engine.Isolator) \
-                else _isolator(value, where)
-        elif name == "stories":
-            fields[name] = value if isinstance(value, engine.Stories) \
-                else _stories(value, where)
+        if name in LAW_TABLES:
+            fields[name] = value if isinstance(value, LAW_TABLES[name][1]) \
+                else _law_table(name, value, where)
         elif name == "p_delta":
             fields[name] = _flag(name, value, where)
         elif FIELD_UNITS[name] is None:
@@ -185,39 +182,32 @@ def _flag(name: str, value, where: str) -> bool:
     raise BuildingError(f"{where}: {name} must be true or false, got {value!r}")
 
 
-def _stories(table, where: str) -> engine.Stories:
-    if not isinstance(table, dict) or not isinstance(table.get("law"), str):
-        raise BuildingError(f"{where}: stories must be a table with law = one of "
-                            f"{', '.join(STORY_LAWS)} and that law's parameters")
-    law = table["law"]
-    if law not in STORY_LAWS:
-        raise BuildingError(f"{where}: story law {law!r} is not one of "
-                            f"{', '.join(STORY_LAWS)}")
-    params = {k: v for k, v in table.items() if k != "law"}
-    try:
-        return engine.Stories.of(law, **params)
-    except (engine.EngineError, TypeError, ValueError) as err:
-        raise BuildingError(f"{where}: stories ({law}): {err}") from None
+LAW_TABLES = {"isolator": (ISOLATOR_LAWS, engine.Isolator, (int, float)),
+              "stories": (STORY_LAWS, engine.Stories, (int, float, list, tuple))}
+"""A building's law tables: key -> (its registry, the engine type built from it, the types a
+parameter may have: a story's value is one number or one per story)."""
 
 
-def _isolator(table, where: str) -> engine.Isolator:
+def _law_table(key: str, table, where: str):
+    """The engine.Isolator or engine.Stories of a [isolator] or [stories] table: law = a name
+    of its registry and that law's parameters; BuildingError naming what is wrong."""
+    laws, make, types = LAW_TABLES[key]
     if not isinstance(table, dict) or not isinstance(table.get("law"), str):
-        raise BuildingError(f"{where}: isolator must be a table with law = one of "
-                            f"{', '.join(ISOLATOR_LAWS)} and that law's parameters")
+        raise BuildingError(f"{where}: {key} must be a table with law = one of "
+                            f"{', '.join(laws)} and that law's parameters")
     law = table["law"]
-    if law not in ISOLATOR_LAWS:
-        raise BuildingError(f"{where}: isolator law {law!r} is not one of "
-                            f"{', '.join(ISOLATOR_LAWS)}")
-    declaration = ISOLATOR_LAWS[law].PARAMETERS
+    if law not in laws:
+        raise BuildingError(f"{where}: {key} law {law!r} is not one of {', '.join(laws)}")
+    declaration = laws[law].PARAMETERS
     params = {k: v for k, v in table.items() if k != "law"}
     for name, value in params.items():
-        if name in declaration and not isinstance(value, (int, float)):
-            raise BuildingError(f"{where}: isolator {name} must be a number in "
+        if name in declaration and (isinstance(value, bool) or not isinstance(value, types)):
+            raise BuildingError(f"{where}: {key} {name} must be a number in "
                                 f"{declaration[name].units}, got {value!r}")
     try:
-        return engine.Isolator.of(law, **params)
-    except engine.EngineError as err:
-        raise BuildingError(f"{where}: isolator ({law}): {err}") from None
+        return make.of(law, **params)
+    except (engine.EngineError, TypeError, ValueError) as err:
+        raise BuildingError(f"{where}: {key} ({law}): {err}") from None
 
 
 def _numbers(name: str, value, where: str):

@@ -9,8 +9,9 @@ from . import laws as _laws_package
 
 LAW_INTERFACE = ("NAME", "ORDER", "PARAMETERS", "DEFAULT_ZETA", "DASHPOT_TEXT", "check",
                  "fields", "initial_stiffness", "yield_displacement", "effective_stiffness")
-CODE_INTERFACE = ("post_yield_stiffness", "energy_per_cycle")
-"""What a law gives the code's equivalent-linear design (pipeline.motions.target.isolation_design):
+CODE_INTERFACE = ("post_yield_stiffness", "energy_per_cycle", "bounded")
+"""What a law gives the code's equivalent-linear design (pipeline.motions.target.isolation_design)
+and its property bounds (pipeline.motions.bounds: `bounded(values, lambda_q, lambda_k)`):
 optional, so that a law can be run without them; law_function says which is missing."""
 
 LAWS: dict[str, ModuleType] = discover(_laws_package, LAW_INTERFACE)

@@ -141,25 +141,24 @@ def _member(levels, law_tag, b, s0, s1, ag, dt, op, bands, wall, mass, story, la
     nxt = carray(stack_doubles(levels), (n_levels,))
     fallen = False
     for step in range(s0, s1):
-        # A story past its collapse drift, or a state no longer finite (NaN fails the
-        # comparison), ends the member's run: its peaks are those of the steps before.
-        for i in range(n_levels - 1):
-            drift[i] = u[i + 1] - u[i]
-            if not abs(drift[i]) <= collapse_drift[i]:
-                fallen = True
-        if fallen:
-            st[_COLLAPSED] = 1.0
-            st[_COLLAPSE_TIME] = step * dt
-            break
         a = ag[step] * scale  # x 1.0 is exact: unscaled members are unchanged
         # Structure without wall force: p - f(u_n), then the free velocities v_{n+1/2}.
         chain[0] = isolator_force(u[0], fp, k_el)
         for i in range(n_levels - 1):
+            drift[i] = u[i + 1] - u[i]
+            # A story past its collapse drift, or a state no longer finite (NaN fails the
+            # comparison), ends the member's run below: its peaks are the steps' before.
+            if not abs(drift[i]) <= collapse_drift[i]:
+                fallen = True
             if nonlinear:  # the story law's force, less what P-Delta takes
                 chain[i + 1] = story_force(story_law, drift[i], s_state[i], s_fields[i]) \
                     - gravity[i] * drift[i]
             else:
                 chain[i + 1] = k_story[i] * drift[i]
+        if fallen:
+            st[_COLLAPSED] = 1.0
+            st[_COLLAPSE_TIME] = step * dt
+            break
         for i in range(n_levels - 1):
             r[i] = (chain[i + 1] - chain[i]) - m[i] * a
         r[n_levels - 1] = (0.0 - chain[n_levels - 1]) - m[n_levels - 1] * a  # the free roof

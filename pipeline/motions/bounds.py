@@ -16,8 +16,8 @@ govern displacements, the moat's clearance and contact (the pounding studies' de
 bound properties give the shortest T_M and the largest base shear V_b = k_M D_M, so they govern
 forces and accelerations.
 
-How a law's parameters take the factors is declared here per law (MODIFIED), the laws
-themselves declaring none yet (engine/isolators/laws/): bilinear: Q_d and K_d = k2 scaled, the
+How a law's parameters take the factors each law declares (its `bounded`,
+engine/isolators/laws/): bilinear: Q_d and K_d = k2 scaled, the
 yield displacement u_y kept (the lead core's elastic stiffness goes with the bearing: k1 =
 Q_d / u_y + K_d), so that k1, k2 and fy_ratio all scale by lambda when both factors are equal;
 friction pendulum: mu_slow and mu_fast scaled by the Q_d factor (friction is its characteristic
@@ -103,45 +103,25 @@ class PropertyFactors:
                 f"{self.k_max:g}, lambda_min {self.k_min:g} on K_d")
 
 
-def _bilinear(values: dict, lambda_q: float, lambda_k: float) -> dict:
-    """k2 -> lambda_k k2; Q_d = (k1 - k2) u_y -> lambda_q Q_d with u_y = fy_ratio W / k1 kept:
-    k1 -> lambda_q (k1 - k2) + lambda_k k2, fy_ratio -> fy_ratio k1' / k1."""
-    k1, k2 = values["k1"], values["k2"]
-    k1_new = lambda_q * (k1 - k2) + lambda_k * k2
-    return {**values, "k1": k1_new, "k2": lambda_k * k2,
-            "fy_ratio": values["fy_ratio"] * k1_new / k1}
-
-
-def _friction_pendulum(values: dict, lambda_q: float, lambda_k: float) -> dict:
-    """mu_slow, mu_fast -> lambda_q mu; the radius (K_d = W / R) and yield_disp kept."""
-    return {**values, "mu_slow": lambda_q * values["mu_slow"],
-            "mu_fast": lambda_q * values["mu_fast"]}
-
-
-MODIFIED = {"bilinear": _bilinear, "friction_pendulum": _friction_pendulum}
-"""Isolator law name -> how its parameters take (lambda on Q_d, lambda on K_d): (values,
-lambda_q, lambda_k) -> values. Declared here because the laws declare none (see the module
-docstring); a law missing here has no bounds (bounded_building says so)."""
-
-
 def bounded_building(building, bound: str, factors: PropertyFactors | None = None):
     """The engine.Building on its isolator at `bound`'s properties (BOUND_NAMES): `building`
     itself at "nominal" (the very object: its runs unchanged, bit for bit), else the same
     building with its isolator's parameters modified by the factors (default PropertyFactors())
-    as MODIFIED declares for its law. ValueError names a law without a declaration or a
-    modified parameter its law refuses."""
+    as its law declares (the law's `bounded`, engine/isolators/laws/). ValueError names a law
+    without the declaration or a modified parameter its law refuses."""
     import engine
+    from engine.isolators.registry import law_function
 
     factors = PropertyFactors() if factors is None else factors
     lambda_q, lambda_k = factors.of(bound)
     if bound == "nominal":
         return building
-    law = building.isolation.law
-    if law not in MODIFIED:
-        raise ValueError(f"the {law} isolator law has no upper- and lower-bound properties: "
-                         f"declare how its parameters take lambda in "
-                         f"pipeline.motions.bounds.MODIFIED, or run --bound nominal")
-    values = MODIFIED[law](building.isolation.values, lambda_q, lambda_k)
+    try:
+        modified = law_function(building.isolation.law, "bounded")
+    except engine.EngineError as err:
+        raise ValueError(f"{err}: it has no upper- and lower-bound properties; run --bound "
+                         "nominal") from None
+    values = modified(building.isolation.values, lambda_q, lambda_k)
     try:
         return building.with_isolator(**values)
     except engine.EngineError as err:

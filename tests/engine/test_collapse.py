@@ -33,7 +33,7 @@ def test_p_delta_on_linear_stories_is_a_softer_story(backend, plan):
     soft = Building(zeta_sup=0.0, story_stiffness=tuple(np.asarray(pd.story_stiffness)
                                                         - pd.gravity_stiffness))
     contact = Contact.bumper(np.array([0.08, 5.0]))
-    ag = AG_XY if plan else AG
+    ag = (AG_XY if plan else AG)[:300]  # 3 s: contact and yielding-free drifts within it
     a = engine.simulate(ag, 0.01, contact, pd, backend=backend, scale=[1.0, 1.3])
     b = engine.simulate(ag, 0.01, contact, soft, backend=backend, scale=[1.0, 1.3])
     for name, value in a.peaks().items():

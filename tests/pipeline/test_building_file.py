@@ -107,3 +107,36 @@ def test_sweep_command_refuses_a_malformed_building(tmp_path, capsys):
                            "--out", str(tmp_path)]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "masses must be a list of numbers" in err and "kg" in err
+
+
+def test_stories_heights_p_delta_and_collapse_from_a_file(tmp_path):
+    path = tmp_path / "b.toml"
+    path.write_text("story_height = [4.0, 3.5, 3.5, 3.5]\np_delta = true\n"
+                    "collapse_drift_ratio = 0.1\n[stories]\nlaw = \"imk\"\n"
+                    "yield_force = [6e6, 5e6, 4e6, 2e6]\nplastic_deformation = 0.09\n"
+                    "post_capping_deformation = 0.35\n")
+    b = read_building(path)
+    assert b == engine.Building(
+        stories=engine.Stories.imk(yield_force=(6e6, 5e6, 4e6, 2e6), plastic_deformation=0.09,
+                                   post_capping_deformation=0.35),
+        story_height=(4.0, 3.5, 3.5, 3.5), p_delta=True, collapse_drift_ratio=0.1)
+    assert building_from([str(path), "p_delta=false"]).p_delta is False
+    with pytest.raises(BuildingError, match="p_delta must be true or false"):
+        building_from(["story_height=4,3.5,3.5,3.5", "p_delta=maybe"])
+    with pytest.raises(BuildingError, match="stories law 'elastic' is not one of linear"):
+        read_building(_written(tmp_path, "[stories]\nlaw = \"elastic\"\n"))
+    with pytest.raises(BuildingError, match="stories yield_force must be a number in N"):
+        read_building(_written(tmp_path, "[stories]\nlaw = \"bilinear\"\nyield_force = "
+                                          "\"big\"\n"))
+    with pytest.raises(BuildingError, match="need story_height"):
+        building_from(["p_delta=true"])
+    from pipeline.building_file import check_plausible
+
+    with pytest.raises(BuildingError, match="story_height"):
+        check_plausible(building_from(["story_height=0.035,0.035,0.035,0.035"]))
+
+
+def _written(folder, text):
+    path = folder / "x.toml"
+    path.write_text(text)
+    return path

@@ -196,7 +196,10 @@ def test_the_studies_bound_options():
 
 
 def test_a_law_without_bounds_is_named(monkeypatch):
-    monkeypatch.setattr(bounds, "MODIFIED", {})
-    with pytest.raises(ValueError, match="bilinear isolator law has no upper- and lower-bound"):
+    from engine.isolators.laws import bilinear
+
+    monkeypatch.delattr(bilinear, "bounded")
+    with pytest.raises(ValueError, match="bilinear isolator law declares no bounded.*no upper- "
+                                         "and lower-bound"):
         bounds.bounded_building(engine.Building(), "lower")
     assert bounds.bounded_building(engine.Building(), "nominal") == engine.Building()

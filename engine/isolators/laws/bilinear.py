@@ -71,3 +71,15 @@ def fields(mass, g, k1, k2, fy_ratio):
     return {"k_elastic": k2, "k_slip": k_slip,
             "f_limit": k_slip * yield_displacement(mass, g, k1, k2, fy_ratio),
             "slow_drop": 0.0, "rate": 0.0}
+
+
+def bounded(values, lambda_q, lambda_k):
+    """The parameters at property modification factors lambda_q on the characteristic strength
+    Q_d = (K1 - K2) u_y and lambda_k on the post-yield stiffness K_d = K2 (ASCE 7-22 17.2.8.4),
+    the yield displacement u_y = fy_ratio W / K1 kept (the usual bounding convention: the lead
+    core's yield displacement is a property of its geometry): K2 -> lambda_k K2, K1 ->
+    lambda_q (K1 - K2) + lambda_k K2, fy_ratio -> fy_ratio K1' / K1."""
+    k1, k2 = values["k1"], values["k2"]
+    k1_new = lambda_q * (k1 - k2) + lambda_k * k2
+    return {**values, "k1": k1_new, "k2": lambda_k * k2,
+            "fy_ratio": values["fy_ratio"] * k1_new / k1}

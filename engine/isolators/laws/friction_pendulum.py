@@ -80,3 +80,12 @@ def fields(mass, g, radius, mu_slow, mu_fast, rate, yield_disp):
     return {"k_elastic": weight / radius, "k_slip": mu_fast * weight / yield_disp,
             "f_limit": mu_fast * weight, "slow_drop": (mu_fast - mu_slow) / mu_fast,
             "rate": rate}
+
+
+def bounded(values, lambda_q, lambda_k):
+    """The parameters at property modification factors lambda_q on the characteristic strength
+    (the friction, mu W: mu_slow and mu_fast scaled) and lambda_k on the post-yield stiffness
+    K_d = W / R (ASCE 7-22 17.2.8.4): the radius is geometry, kept (lambda_k unused), as the
+    pre-slip displacement."""
+    return {**values, "mu_slow": lambda_q * values["mu_slow"],
+            "mu_fast": lambda_q * values["mu_fast"]}

@@ -208,18 +208,47 @@ def backbone(deformation, par):
     return np.sign(d) * f
 
 
+def _backbone(state, block, u_local):
+    """The current backbone of a direction (its state block) at the drift u_local (m, in the
+    direction's frame) before the residual floor: the hardening line up to the capping drift,
+    the post-capping line past it (N)."""
+    ucap = state[block + B_UCAP]
+    if u_local < ucap:
+        slope = state[block + B_KP]
+    else:
+        slope = -state[block + B_KPC]
+    return state[block + B_FCAP] + (u_local - ucap) * slope
+
+
+def _on_residual(state, drift, f, fres):
+    """Whether the story is on or past the residual branch in either direction at drift (m)
+    and force f (N): past the drift where a direction's post-capping line meets the residual
+    strength fres (N), or, for a backbone without post-capping slope, at that strength."""
+    residual = False
+    for side in (POSITIVE, NEGATIVE):
+        sign = 1.0 if side == POSITIVE else -1.0
+        kpc = state[side + B_KPC]
+        if kpc == 0.0:
+            residual = residual or sign * f == fres
+        else:
+            u_res = state[side + B_UCAP] + (state[side + B_FCAP] - fres) / kpc
+            residual = residual or sign * drift >= u_res
+    return residual
+
+
 def force(drift, state, par):
     """Story force (N) at drift `drift` (m) from the committed state `state` (N_STATE,
     updated in place to the new committed state) of a story of field row `par` (`_step`'s,
     which says how).
 
-    The common step first, inside the loop of a story that has not yielded: there `_step`
-    would find no reversal from the backbone, start no excursion (not yielded), not reach the
-    backbone, not ask about the residual branch and change no flag, so its few operations are
-    done here, the same ones in the same order, and `_step` (large: a call, not inlined into
-    the compiled loop) runs only for the rest."""
+    The common step first, inside a loop off the backbone before the residual branch: where
+    the force keeps its sign (or the story has not yielded), stays under the backbone and
+    short of the ultimate drift and the residual branch, `_step` would find no reversal from
+    the backbone, start no excursion, not reach the backbone and change no flag, so its few
+    operations are done here, the same ones in the same order, and `_step` (large) runs only
+    for the rest."""
     failure = state[FAILURE]
-    if state[ON_BACKBONE] == 0.0 and failure == 0.0:
+    if state[ON_BACKBONE] == 0.0 and failure < 2.0:
         u_prev = state[U]
         du = drift - u_prev
         if du != 0.0:
@@ -232,13 +261,11 @@ def force(drift, state, par):
                 s = -1.0
                 block = NEGATIVE
             u_local = s * drift
-            ucap = state[block + B_UCAP]
-            if u_local < ucap:
-                slope = state[block + B_KP]
-            else:
-                slope = -state[block + B_KPC]
-            bound = state[block + B_FCAP] + (u_local - ucap) * slope
-            if bound >= par[FRES] and s * f <= bound and u_local < par[UU]:
+            bound = _backbone(state, block, u_local)
+            fres = par[FRES]
+            if bound >= fres and s * f <= bound and u_local < par[UU] and (
+                    failure == 0.0 or (f_prev * f > 0.0
+                                       and not _on_residual(state, drift, f, fres))):
                 state[U] = drift
                 state[ENERGY] += 0.5 * (f + f_prev) * du  # trapezoidal, as OpenSees
                 state[F] = f
@@ -367,12 +394,7 @@ def _step(drift, state, par):
 
     # The backbone bounds the force in the direction of motion.
     u_local = s * drift
-    ucap = state[block + B_UCAP]
-    if u_local < ucap:
-        slope = state[block + B_KP]
-    else:
-        slope = -state[block + B_KPC]
-    bound = state[block + B_FCAP] + (u_local - ucap) * slope
+    bound = _backbone(state, block, u_local)
     if bound < fres or failure == lost_other:
         bound = fres  # the residual floor; the only strength left once the other way is lost
     if failure == lost_own:
@@ -386,16 +408,8 @@ def _step(drift, state, par):
     # once yielded and before the residual branch: a story that never reached its backbone
     # is within its elastic range, far from it) ...
     residual = False
-    for side in (POSITIVE, NEGATIVE):
-        if failure >= 2.0 or (failure == 0.0 and not on_backbone):
-            break
-        sign = 1.0 if side == POSITIVE else -1.0
-        kpc = state[side + B_KPC]
-        if kpc == 0.0:
-            residual = residual or sign * f == fres
-        else:
-            u_res = state[side + B_UCAP] + (state[side + B_FCAP] - fres) / kpc
-            residual = residual or sign * drift >= u_res
+    if not (failure >= 2.0 or (failure == 0.0 and not on_backbone)):
+        residual = _on_residual(state, drift, f, fres)
     # ... and failure: energy capacity exhausted (both ways), or the ultimate drift or zero
     # strength on the backbone in the direction of motion (that way only).
     if exhausted:
