@@ -544,3 +544,19 @@ def pushover(story, drifts_top, *, transformation="PDelta", **building_kw) -> di
         ops.wipe()
     return {"shear": np.asarray(shear), "drift": np.asarray(drift),
             "spring_force": np.asarray(spring), "building": bld}
+
+
+IDA_SCALES = 0.2 * 1.25 ** np.arange(2, 14)
+"""The intensities of the IDA cross-checks: 0.31 .. 3.64, steps of x1.25."""
+
+
+def first(flags) -> int:
+    """Index of the first True (len if none)."""
+    flags = np.asarray(flags, bool)
+    return int(np.argmax(flags)) if flags.any() else flags.size
+
+
+def last_standing(flags) -> int:
+    """Index of the last False (-1 if none)."""
+    flags = np.asarray(flags, bool)
+    return int(np.flatnonzero(~flags)[-1]) if (~flags).any() else -1

@@ -80,19 +80,6 @@ IDA_IMK = {"yield_force": tuple(0.25 * P_STORY),
            "plastic_deformation": tuple(2.0 * IDA_YIELD_DRIFT),
            "post_capping_deformation": tuple(10.0 * IDA_YIELD_DRIFT),
            "lambda_s": 100.0, "lambda_c": 100.0, "lambda_k": 100.0}
-SCALES = 0.2 * 1.25 ** np.arange(2, 14)  # 0.31 .. 3.64
-
-
-def first(flags) -> int:
-    """Index of the first True (len if none)."""
-    flags = np.asarray(flags, bool)
-    return int(np.argmax(flags)) if flags.any() else flags.size
-
-
-def last_standing(flags) -> int:
-    """Index of the last False (-1 if none)."""
-    flags = np.asarray(flags, bool)
-    return int(np.flatnonzero(~flags)[-1]) if (~flags).any() else -1
 
 
 def energy_used(run, imk) -> np.ndarray:
@@ -148,7 +135,7 @@ def ida_opensees(ground):
     if "ida" not in _RUNS:
         ag, ag_dt = ground
         runs, diverged = [], []
-        for scale in SCALES:
+        for scale in opd.IDA_SCALES:
             runs.append(opd.opensees_pdelta_peaks(
                 ag, ag_dt, masses=MASSES, story_height=IDA_HEIGHT, story_material="imk",
                 imk=IDA_IMK, collapse_drift_ratio=IDA_RATIO, scale=scale, keep_history=True))
@@ -215,8 +202,8 @@ def test_opensees_ida_collapses_inside_its_range(ida_opensees):
     collapse) short of
     exhausting any story's energy capacity (at most 0.35 used)."""
     collapsed, runs = ida_opensees["collapsed"], ida_opensees["runs"]
-    i = first(collapsed)
-    assert 2 <= i <= len(SCALES) - 3, collapsed
+    i = opd.first(collapsed)
+    assert 2 <= i <= len(opd.IDA_SCALES) - 3, collapsed
     assert collapsed[i:].all()
     assert np.all(np.isnan(ida_opensees["collapse_time"][~collapsed]))
     assert np.all(ida_opensees["collapse_time"][collapsed] <= SECONDS)
@@ -280,17 +267,18 @@ def test_engine_imk_collapses_in_an_ida_where_opensees_does(engine_imk, ground, 
     building = engine.Building(masses=tuple(MASSES), stories=engine.Stories.of("imk", **IDA_IMK),
                                story_height=(IDA_HEIGHT,) * 4, p_delta=True,
                                collapse_drift_ratio=IDA_RATIO)
-    result = engine.simulate(ag, ag_dt, Contact.none(len(SCALES)), building, scale=SCALES,
+    scales = opd.IDA_SCALES
+    result = engine.simulate(ag, ag_dt, Contact.none(len(scales)), building, scale=scales,
                              backend=backend)
     mine = np.asarray(result.collapsed, bool)
     theirs = ida_opensees["collapsed"]
     summary = (f"engine {mine.astype(int)}, OpenSees {theirs.astype(int)} (by non-convergence "
-               f"{ida_opensees['diverged'].astype(int)}), scales {SCALES}")
-    assert abs(first(mine) - first(theirs)) <= 1, summary
-    assert abs(last_standing(mine) - last_standing(theirs)) <= 1, summary
+               f"{ida_opensees['diverged'].astype(int)}), scales {opd.IDA_SCALES}")
+    assert abs(opd.first(mine) - opd.first(theirs)) <= 1, summary
+    assert abs(opd.last_standing(mine) - opd.last_standing(theirs)) <= 1, summary
     times = np.asarray(result.collapse_time, float)
     assert np.all(np.isnan(times[~mine])) and np.all(np.isfinite(times[mine]))
-    well_above = np.arange(len(SCALES)) >= max(first(mine), first(theirs)) + 2
+    well_above = np.arange(len(opd.IDA_SCALES)) >= max(opd.first(mine), opd.first(theirs)) + 2
     np.testing.assert_allclose(times[well_above], ida_opensees["collapse_time"][well_above],
                                rtol=0, atol=0.05, err_msg=summary)
     for member in np.flatnonzero(~mine & ~theirs):
@@ -298,4 +286,4 @@ def test_engine_imk_collapses_in_an_ida_where_opensees_does(engine_imk, ground, 
         for name in PEAKS:
             np.testing.assert_allclose(getattr(result, name)[member], reference[name],
                                        rtol=RTOL, atol=1e-12,
-                                       err_msg=f"standing at {SCALES[member]:.3f}: {name}")
+                                       err_msg=f"standing at {opd.IDA_SCALES[member]:.3f}: {name}")

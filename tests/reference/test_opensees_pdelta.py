@@ -53,19 +53,6 @@ GAP, K_WALL = 0.15, 2.5e9  # free peak isolator displacement 0.205 m: 3 impacts
 IDA_YIELD = 0.12 * P_STORY
 IDA_HEIGHT = 4.0
 IDA_RATIO = 0.10
-SCALES = 0.2 * 1.25 ** np.arange(2, 14)  # 0.31 .. 3.64
-
-
-def first(flags) -> int:
-    """Index of the first True (len if none)."""
-    flags = np.asarray(flags, bool)
-    return int(np.argmax(flags)) if flags.any() else flags.size
-
-
-def last_standing(flags) -> int:
-    """Index of the last False (-1 if none)."""
-    flags = np.asarray(flags, bool)
-    return int(np.flatnonzero(~flags)[-1]) if (~flags).any() else -1
 
 
 @pytest.fixture(scope="module")
@@ -106,7 +93,7 @@ def ida_opensees_run(ag, ag_dt, scale, p_delta=True):
 @pytest.fixture(scope="module")
 def ida_opensees(ground):
     ag, ag_dt = ground
-    runs = [ida_opensees_run(ag, ag_dt, s) for s in SCALES]
+    runs = [ida_opensees_run(ag, ag_dt, s) for s in opd.IDA_SCALES]
     return {"collapsed": np.array([r["collapsed"] for r in runs]),
             "collapse_time": np.array([r["collapse_time"] for r in runs])}
 
@@ -189,13 +176,13 @@ def test_opensees_ida_collapses_inside_its_range_by_pdelta(ground, ida_opensees)
     and stays collapsed; without P-Delta the same building stands there (it collapses only
     from 1.86, 4 steps up)."""
     collapsed = ida_opensees["collapsed"]
-    i = first(collapsed)
-    assert 2 <= i <= len(SCALES) - 3, collapsed
+    i = opd.first(collapsed)
+    assert 2 <= i <= len(opd.IDA_SCALES) - 3, collapsed
     assert collapsed[i:].all()
     assert np.all(np.isnan(ida_opensees["collapse_time"][~collapsed]))
     assert np.all(ida_opensees["collapse_time"][collapsed] <= SECONDS)
     ag, ag_dt = ground
-    assert not ida_opensees_run(ag, ag_dt, SCALES[i], p_delta=False)["collapsed"]
+    assert not ida_opensees_run(ag, ag_dt, opd.IDA_SCALES[i], p_delta=False)["collapsed"]
 
 
 # ---------------------------------------------------------------- 2. against the engine
@@ -230,15 +217,16 @@ def test_engine_collapses_in_an_ida_where_opensees_does(engine_pdelta, ground, i
     building = engine.Building(masses=tuple(MASSES), story_yield_force=tuple(IDA_YIELD),
                                story_post_yield_ratio=0.0, story_height=(IDA_HEIGHT,) * 4,
                                p_delta=True, collapse_drift_ratio=IDA_RATIO)
-    result = engine.simulate(ag, ag_dt, Contact.none(len(SCALES)), building, scale=SCALES,
+    scales = opd.IDA_SCALES
+    result = engine.simulate(ag, ag_dt, Contact.none(len(scales)), building, scale=scales,
                              backend=backend)
     mine = np.asarray(result.collapsed, bool)
     theirs = ida_opensees["collapsed"]
-    summary = f"engine {mine.astype(int)}, OpenSees {theirs.astype(int)}, scales {SCALES}"
-    assert abs(first(mine) - first(theirs)) <= 1, summary
-    assert abs(last_standing(mine) - last_standing(theirs)) <= 1, summary
+    summary = f"engine {mine.astype(int)}, OpenSees {theirs.astype(int)}, scales {opd.IDA_SCALES}"
+    assert abs(opd.first(mine) - opd.first(theirs)) <= 1, summary
+    assert abs(opd.last_standing(mine) - opd.last_standing(theirs)) <= 1, summary
     times = np.asarray(result.collapse_time, float)
     assert np.all(np.isnan(times[~mine])) and np.all(np.isfinite(times[mine]))
-    well_above = np.arange(len(SCALES)) >= max(first(mine), first(theirs)) + 2
+    well_above = np.arange(len(opd.IDA_SCALES)) >= max(opd.first(mine), opd.first(theirs)) + 2
     np.testing.assert_allclose(times[well_above], ida_opensees["collapse_time"][well_above],
                                rtol=0, atol=0.05, err_msg=summary)
