@@ -205,15 +205,25 @@ def parameters(args) -> dict:
     return values
 
 
+TYPED_PLAUSIBLE = {"gap": "[0.01, 2]"}
+"""What a value typed in the paper's unit may be (m) where the law's plausible range is wider:
+the studies compute gaps of a few millimetres from weak records' peaks (the law allows any
+positive gap), but a moat gap typed under 1 cm is a unit slip (--gap-cm 0.2 meant 20 cm)."""
+
+
 def _plausible_in_paper_unit(name: str, args, given, variant) -> None:
     """SweepError for a value given in the paper's unit (--gap-cm, --wall-k-kn-mm) that no
     real moat or bumper has, saying what it is in SI and, when the number typed is plausible
     in SI, the option that was most likely meant (a value in m typed after --gap-cm)."""
     from pipeline.errors import SweepError
 
+    import dataclasses
+
     suffix, _, factor, text, _ = variant
     params = declarations(name)
     param = params.get(args.impact, next(iter(params.values())))
+    if name in TYPED_PLAUSIBLE:
+        param = dataclasses.replace(param, plausible=TYPED_PLAUSIBLE[name])
     si = np.atleast_1d(np.asarray(given, dtype=float)) * factor
     bad = param.implausible(si)
     if bad.size == 0:

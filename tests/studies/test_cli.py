@@ -38,6 +38,8 @@ def test_lengths_in_cm_given_as_m_are_refused(option, value, hint, tmp_path, cap
      "implausible for thickness (outside [0.005, 2] m); did you mean --thickness-cm 5 (0.05 m)?"),
     (["--gap-cm", "20", "--strain", "80"], "error: strain must be in (0, 1], got [80.]: a ratio, "
                                            "not a percentage (80% is 0.8)"),
+    (["--gap-cm", "0.2"], "error: --gap-cm 0.2 cm is 0.002 m, implausible for gap (outside "
+                          "[0.01, 2] m); did you mean --gap-cm 20 (0.2 m)?"),
 ])
 def test_slips_in_the_paper_units_and_percentages_say_what_was_meant(argv, line, tmp_path,
                                                                      capsys):
