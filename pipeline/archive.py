@@ -35,7 +35,15 @@ from .grid import (
     baseline_text,
     swept_parameter,
 )
-from .provenance import attributes, plan_attributes
+from .provenance import (
+    ARCHIVE_VERSION,
+    ARCHIVE_VERSION_ATTRIBUTE,
+    attributes,
+    plan_attributes,
+    record_labels,
+    source_text,
+    storable,
+)
 from .writing import Staged
 
 STORY_DUCTILITY = Quantity("peak_story_ductility", "1", "peak story ductility (peak "
@@ -51,20 +59,34 @@ AMPLIFICATION = {
 COMPRESSION = {"zlib": True, "complevel": 4}
 
 
+def is_numeric(values) -> bool:
+    """Whether an array's values are numbers (or booleans): what a `units` attribute is for."""
+    return np.dtype(values.dtype).kind in "biufc"
+
+
 def variable(dims, values, units: str, long_name: str, **attrs) -> xr.Variable:
-    """A labelled variable: dims (tuple or one name), values, CF units and long_name."""
+    """A labelled variable: dims (tuple or one name), values, CF units and long_name. Text
+    (string) values take no units: `units` is dropped for them (CF: units are for numbers)."""
     dims = (dims,) if isinstance(dims, str) else tuple(dims)
     values = values if hasattr(values, "chunks") else np.asarray(values)  # dask stays lazy
-    return xr.Variable(dims, values,
-                       {"units": units, "long_name": long_name, **attrs})
+    own = {"units": units} if is_numeric(values) else {}
+    return xr.Variable(dims, values, {**own, "long_name": long_name, **attrs})
 
 
 def labelled_dataset(data_vars: dict, coords: dict, attrs: dict | None = None) -> xr.Dataset:
     """The Dataset of every archive: data variables and coordinates given as xr.Variable (see
-    `variable`) or (dims, values, attrs) tuples; each must carry `units` and `long_name`."""
-    ds = xr.Dataset(data_vars, coords=coords, attrs=attrs or {})
+    `variable`) or (dims, values, attrs) tuples; each must carry `long_name`, and `units` when
+    its values are numbers (text takes none: a `units` given to it is dropped). Attributes
+    are made storable (provenance.storable: None left out, booleans 0/1) and the archive's
+    schema version (provenance.ARCHIVE_VERSION) is stamped here, once for every archive."""
+    ds = xr.Dataset(data_vars, coords=coords,
+                    attrs={**storable(attrs or {}), ARCHIVE_VERSION_ATTRIBUTE: ARCHIVE_VERSION})
     for name, var in ds.variables.items():
-        missing = [key for key in ("units", "long_name") if key not in var.attrs]
+        if not is_numeric(var):
+            var.attrs.pop("units", None)
+        var.attrs = storable(var.attrs)
+        needed = ("units", "long_name") if is_numeric(var) else ("long_name",)
+        missing = [key for key in needed if key not in var.attrs]
         if missing:
             raise ValueError(f"archive variable {name!r} lacks {' and '.join(missing)}")
     return ds
@@ -144,13 +166,20 @@ def derived_variables(ds: xr.Dataset, building: engine.Building) -> dict:
 
 
 def record_coords(records, names: list[str]) -> dict:
-    """Coordinates along `record`: names, sources, PGA as run and unscaled (m/s^2), scale
-    factor, sampling step and length (s)."""
+    """Coordinates along `record`: labels (names, see provenance.record_labels), the records'
+    own names, sources, PGA as run and unscaled (m/s^2), scale factor, sampling step and
+    length (s)."""
     return {
-        "record": variable("record", np.array(names, dtype=str), "1", "ground-motion record"),
-        "record_source": variable("record", np.array([str(r.source) for r in records],
+        "record": variable("record", np.array(names, dtype=str), "1",
+                           "ground-motion record, as named in the call (a paper record by its "
+                           "key, a library record by its RSN<n>:<component> selector or its "
+                           "name)"),
+        "record_name": variable("record", np.array([str(r.name) for r in records], dtype=str),
+                                "1", "the record's own name"),
+        "record_source": variable("record", np.array([source_text(r) for r in records],
                                                      dtype=str),
-                                  "1", "where the record was read from"),
+                                  "1", "where the record was read from (a file: its absolute "
+                                  "path; else the library or built-in data it came from)"),
         "record_pga": variable("record", [np.max(np.abs(r.accel)) for r in records], "m s-2",
                                "peak ground acceleration (of the record as run)"),
         "record_scale": variable("record", [float(getattr(r, "scale", 1.0)) for r in records],
@@ -258,6 +287,7 @@ def build_dataset(grid: Grid, run, results: list[dict[str, np.ndarray]] | None,
     coordinate record_factor.
     """
     records, building, moat = run.records, run.building, run.moat
+    names = record_labels(records, run.names)
     quantities = run_quantities(moat, building.can_collapse)
     data_vars = {}
     start = 0
@@ -280,14 +310,14 @@ def build_dataset(grid: Grid, run, results: list[dict[str, np.ndarray]] | None,
             peaks[q.name] = values.reshape(len(records), *block.shape, *values.shape[2:])
         data_vars.update(peak_variables(peaks, ("record", *block.dims), block.prefix,
                                         quantities))
-    coords = {**record_coords(records, run.names), **level_coords(building.n_levels),
+    coords = {**record_coords(records, names), **level_coords(building.n_levels),
               **parameter_coords(grid), **listed_coords(grid),
               **({} if moat is None else plan_coords(moat))}
     if run.factors is not None:
         coords["record_factor"] = variable(
             "record", np.asarray(run.factors, dtype=float), "1", "the record's intensity "
             "factor: a member's ground acceleration is the record's times this times its level")
-    attrs = attributes(grid, records, run.names, run.dt, building, run.arguments)
+    attrs = attributes(grid, records, names, run.dt, building, run.arguments)
     if moat is not None:
         attrs.update(plan_attributes(moat))
     ds = labelled_dataset(data_vars, coords, attrs)

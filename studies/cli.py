@@ -5,9 +5,10 @@
 
 The commands are every recipe of studies/ (a module whose name does not start with "_",
 defining `recipe` and `main`; found on disk, so a new recipe is a new command with nothing to
-register), then `sweep` (studies.sweep) and `records` (pipeline.records). `bumpers NAME ARGS`
-is `python -m studies.NAME ARGS` (`python -m pipeline.records ARGS` for records), which keeps
-working as it is.
+register), then `sweep` (studies.sweep), `export` and `plot` (studies.archive_tools: on a
+sweep's archive) and `records` (pipeline.records). `bumpers NAME ARGS` is `python -m
+studies.NAME ARGS` (`python -m studies.archive_tools.NAME ARGS` for export and plot, `python -m
+pipeline.records ARGS` for records), which keeps working as it is.
 
 The listing reads each recipe's figure and summary from the literal arguments of its
 `Recipe(...)` in the module's source rather than importing it: importing every recipe would
@@ -27,9 +28,9 @@ import textwrap
 from dataclasses import dataclass
 
 PACKAGE = "studies"
-NOT_RECIPES = frozenset({"cli", "sweep", "common"})
+NOT_RECIPES = frozenset({"cli", "sweep", "common", "archive_tools"})
 """Modules of studies/ that are not recipes (cli: this one; sweep: a command of its own;
-common: what the recipes share)."""
+common: what the recipes share; archive_tools: the export and plot commands)."""
 
 
 @dataclass(frozen=True)
@@ -47,6 +48,12 @@ OTHERS = (
     Command("sweep", "studies.sweep", "",
             "Any parameter grid: every combination of gaps, bumpers, walls and isolator "
             "values under the given records, peaks into a NetCDF or Zarr archive"),
+    Command("export", "studies.archive_tools.export", "",
+            "A sweep archive's peaks as a CSV table (one row per run, columns with units) or "
+            "as a pelicun demand sample (PFA in g, PID drift ratios)"),
+    Command("plot", "studies.archive_tools.plot", "",
+            "A peak of a sweep archive against one of its swept dimensions, one line per "
+            "value of the others (or their median and 16-84% band)"),
     Command("records", "pipeline.records.cli", "",
             "Where the paper's records are found (records folder, built-in data, library or "
             "stand-in), then the embedded ground-motion library"),
@@ -98,7 +105,8 @@ def paper_order(command: Command) -> tuple:
 
 
 def commands() -> list[Command]:
-    """Every command: the recipes in the paper's order, then sweep and records."""
+    """Every command: the recipes in the paper's order, then sweep, export, plot and
+    records."""
     return sorted(map(recipe_command, recipe_names()), key=paper_order) + list(OTHERS)
 
 

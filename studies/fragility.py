@@ -49,7 +49,8 @@ from .common.plot import plt
 from .common.recipe import Recipe, Verdict, provenance, run_options
 
 LEVELS = (0.5, 0.75, 1.0, 1.25, 1.5, 1.75, 2.0, 2.5)
-"""Intensity levels, fractions of the MCE_R target (1 = MCE_R, 2/3 = the design level)."""
+"""Intensity levels, multiples of the MCE_R target (1 = MCE_R), the stripes run (the archive's
+`levels` attribute names those run: `levels_text`)."""
 QUICK_LEVELS = (0.5, 1.0, 1.5)
 GAPS = (0.8, 1.0)
 """Clear gaps as fractions of D_M; the code's clearance D_TM is added."""
@@ -109,7 +110,8 @@ def compute(args):
 def run(suite, levels, gaps, args):
     """Every pair at every level (x its MCE_R factor) without wall, against the bare wall and
     with each count of bumpers at every gap (m), on the pipeline's executor (pipeline.sweep:
-    resumable, here or on dask). Returns (peak name -> (R, L, W, ...) float arrays, the walls
+    resumable, here or on dask). Returns (peak name -> (R, L, W, ...) arrays, float but the
+    counts' (n_impacts: integers, as engine.results declares them), the walls
     W in the order: no wall, the bare wall at each gap, then each BUMPER_COUNTS' gaps; the
     sweep's Dataset, whose provenance the archive keeps). The building at the suite's bound
     (suite.building)."""
@@ -126,7 +128,9 @@ def run(suite, levels, gaps, args):
         free, bare = ds["unconstrained_" + name], ds["baseline_" + name]
         bumpers = [ds[name].sel(n_bumpers=n) for n in BUMPER_COUNTS]
         walls = [free.expand_dims("wall", 2), *(b.rename(gap="wall") for b in (bare, *bumpers))]
-        peaks[name] = np.concatenate([w.values for w in walls], axis=2).astype(float)
+        values = np.concatenate([w.values for w in walls], axis=2)
+        # counts (n_impacts: engine.results declares int64) stay integers; the rest float
+        peaks[name] = values if values.dtype.kind in "iu" else values.astype(float)
     return peaks, ds
 
 
@@ -197,6 +201,7 @@ def _dataset(suite, levels, fractions, gaps, peaks, args):
                                         "never or always observed, beta not identifiable, "
                                         "extrapolated")
     more, more_coords, attrs = archive_variables(suite)
+    attrs["levels"] = levels_text(levels)  # the stripes run, not the code suite's levels
     data.update(more)
     coords = {
         "record": variable("record", np.array(suite.names), "1", "record pair"),
@@ -229,6 +234,13 @@ def _dataset(suite, levels, fractions, gaps, peaks, args):
         + " (Baker 2015, Earthquake Spectra 31(1)), pairs weighted per earthquake",
     })
     return labelled_dataset(data, coords, attrs)
+
+
+def levels_text(levels) -> str:
+    """The archive's `levels` attribute: the intensity levels the stripes ran, as multiples of
+    the MCE_R (each pair's MCE_R factor times the level)."""
+    return (f"stripes at {', '.join(f'{v:.4g}' for v in np.asarray(levels, dtype=float))} "
+            "x MCE_R (each pair's MCE_R factor times the level)")
 
 
 def _bumper_counts(n_gaps: int) -> np.ndarray:

@@ -55,8 +55,8 @@ def compute(args):
     sources[RESTITUTION_GAP] = " and ".join(filter(None, [sources.get(RESTITUTION_GAP),
                                                           "the paper's"]))
     ds.coords["gap_source"] = ("gap", np.array([sources[g] for g in ds.gap.values], dtype=str),
-                               {"units": "1", "long_name": "where the gap comes from: the "
-                                "paper's rule applied to this engine, or the paper's gap"})
+                               {"long_name": "where the gap comes from: the paper's rule "
+                                "applied to this engine, or the paper's gap"})
     ds.attrs.update(
         gap_rule=f"gap = {GAP_FRACTION} x unconstrained peak isolator displacement "
                  f"({peak / CM:.2f} cm) = {gap / CM:.1f} cm, to the mm; clear gap with "

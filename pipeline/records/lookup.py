@@ -25,7 +25,7 @@ _SELECTOR_RE = re.compile(r"^\s*RSN\s*(\d+)\s*:\s*(\S+)\s*$", re.IGNORECASE)
 
 def load_record(name_or_path: str | os.PathLike,
                 records_dir: str | os.PathLike | None = None, units: str | None = None,
-                dt: float | None = None) -> Record:
+                dt: float | None = None, *, check: bool = False) -> Record:
     """A record by library name, ``RSN<n>:<component>`` selector, paper key, AT2 or text path;
     any of them followed by ``*<factor>`` (e.g. ``kobe*1.5``) is that record scaled
     (:meth:`Record.scaled`).
@@ -36,11 +36,16 @@ def load_record(name_or_path: str | os.PathLike,
     (``.txt``, ``.csv``, ``.dat``, ...) is a text record, read by :func:`read_text` with
     ``units`` (required) and ``dt`` in s (required for one column). An AT2 file states its
     own units and DT, so ``units``/``dt`` are refused for it, as they are for names.
+
+    check: an AT2 or text file's record (before any ``*factor``) is also refused if no
+    earthquake produced it, above all a unit slip (:func:`pipeline.records.plausible.
+    check_plausible`: PGA, PGV, duration, with the units that fit). ``pipeline.sweep`` and the
+    commands check the files they read; records by name (library, built-in) are not checked.
     """
     text = os.fspath(name_or_path)
     scaled = None if isinstance(name_or_path, os.PathLike) else _SCALED_RE.match(text)
     if scaled and not Path(text).exists():
-        record = load_record(scaled["record"], records_dir, units, dt)
+        record = load_record(scaled["record"], records_dir, units, dt, check=check)
         return record.scaled(scale_factor(scaled["factor"], scaled["record"]))
     if _is_path(name_or_path):
         path = Path(text)
@@ -51,12 +56,14 @@ def load_record(name_or_path: str | os.PathLike,
             if units is not None or dt is not None:
                 raise RecordError(f"{path}: an AT2 file states its own units and DT; "
                                   "units/dt are for text files only")
-            return read_at2(path)
+            return read_at2(path, check=check)
         if units is None:
             raise RecordError(f"{path}: a text record needs its acceleration units "
-                              f"({UNITS_HELP}): pass units (and dt in s for one column); on "
-                              "the command line --record-units (and --record-dt)")
-        return read_text(path, units, dt)
+                              f"({UNITS_HELP}): pass units='g' (or the file's; and dt in s "
+                              "for one column), e.g. load_record(path, units='cm/s^2', "
+                              "dt=0.01); on the command line --record-units (and "
+                              "--record-dt)")
+        return read_text(path, units, dt, check=check)
     if units is not None or dt is not None:
         raise RecordError(f"{text!r}: units/dt apply to text files only, not to record names")
     if text.lower() in PAPER_RECORDS:
@@ -111,8 +118,31 @@ def read_text_records(records: list, units: str | None, dt: float | None,
     if (units is not None or dt is not None) and not any(map(is_text_record, records)):
         raise RecordError("--record-units and --record-dt apply to text records, and "
                           "--records names none (AT2 files and names state their own)")
-    return [load_record(item, records_dir, units, dt) if is_text_record(item) else item
-            for item in records]
+    return [load_record(item, records_dir, units, dt, check=True) if is_text_record(item)
+            else item for item in records]
+
+
+ARRAY_HINT = ("records: a NumPy array is not a record (its step and units are unknown): wrap "
+              "it with pipeline.records.Record.from_array(accel, dt, units=...) (dt in s; "
+              "units 'g', 'm/s^2' or 'cm/s^2')")
+"""What a sweep given a bare array says."""
+
+
+def _is_array(item) -> bool:
+    """Whether an item is a NumPy array (samples rather than a record)."""
+    import numpy as np
+
+    return isinstance(item, np.ndarray)
+
+
+def _text_hint(item) -> str:
+    """What a sweep given a text file's path says: the units and step it cannot take."""
+    text = os.fspath(item)
+    return (f"records: {text}: a text record needs its acceleration units ({UNITS_HELP}), "
+            "which pipeline.sweep does not take: give the record read with them, "
+            f"records=[pipeline.records.load_record({text!r}, units='g', dt=0.01, "
+            "check=True)] (dt in s, for one column only); on the command line "
+            "--record-units (and --record-dt)")
 
 
 def resolve_records(records, records_dir=None) -> tuple[list[Record], list[str]]:
@@ -121,12 +151,15 @@ def resolve_records(records, records_dir=None) -> tuple[list[Record], list[str]]
 
     records: one or a list of paper keys, library names, ``RSN<n>:<component>`` selectors,
     AT2 paths, each optionally scaled as ``name*factor`` (see :func:`load_record`), or
-    :class:`Record` objects. Raises
+    :class:`Record` objects. AT2 files are checked (``load_record(..., check=True)``); a text
+    file's path, a NumPy array or a number are refused with what to give instead. Raises
     :class:`RecordError` (message starting "records:") for an empty list, a record that
     cannot be found or read, or one given twice.
     """
     if isinstance(records, (str, os.PathLike)) or hasattr(records, "accel"):
         records = [records]
+    if _is_array(records):
+        raise RecordError(ARRAY_HINT)
     try:
         records = list(records)
     except TypeError:
@@ -139,8 +172,15 @@ def resolve_records(records, records_dir=None) -> tuple[list[Record], list[str]]
         if hasattr(item, "accel") and hasattr(item, "dt"):
             loaded.append(item)
             continue
+        if _is_array(item):
+            raise RecordError(ARRAY_HINT)
+        if not isinstance(item, (str, os.PathLike)):
+            raise RecordError(f"records: {item!r} is not a record: give a name, a path or a "
+                              "Record (an array: Record.from_array(accel, dt, units=...))")
+        if is_text_record(item):
+            raise RecordError(_text_hint(item))
         try:
-            loaded.append(load_record(item, records_dir))
+            loaded.append(load_record(item, records_dir, check=True))
         except RecordError as err:
             raise RecordError(f"records: {err}") from err
     names = [getattr(rec, "paper_key", None) or str(rec.name) for rec in loaded]

@@ -1,7 +1,7 @@
 """The :class:`Record` type and what every reader of records shares.
 
-Units (``ACCEL_UNITS``, :func:`canonical_units`, :func:`to_si`), the errors and warnings of the
-record layer, the spelling of component labels, the low-level reading of a record file (lines,
+The units and errors of the record layer (pipeline/records/basics.py, read from here too), the
+spelling of component labels, the low-level reading of a record file (lines,
 numbers, the RSN in a file name) and the user's records directory (``$BUMPERS_RECORDS_DIR``).
 """
 
@@ -17,31 +17,21 @@ from pathlib import Path
 
 import numpy as np
 
-from engine.units import G  # m/s^2 in 1 g (SPEC: 9.81), the project's one value
+from .basics import (  # noqa: F401 - the record layer's names, read from here too
+    ACCEL_UNITS,
+    UNITS_HELP,
+    G,
+    RecordError,
+    StandInWarning,
+    canonical_units,
+    to_si,
+)
 
 RECORDS_DIR_ENV = "BUMPERS_RECORDS_DIR"
 FOUND_IN = ("records_dir", "built-in", "library", "stand-in")
 
-ACCEL_UNITS = {"g": (G, 1.0), "m/s^2": (1.0, 1.0), "cm/s^2": (1.0, 100.0),
-               "mm/s^2": (1.0, 1000.0)}
-"""Acceleration units understood, each as (multiplier, divisor) to m/s^2: a value x in these
-units is ``x * multiplier / divisor`` m/s^2 (a division by 100 rounds better than * 0.01).
-Spellings such as ``CM/S/S``, ``CM/SEC/SEC``, ``cm/s2``, ``gal`` and ``M/S**2`` are accepted."""
-
-UNITS_HELP = "g, cm/s^2 (gal, CM/S/S), m/s^2 or mm/s^2"
-"""The accepted acceleration units, as error messages list them."""
-
 NUMBER_RE = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[Ee][+-]?\d+)?", re.ASCII)
 """One number as record files write it (``-.1416764E-03``, ``12``, ``0.005``)."""
-
-
-class StandInWarning(UserWarning):
-    """A paper record was not found and a stand-in is used: said when the record is resolved,
-    before any simulation; silence it with ``warnings.simplefilter("ignore", StandInWarning)``."""
-
-
-class RecordError(ValueError):
-    """A record cannot be read, found or trusted. The message names the file (and line)."""
 
 
 def norm_component(comp: str) -> str:
@@ -58,28 +48,6 @@ def normalize(text: str) -> str:
 def spells_non_finite(token: str) -> bool:
     """Whether a token that is not a number spells NaN or infinity ('nan', '-Inf', 'INFINITY')."""
     return normalize(token) in {"nan", "inf", "infinity"}
-
-
-def canonical_units(text: str) -> str | None:
-    """A key of :data:`ACCEL_UNITS` for an acceleration units spelling, else None.
-
-    'G' -> 'g'; 'GAL', 'CM/S/S', 'CM/SEC/SEC', 'cm/s^2', 'CM/S2', 'cm s-2' -> 'cm/s^2'; likewise
-    for m and mm. Velocities ('CM/S'), lengths and anything else give None.
-    """
-    t = re.sub(r"\s+", "", text.lower()).replace("**", "^").replace("sec", "s").replace("^", "")
-    if t == "g":
-        return "g"
-    if t in ("gal", "gals"):
-        return "cm/s^2"
-    m = re.fullmatch(r"(mm|cm|m)(?:/s2|/s/s|s-2|[.*]s-2|/\(s\*?s\))", t)
-    return f"{m.group(1)}/s^2" if m else None
-
-
-def to_si(values: np.ndarray, units: str) -> np.ndarray:
-    """Accelerations in ``units`` (a key of :data:`ACCEL_UNITS`) to m/s^2."""
-    multiplier, divisor = ACCEL_UNITS[units]
-    accel = values * multiplier
-    return accel / divisor if divisor != 1.0 else accel
 
 
 def read_lines(path: Path) -> list[str]:
@@ -172,6 +140,41 @@ class Record:
             raise RecordError(f"{self.source}: scale must be positive, got {self.scale!r}")
         if self.unscaled_pga is None:
             object.__setattr__(self, "unscaled_pga", self.pga / self.scale)
+
+    @classmethod
+    def from_array(cls, accel, dt: float, *, units: str, name: str = "array",
+                   source: str | None = None) -> Record:
+        """A record from samples: ``accel`` (1-D, sample i at t = i*dt) in ``units``
+        (required: ``"g"``, ``"m/s^2"`` or ``"cm/s^2"``, also spelt ``"m/s2"``, ``"cm/s2"``,
+        ``"gal"``, or ``"mm/s^2"``), converted to the m/s^2 the engine takes; ``dt`` in s.
+
+        The record is checked (:func:`pipeline.records.plausible.check_plausible`): a PGA,
+        PGV or duration no earthquake produced is refused (RecordError), with the units (or
+        step in s) that would fit, e.g. ``a PGA of 488 g ...: the values look like cm/s^2
+        (0.497 g); give units='cm/s^2'``. ``Record(...)`` itself takes any finite samples in
+        m/s^2, unchecked.
+        """
+        from .plausible import check_plausible
+
+        where = source or name
+        label = canonical_units(units) if isinstance(units, str) else None
+        if label is None:
+            raise RecordError(f"{where}: units {units!r} not understood; give the "
+                              f"acceleration's units as {UNITS_HELP}")
+        try:
+            values = np.array(accel, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise RecordError(f"{where}: accel must be an array of numbers") from None
+        try:
+            dt = float(dt)
+        except (TypeError, ValueError):
+            raise RecordError(f"{where}: dt must be a number of s, got {dt!r}") from None
+        record = cls(name=name, rsn=None, event="", station="", component="", dt=dt,
+                     accel=to_si(values, label), source=where)
+        check_plausible(record.accel, record.dt, label, where,
+                        fix_units=lambda unit: f"give units={unit!r}",
+                        fix_dt=lambda s: f"give dt={s:g} (s)")
+        return record
 
     def scaled(self, factor: float) -> Record:
         """This record times `factor` (-): accel * factor, named ``<name>*<factor>`` (the

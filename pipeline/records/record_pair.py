@@ -89,6 +89,12 @@ def resolve_pairs(pairs, records_dir=None) -> tuple[list[RecordPair], list[str]]
             isinstance(pairs, tuple) and len(pairs) == 2
             and all(isinstance(p, Record) for p in pairs)):
         pairs = [pairs]
+    if isinstance(pairs, np.ndarray) or (
+            isinstance(pairs, (list, tuple)) and any(isinstance(p, np.ndarray) for p in pairs)):
+        raise RecordError("records: a NumPy array is not a record pair (its step and units "
+                          "are unknown): give a pair of Records, (Record.from_array(ax, dt, "
+                          "units=...), Record.from_array(ay, dt, units=...)) (dt in s; units "
+                          "'g', 'm/s^2' or 'cm/s^2')")
     pairs = list(pairs)
     if not pairs:
         raise RecordError("records: no record pair given")

@@ -28,7 +28,8 @@ TIME_STEP_RTOL = 1e-3
 _FIELD_SEP_RE = re.compile(r"\s*,\s*|\s+")
 
 
-def read_text(path: str | os.PathLike, units: str, dt: float | None = None) -> Record:
+def read_text(path: str | os.PathLike, units: str, dt: float | None = None, *,
+              check: bool = False) -> Record:
     """Read a plain text record: one column (acceleration) or two (time in s, acceleration).
 
     ``units`` is required: the acceleration column's units, ``"g"`` (converted with
@@ -39,6 +40,10 @@ def read_text(path: str | os.PathLike, units: str, dt: float | None = None) -> R
     (times may start anywhere). Values are separated by commas or whitespace; blank lines and
     lines starting with ``#`` are skipped. Anything else raises :class:`RecordError` naming
     the file and line.
+
+    check: also refuse a record no earthquake produced (:func:`check_plausible`: PGA, PGV,
+    duration), naming the units (or the step in s) that fit: what ``pipeline.sweep`` and the
+    commands read.
     """
     path = Path(path)
     if units is None:
@@ -89,8 +94,20 @@ def read_text(path: str | os.PathLike, units: str, dt: float | None = None) -> R
     else:
         dt = _uniform_step(table[:, 0], linenos, dt, path)
         values = table[:, 1]
+    accel = to_si(values, label)
+    if check:
+        from .plausible import check_plausible
+
+        one_column = table.shape[1] == 1
+        check_plausible(accel, dt, label, str(path),
+                        fix_units=lambda unit: f"give units {unit} (--record-units {unit} "
+                                               f"on the command line, units={unit!r} in "
+                                               "Python)",
+                        fix_dt=(lambda s: f"give dt {s:g} s (--record-dt {s:g} on the "
+                                          f"command line, dt={s:g} in Python)")
+                        if one_column else None)
     return Record(name=path.stem, rsn=rsn_from_name(path), event="", station="",
-                  component="", dt=dt, accel=to_si(values, label), source=str(path))
+                  component="", dt=dt, accel=accel, source=str(path))
 
 
 def _uniform_step(times: np.ndarray, linenos: list[int], dt: float | None, path: Path) -> float:

@@ -12,7 +12,8 @@ from pipeline.assess import derived
 from pipeline.motions.code_suite import LEVELS
 
 from ..common.options import bare_wall_text
-from .search import STAT_TEXT, Search, bumper_members, describe, nature, statistics
+from .optimum import nature
+from .search import STAT_TEXT, Search, bumper_members, describe, statistics
 from .space import CRITERIA, OBJECTIVES, PEAKS, REFERENCES, VARIABLES
 
 

@@ -1,8 +1,8 @@
 """The search of studies.design over its space (space.py: variables, bounds,
 constraints; see design.py's docstring for what and why): the members a candidate runs, the
-statistics weighted per earthquake, the judgement and ranking, the pattern search (Search)
-and the nature of its optimum, interior or at a named bound (Nature). No files, no figures:
-the recipe in design.py runs it and writes its archive."""
+statistics weighted per earthquake, the judgement and ranking and the pattern search (Search);
+the nature of its optimum is optimum.py's. No files, no figures: the recipe in design.py runs
+it and writes its archive."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -353,107 +353,6 @@ def _dynamics(config: dict, shape_k: float = 0.0) -> tuple:
     return tuple(float(f"{x:.9g}") for x in (t, config["cavity_ratio"] * t,
                                              config["n_bumpers"] * area, ratio,
                                              config["wall_k"]))
-
-
-# ---------------------------------------------------------------------- the optimum's nature
-
-
-@dataclass(frozen=True)
-class Nature:
-    """Where the optimum lies: bounds, [{variable, side, value, kind ("physical" | "grid"),
-    why, indifferent}] for each variable without an evaluated neighbour on a side
-    (indifferent: the neighbour on the other side scores the same, so the bound only breaks a
-    tie); active, [{variable, side, neighbour, fails}] for each evaluated neighbour that fails
-    a constraint."""
-
-    bounds: tuple
-    active: tuple
-
-    @property
-    def interior(self) -> bool:
-        """No bound holds the optimum where it is (ties broken at a bound do not)."""
-        return all(b["indifferent"] for b in self.bounds)
-
-    def text(self) -> str:
-        held = [b for b in self.bounds if not b["indifferent"]]
-        flat = [b for b in self.bounds if b["indifferent"]]
-        if not held:
-            head = "interior: evaluated neighbours on both sides in every variable that matters"
-        else:
-            head = "at a bound: " + "; ".join(
-                f"{b['variable']} at its {b['side']} bound {_value(b['variable'], b['value'])}"
-                + (f" (physical: {b['why']})" if b["kind"] == "physical" else
-                   " (the evaluated grid's edge: the optimum may lie beyond the grid)")
-                for b in held)
-        if flat:
-            head += "; indifferent: " + "; ".join(
-                f"{b['variable']} (the same statistics on the other side; the tie goes to "
-                f"its {b['side']} bound {_value(b['variable'], b['value'])})" for b in flat)
-        if self.active:
-            head += "; active constraints: " + "; ".join(
-                f"{a['variable']} {_value(a['variable'], a['neighbour'])} fails "
-                f"{', '.join(a['fails'])}" for a in self.active)
-        return head
-
-    def as_dict(self) -> dict:
-        return {"interior": self.interior, "bounds": list(self.bounds),
-                "active": list(self.active)}
-
-
-def nature(table: dict, best: int, bounds: Bounds, fails=None, scores=None) -> Nature:
-    """Where candidate `best` of `table` (VARIABLES -> (K,)) lies: for each variable, the
-    evaluated candidates equal to it in every other variable; a side without one is a bound,
-    physical when the value sits on the bound `bounds` sets there (Bounds.limits), else the
-    grid's edge. fails: (K,) lists of the constraints each candidate fails, for the neighbours
-    that keep the optimum where it is; scores: (K, m) what ranks the candidates (a bound
-    whose inward neighbour scores the same is indifferent). None: not given."""
-    config = row(table, best)
-    limits = bounds.limits(config)
-    found, active = [], []
-    for name in VARIABLES:
-        others = np.ones(len(table[name]), dtype=bool)
-        for v in VARIABLES:
-            if v != name:
-                others &= np.isclose(table[v], config[v], rtol=1e-9, atol=0)
-        values = np.asarray(table[name], float)
-        nearest = {}
-        for sign in (-1, 1):
-            beyond = others & ((values - config[name]) * sign > 1e-9 * abs(config[name]))
-            if beyond.any():
-                nearest[sign] = int(np.flatnonzero(beyond)[np.argmin(
-                    np.abs(values[beyond] - config[name]))])
-        for side, sign, (bound, why) in (("lower", -1, limits[name][0]),
-                                         ("upper", 1, limits[name][1])):
-            if sign in nearest:
-                k = nearest[sign]
-                if fails is not None and fails[k]:
-                    active.append({"variable": name, "side": side,
-                                   "neighbour": float(values[k]), "fails": list(fails[k])})
-                continue
-            on = _on_bound(name, config[name], bound, sign)
-            inward = nearest.get(-sign)
-            flat = bool(scores is not None and inward is not None and np.allclose(
-                scores[inward], scores[best], rtol=1e-12, atol=0))
-            found.append({"variable": name, "side": side, "value": config[name],
-                          "kind": "physical" if on else "grid", "why": why if on else "",
-                          "indifferent": flat})
-    return Nature(tuple(found), tuple(active))
-
-
-def _on_bound(name: str, value: float, bound: float, sign: int) -> bool:
-    """Whether value sits on the bound: within rounding, or (a count) one more would pass it."""
-    if name == "n_bumpers":
-        return value + sign > bound + 1e-9 if sign > 0 else value + sign < bound - 1e-9
-    return abs(value - bound) <= 1e-5 * max(abs(bound), 1e-12)
-
-
-def _value(name: str, value: float) -> str:
-    units = VARIABLES[name][0]
-    if name == "wall_k":
-        return f"{value / KN_PER_MM:g} kN/mm"
-    if name == "n_bumpers":
-        return f"{int(round(value))}"
-    return f"{value:.4g} m" if units == "m" else f"{value:.4g}"
 
 
 ACCEL = derived_quantity("peak_floor_accel").units  # of the floor acceleration statistics

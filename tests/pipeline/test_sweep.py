@@ -90,8 +90,9 @@ def test_small_sweep_dims_coords_units(reference, tmp_path):
     assert ds.peak_interstory_drift.attrs["units"] == "m"
     assert ds.max_impact_force.attrs["units"] == "N"
     assert ds.gap.attrs["units"] == "m" and ds.wall_k.attrs["units"] == "N m-1"
-    for name, var in ds.variables.items():
-        assert var.attrs.get("units") and var.attrs.get("long_name"), name
+    for name, var in ds.variables.items():  # text takes no units (docs/archives.md)
+        assert var.attrs.get("long_name") and (
+            bool(var.attrs.get("units")) == (var.dtype.kind not in "OSU")), name
     assert_udunits(ds)
     # The sweep really pounds, and the ratios are what they say.
     assert ds.n_impacts.min() > 0 and ds.baseline_n_impacts.min() > 0

@@ -41,14 +41,14 @@ def test_recipes_are_found_on_disk():
 def test_help_lists_every_recipe_then_sweep_and_records(argv, capsys):
     assert cli.main(argv) == 0
     names = listed(capsys.readouterr().out)
-    assert sorted(names[:-2]) == RECIPES
-    assert names[-2:] == ["sweep", "records"]
+    assert sorted(names[:-4]) == RECIPES
+    assert names[-4:] == ["sweep", "export", "plot", "records"]
     assert names[0] == "impact_validation"  # the paper's order: Fig. 6 first
 
 
 def test_listing_reads_what_the_recipes_declare():
     """The summaries read from the sources are those of the imported recipes."""
-    for command in cli.commands()[:-2]:
+    for command in cli.commands()[:-4]:
         recipe = importlib.import_module(command.module).recipe
         assert (command.name, command.figure, command.summary) == \
                (recipe.name, recipe.figure, recipe.summary)

@@ -9,7 +9,7 @@ from pipeline.assess import validity
 from pipeline.assess.outcomes import weighted_quantiles
 from studies import design
 from studies.common.recipe import verdicts
-from studies.design import search, space
+from studies.design import optimum, search, space
 from tests.helpers import assert_udunits, run_recipe
 
 # --------------------------------------------------------------------- hand-made tables
@@ -38,14 +38,14 @@ def centre(axes=AXES) -> dict:
 
 def test_an_optimum_inside_the_grid_is_interior():
     table = table_of()
-    found = search.nature(table, at(table, **centre()), BOUNDS)
+    found = optimum.nature(table, at(table, **centre()), BOUNDS)
     assert found.interior and not found.bounds
     assert found.text().startswith("interior")
 
 
 def test_an_optimum_at_the_grids_edge_is_named_and_may_lie_beyond():
     table = table_of()
-    found = search.nature(table, at(table, **{**centre(), "thickness": 0.08}), BOUNDS)
+    found = optimum.nature(table, at(table, **{**centre(), "thickness": 0.08}), BOUNDS)
     assert not found.interior
     (bound,) = found.bounds
     assert (bound["variable"], bound["side"], bound["kind"]) == ("thickness", "upper", "grid")
@@ -58,7 +58,7 @@ def test_an_optimum_on_a_physical_bound_names_it():
     tight = space.Bounds(gap=0.14, clearance=0.06, usable_strain=0.6, wall_length=100.0)
     table = table_of()
     best = at(table, **{**centre(), "thickness": 0.08, "cavity_ratio": 0.0})
-    found = search.nature(table, best, tight)
+    found = optimum.nature(table, best, tight)
     kinds = {(b["variable"], b["side"]): b["kind"] for b in found.bounds}
     assert kinds == {("thickness", "upper"): "physical", ("cavity_ratio", "lower"): "physical"}
     assert "(physical: the clearance: thickness - cavity <= gap - D_S" in found.text()
@@ -71,7 +71,7 @@ def test_a_tie_at_a_bound_is_indifferent_and_a_failing_neighbour_an_active_const
     scores[at(table, **{**centre(), "wall_k": 1e9})] = scores[best]  # k_w plays no part
     fails = [[] for _ in scores]
     fails[at(table, **{**centre(), "wall_k": 2e9, "thickness": 0.04})] = ["within_limits"]
-    found = search.nature(table, best, BOUNDS, fails=fails, scores=scores)
+    found = optimum.nature(table, best, BOUNDS, fails=fails, scores=scores)
     assert found.interior and found.bounds[0]["indifferent"]
     assert found.active == ({"variable": "thickness", "side": "lower", "neighbour": 0.04,
                              "fails": ["within_limits"]},)
@@ -79,7 +79,7 @@ def test_a_tie_at_a_bound_is_indifferent_and_a_failing_neighbour_an_active_const
         in found.text()
     # without the tie, the wall's bound holds the optimum
     distinct = np.column_stack([np.arange(table["thickness"].size, dtype=float)] * 2)
-    assert not search.nature(table, best, BOUNDS, scores=distinct).interior
+    assert not optimum.nature(table, best, BOUNDS, scores=distinct).interior
 
 
 def test_bounds_from_physical_limits():

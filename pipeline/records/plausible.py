@@ -1,0 +1,142 @@
+"""Records no earthquake produced, most likely a unit slip: :func:`check_plausible`.
+
+A record's peak ground acceleration (PGA), peak ground velocity (PGV) and duration are checked
+against what recorded earthquakes have produced (the bounds below, each a stated choice with
+its source). A PGA outside them, or a weak one (under :data:`ORDINARY_PGA_G`, 0.01 g) that the
+same numbers in another unit make an ordinary record, is refused with the unit that brings it
+in: ``a PGA of 488 g is implausible (outside [0.0001, 5] g): the values look like cm/s^2
+(0.497 g)``, then how to give that unit. The checks apply where records are loaded for a run
+(:func:`pipeline.records.load_record` with ``check=True``, which ``pipeline.sweep`` and the
+commands use for AT2 and text files, and :meth:`Record.from_array`); ``Record(...)`` itself and
+the readers ``read_at2``/``read_text`` take any finite samples, so a laboratory or synthetic
+motion can still be built and simulated.
+
+PGV: the trapezoidal integral of the acceleration minus its mean (a constant-offset baseline
+correction, nothing else), so that a record with an uncorrected offset is not refused for a
+velocity drift it does not really have.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+from .basics import ACCEL_UNITS, G, RecordError, to_si
+
+PGA_BOUNDS_G = (1e-4, 5.0)
+"""PGA, g: the largest recorded is 4.36 g (vector sum of three components; 4022 cm/s^2 = 4.1 g
+in one component), KiK-net IWTH25, 2008 Iwate-Miyagi Nairiku earthquake (NIED, the Guinness
+record); 5 g leaves it room. The lower bound, 1e-4 g (0.1 cm/s^2), is about the weakest
+motion strong-motion networks keep as a record."""
+
+ORDINARY_PGA_G = 0.01
+"""PGA, g, under which a record is weak: it is accepted unless the same numbers in another
+unit give an ordinary record (PGA within [0.01 g, 2 g]), the AT2 slip of a 'CM/S/S' header over
+values in g (0.83 g read as 0.00085 g). A stated choice: a record this weak hardly moves an
+isolation system, let alone into its moat (the FEMA P695 far-field set took records above
+0.2 g and 15 cm/s); 2 g is above every horizontal PGA but a handful (Tohoku 2011 MYG004,
+2.7 g)."""
+
+ORDINARY_MAX_PGA_G = 2.0
+"""The upper end of an ordinary record's PGA, g (see :data:`ORDINARY_PGA_G`)."""
+
+PGV_BOUNDS = (1e-4, 5.0)
+"""PGV, m/s: the largest recorded is 3.18 m/s (Chi-Chi 1999, TCU068; Anderson, BSSA 100(1),
+2010, the 100 largest PGAs and PGVs recorded to 2007); 5 m/s leaves it room; 1e-4 m/s
+(0.01 cm/s) goes with the lower PGA bound."""
+
+DURATION_BOUNDS = (1.0, 600.0)
+"""Duration npts*dt, s: strong-motion records last tens of seconds; the longest, of great
+subduction earthquakes (Tohoku 2011 at K-NET), about 300 s; 600 s leaves them room. A record
+under 1 s holds no earthquake (a step given in ms as s, or a fragment)."""
+
+SLIP_UNITS = ("g", "cm/s^2", "m/s^2")
+"""The units a slip is looked for among (g vs cm/s^2: 981; g vs m/s^2: 9.81; m/s^2 vs cm/s^2:
+100), and mm/s^2 when it is the unit given; in this order, the order in which records are most
+often distributed (PEER: g; K-NET, COSMOS: cm/s^2), the first named as the fix."""
+
+
+def record_peaks(accel_si: np.ndarray, dt: float) -> tuple[float, float, float]:
+    """PGA (m/s^2), PGV (m/s) and duration npts*dt (s) of samples in m/s^2 at step dt s.
+
+    PGV integrates ``accel - mean(accel)`` by the trapezoid rule from v(0) = 0."""
+    a = np.asarray(accel_si, dtype=np.float64)
+    pga = float(np.max(np.abs(a))) if a.size else 0.0
+    if a.size > 1:
+        a0 = a - a.mean()
+        velocity = np.concatenate([[0.0], np.cumsum((a0[1:] + a0[:-1]) * (0.5 * dt))])
+        pgv = float(np.max(np.abs(velocity)))
+    else:
+        pgv = 0.0
+    return pga, pgv, a.size * dt
+
+
+def _inside(value: float, bounds: tuple[float, float]) -> bool:
+    return bounds[0] <= value <= bounds[1]
+
+
+def _candidates(raw_pga: float, raw_pgv: float, units: str, ordinary: bool) -> list[tuple]:
+    """(unit, PGA in g) of the other units in which the raw peaks are plausible (ordinary:
+    a PGA within [ORDINARY_PGA_G, ORDINARY_MAX_PGA_G]), in the order of SLIP_UNITS."""
+    found = []
+    for other in (*SLIP_UNITS, *(("mm/s^2",) if units == "mm/s^2" else ())):
+        if other == units:
+            continue
+        pga_g = float(to_si(np.float64(raw_pga), other)) / G
+        pgv = float(to_si(np.float64(raw_pgv), other))
+        band = (ORDINARY_PGA_G, ORDINARY_MAX_PGA_G) if ordinary else PGA_BOUNDS_G
+        if _inside(pga_g, band) and _inside(pgv, PGV_BOUNDS):
+            found.append((other, pga_g))
+    return found
+
+
+def check_plausible(accel_si: np.ndarray, dt: float, units: str, where: str,
+                    fix_units: Callable[[str], str] | None = None,
+                    fix_dt: Callable[[float], str] | None = None,
+                    units_note: str = "") -> None:
+    """Refuse samples (m/s^2, step dt s, read in `units`, a key of ACCEL_UNITS) whose PGA, PGV
+    or duration no earthquake record has: RecordError, starting with `where` (the file), with
+    the unit (or step) that would make them plausible when one does.
+
+    fix_units(unit) says how to give that unit ("give units='cm/s^2' ..."; default: "give
+    units=..."); fix_dt(dt_s) how to give a step in s (None: the step is the file's own);
+    units_note, where the units come from ("the header's"), said after them.
+    """
+    if units not in ACCEL_UNITS:
+        raise ValueError(f"units must be a key of ACCEL_UNITS, got {units!r}")
+    fix_units = fix_units or (lambda unit: f"give units={unit!r}")
+    pga, pgv, duration = record_peaks(accel_si, dt)
+    multiplier, divisor = ACCEL_UNITS[units]
+    raw_pga, raw_pgv = pga * divisor / multiplier, pgv * divisor / multiplier
+    pga_g = pga / G
+
+    def slip(what: str, ordinary: bool) -> None:
+        found = _candidates(raw_pga, raw_pgv, units, True) \
+            or ([] if ordinary else _candidates(raw_pga, raw_pgv, units, False))
+        text = f"{where}: {what}"
+        if found:
+            looks = " or ".join(f"{u} ({p:.3g} g)" for u, p in found)
+            text += f": the values look like {looks}; {fix_units(found[0][0])}"
+        raise RecordError(text)
+
+    if not _inside(duration, DURATION_BOUNDS):
+        text = (f"{where}: a duration of {duration:.4g} s ({np.size(accel_si)} samples at "
+                f"{dt:g} s) is implausible (outside [{DURATION_BOUNDS[0]:g}, "
+                f"{DURATION_BOUNDS[1]:g}] s)")
+        if fix_dt is not None and _inside(duration / 1000, DURATION_BOUNDS):
+            text += f": is the step in ms? {dt:g} ms is {dt / 1000:g} s; {fix_dt(dt / 1000)}"
+        raise RecordError(text)
+    unit_note = "" if units == "g" else f" ({raw_pga:.4g} {units})"
+    in_units = f"values in {units}" + (f" ({units_note})" if units_note else "")
+    if not _inside(pga_g, PGA_BOUNDS_G):
+        slip(f"a PGA of {pga_g:.3g} g{unit_note} is implausible (outside "
+             f"[{PGA_BOUNDS_G[0]:g}, {PGA_BOUNDS_G[1]:g}] g) for {in_units}",
+             ordinary=False)
+    if pga_g < ORDINARY_PGA_G and _candidates(raw_pga, raw_pgv, units, True):
+        slip(f"a PGA of {pga_g:.3g} g{unit_note} is weak (under {ORDINARY_PGA_G:g} g) for "
+             f"{in_units}", ordinary=True)
+    if not _inside(pgv, PGV_BOUNDS):
+        slip(f"a PGV of {pgv:.3g} m/s is implausible (outside [{PGV_BOUNDS[0]:g}, "
+             f"{PGV_BOUNDS[1]:g}] m/s) for {in_units} (PGV: the trapezoidal integral "
+             "of the acceleration minus its mean)", ordinary=False)

@@ -1,0 +1,198 @@
+"""Records no earthquake produced are refused where a run reads them, with the unit that fits:
+text and AT2 files (command line and pipeline.sweep), Record.from_array, and bare arrays."""
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import pipeline
+from pipeline.errors import SweepError
+from pipeline.records import G, Record, RecordError, load_record, read_at2, read_text
+from pipeline.records.plausible import check_plausible, record_peaks
+from studies import sweep as sweep_cli
+
+SHARED = Path("/work/shared/records")
+SHARED_AT2 = sorted(SHARED.glob("*.AT2"))
+needs_shared = pytest.mark.skipif(not SHARED_AT2, reason="no records in /work/shared/records")
+
+
+def pulse(pga: float, duration: float = 10.0, dt: float = 0.01) -> np.ndarray:
+    """A 0.67 Hz sine under a sin^2 envelope, peaking at `pga` (in whatever unit)."""
+    t = np.arange(0.0, duration, dt)
+    a = np.sin(2 * np.pi * t / 1.5) * np.sin(np.pi * t / duration) ** 2
+    return pga * a / np.max(np.abs(a))
+
+
+# --------------------------------------------------------------------------- text records
+
+
+def test_text_record_in_cm_s2_given_as_g_is_refused_with_the_cm_s2_hint(tmp_path, capsys):
+    np.savetxt(tmp_path / "rec.txt", pulse(488.0))  # 488 cm/s^2 = 0.497 g
+    with pytest.raises(RecordError) as err:
+        load_record(tmp_path / "rec.txt", units="g", dt=0.01, check=True)
+    text = str(err.value)
+    assert "a PGA of 488 g is implausible (outside [0.0001, 5] g)" in text
+    assert "the values look like cm/s^2 (0.497 g)" in text
+    assert "--record-units cm/s^2" in text and "units='cm/s^2'" in text
+    # the same file in its own units is a record
+    assert load_record(tmp_path / "rec.txt", units="cm/s2", dt=0.01,
+                       check=True).pga_g == pytest.approx(488 / 981, rel=1e-3)
+    # the command line: one error line, exit status 2, nothing run
+    code = sweep_cli.main(["--records", "rec.txt", "--records-dir", str(tmp_path),
+                           "--record-units", "g", "--record-dt", "0.01", "--gap-cm", "30",
+                           "--quiet", "--out", str(tmp_path / "out")])
+    assert code == 2
+    (line,) = capsys.readouterr().err.strip().splitlines()
+    assert line.startswith("error: ") and "look like cm/s^2 (0.497 g)" in line
+    assert "--record-units cm/s^2" in line
+    assert not (tmp_path / "out").exists()
+
+
+def test_text_record_step_in_ms_is_refused_with_the_step_in_s(tmp_path):
+    np.savetxt(tmp_path / "rec.txt", pulse(0.3))
+    with pytest.raises(RecordError, match=r"duration of 1e\+04 s .*is the step in ms\? 10 ms "
+                                          r"is 0\.01 s; give dt 0\.01 s"):
+        load_record(tmp_path / "rec.txt", units="g", dt=10, check=True)
+
+
+def test_readers_and_load_record_check_only_when_asked(tmp_path):
+    np.savetxt(tmp_path / "rec.txt", pulse(488.0))
+    assert read_text(tmp_path / "rec.txt", "g", dt=0.01).pga_g == pytest.approx(488)
+    assert load_record(tmp_path / "rec.txt", units="g", dt=0.01).pga_g == pytest.approx(488)
+
+
+def test_sweep_given_a_text_path_says_how_to_give_its_units(tmp_path):
+    np.savetxt(tmp_path / "rec.txt", pulse(0.3))
+    path = str(tmp_path / "rec.txt")
+    with pytest.raises(SweepError) as err:
+        pipeline.sweep(path, gap=0.1, quiet=True)
+    text = str(err.value)
+    assert "\n" not in text and "pipeline.sweep does not take" in text
+    assert f"pipeline.records.load_record({path!r}, units='g', dt=0.01, check=True)" in text
+    assert "--record-units" in text
+    # what it says to call works
+    rec = load_record(path, units="g", dt=0.01, check=True)
+    assert rec.pga_g == pytest.approx(0.3)
+
+
+# --------------------------------------------------------------------------- AT2 files
+
+
+def _copy_with_units(src: Path, dst: Path, units: str) -> Path:
+    """A copy of a real AT2 file whose header's units line says `units` (values unchanged)."""
+    lines = src.read_text(encoding="latin-1").split("\n")
+    (i,) = [k for k, line in enumerate(lines[:4]) if "UNITS OF G" in line.upper()]
+    lines[i] = lines[i].replace("UNITS OF G", f"UNITS OF {units}")
+    dst.write_text("\n".join(lines), encoding="latin-1")
+    return dst
+
+
+@needs_shared
+@pytest.mark.parametrize("src", SHARED_AT2, ids=lambda p: p.name)
+def test_at2_with_a_cm_s2_header_over_values_in_g_is_refused(tmp_path, src):
+    bad = _copy_with_units(src, tmp_path / f"CMSS_{src.name}", "CM/S/S")
+    pga_g = read_at2(src).pga_g
+    # read unchecked, the slip goes through: the PGA 981 times too small (~0.001 g)
+    assert read_at2(bad).pga_g == pytest.approx(pga_g / 100 / G, rel=1e-12)
+    with pytest.raises(RecordError) as err:
+        read_at2(bad, check=True)
+    text = str(err.value)
+    assert "is weak (under 0.01 g) for values in cm/s^2 (the header's units)" in text
+    assert f"the values look like g ({pga_g:.3g} g)" in text
+    assert "correct the file's header to say 'UNITS OF G'" in text
+    with pytest.raises(SweepError, match=r"records: .*look like g"):
+        pipeline.sweep(str(bad), gap=0.1, quiet=True)
+
+
+@needs_shared
+def test_at2_slip_on_the_command_line_is_one_line(tmp_path, capsys):
+    bad = _copy_with_units(SHARED_AT2[0], tmp_path / "BAD.AT2", "CM/S/S")
+    assert sweep_cli.main(["--records", str(bad), "--gap-cm", "30", "--quiet",
+                           "--out", str(tmp_path / "out")]) == 2
+    (line,) = capsys.readouterr().err.strip().splitlines()
+    assert line.startswith("error: records: ") and "'UNITS OF G'" in line
+
+
+def test_at2_in_cm_s2_without_a_units_line_is_refused(tmp_path):
+    values = pulse(300.0, duration=20.0, dt=0.02)  # cm/s^2, written as if in g
+    rows = "\n".join(" ".join(f"{v: .7E}" for v in values[i:i + 5])
+                     for i in range(0, values.size, 5))
+    path = tmp_path / "NOUNITS.AT2"
+    path.write_text("PEER NGA STRONG MOTION DATABASE RECORD\nSynthetic, 1/1/2000, Test, 0\n"
+                    "ACCELERATION TIME SERIES\n"
+                    f"NPTS= {values.size}, DT= .0200 SEC,\n{rows}\n")
+    with pytest.raises(RecordError, match=r"a PGA of 300 g is implausible .*look like cm/s\^2 "
+                                          r"\(0\.306 g\).*'UNITS OF CM/S/S'"):
+        load_record(path, check=True)
+
+
+@needs_shared
+@pytest.mark.parametrize("src", SHARED_AT2, ids=lambda p: p.name)
+def test_real_records_pass(src):
+    rec = read_at2(src, check=True)
+    assert load_record(src, check=True).npts == rec.npts
+    pga, pgv, duration = record_peaks(rec.accel, rec.dt)
+    assert 0.5 < pga / G < 1.5 and 0.5 < pgv < 1.5 and 30 <= duration <= 150
+
+
+def test_library_and_paper_records_pass():
+    from pipeline.records import library_index, paper_records
+
+    for rec in [*map(lambda e: load_record(e.name), library_index()), *paper_records()]:
+        check_plausible(rec.accel, rec.dt, "g", rec.name)  # raises if refused
+
+
+# --------------------------------------------------------------------------- arrays
+
+
+def test_from_array_converts_units():
+    g = pulse(0.3)
+    a = Record.from_array(g, 0.01, units="g", name="mine")
+    b = Record.from_array(g * 9.81, 0.01, units="m/s2")
+    c = Record.from_array(g * 981, 0.01, units="cm/s2")
+    d = Record.from_array(g * 981, 0.01, units="gal")
+    np.testing.assert_allclose(a.accel, g * G, rtol=1e-12)
+    for other in (b, c, d):
+        np.testing.assert_allclose(other.accel, a.accel, rtol=1e-12)
+    assert (a.name, a.dt, a.npts, a.rsn, a.scale) == ("mine", 0.01, g.size, None, 1.0)
+    assert a.pga_g == pytest.approx(0.3) and not a.accel.flags.writeable
+    # a record like any other: scaled, and run by a sweep
+    assert a.scaled(2).pga_g == pytest.approx(0.6)
+
+
+def test_from_array_refuses_implausible_records_with_the_hint():
+    with pytest.raises(RecordError, match=r"a PGA of 488 g is implausible .*look like cm/s\^2 "
+                                          r"\(0\.497 g\); give units='cm/s\^2'"):
+        Record.from_array(pulse(488.0), 0.01, units="g")
+    with pytest.raises(RecordError, match=r"weak .*look like g \(0\.8 g\)"):
+        Record.from_array(pulse(0.8), 0.01, units="cm/s^2")
+    with pytest.raises(RecordError, match=r"duration of 0\.05 s"):
+        Record.from_array(pulse(0.3, duration=0.05), 0.01, units="g")
+    with pytest.raises(RecordError, match="units None not understood"):
+        Record.from_array(pulse(0.3), 0.01, units=None)
+    with pytest.raises(TypeError):
+        Record.from_array(pulse(0.3), 0.01)  # units are required
+    with pytest.raises(RecordError, match="units 'ft/s2' not understood"):
+        Record.from_array(pulse(0.3), 0.01, units="ft/s2")
+
+
+@pytest.mark.filterwarnings("ignore::pipeline.errors.PlausibilityWarning")  # dt, coarse
+def test_sweep_runs_an_array_record():
+    rec = Record.from_array(pulse(0.3, duration=4.0), 0.01, units="g", name="mine")
+    ds = pipeline.sweep([rec], gap=[0.10], thickness=0.03, quiet=True, dt=2e-3)
+    assert list(ds.record.values) == ["mine"]
+
+
+@pytest.mark.parametrize("records", [np.zeros(10), [np.zeros(10)], ["kobe", np.ones(5)]])
+def test_sweep_given_an_array_says_to_wrap_it(records):
+    with pytest.raises(SweepError) as err:
+        pipeline.sweep(records, gap=0.1, quiet=True)
+    text = str(err.value)
+    assert "\n" not in text
+    assert text.startswith("records: a NumPy array is not a record")
+    assert "Record.from_array(accel, dt, units=...)" in text
+
+
+def test_sweep_in_plan_given_an_array_says_to_wrap_it():
+    with pytest.raises(SweepError, match=r"not a record pair .*Record\.from_array"):
+        pipeline.sweep(np.zeros(10), gap=0.1, quiet=True, moat="circular")
