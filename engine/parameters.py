@@ -40,6 +40,61 @@ def _outside(array: np.ndarray, interval: tuple[float, bool, float, bool]) -> np
     return ~(above & below)  # NaN fails both
 
 
+_UNIT_TOKEN = re.compile(r"^([A-Za-z]+)(?:\^?\(?(-?\d+(?:\.\d+)?)\)?)?$")
+_UNIT_NAMES = r"(?:N|kN|MN|m|mm|cm|km|s|ms|kg|t|Pa|kPa|MPa|GPa|J|kJ|W|rad|degree)"
+_UNIT_IN_TEXT = re.compile(
+    rf"(?<![\w.^/-])((?:{_UNIT_NAMES}(?:\d+(?:\.\d+)?)? )*"
+    rf"{_UNIT_NAMES}(?:-\d+(?:\.\d+)?|\^\(-\d+(?:\.\d+)?\))"
+    rf"(?: {_UNIT_NAMES}(?:-?\d+(?:\.\d+)?|\^\(-?\d+(?:\.\d+)?\))?)*)(?![\w^(])")
+"""A UDUNITS-style unit inside prose ('N m-1', 's m-1', 'N m^(-1.5)', 'm s-2'): known unit
+names with powers, at least one of them negative (so that ordinary words never match)."""
+_INTERNAL = (
+    (re.compile(r"\s*\(SPEC decision\)"), " (a value chosen here: the paper does not state it)"),
+    (re.compile(r";\s*SPEC decision\)"), "; a value chosen here: the paper does not state it)"),
+    (re.compile(r"SPEC decision"), "a value chosen here: the paper does not state it"),
+    (re.compile(r"(?:,|;)?\s*\bSPEC(?:'s)? (?:section )?\d+(?:\.\d+)*(?=[),;:]|$)"), ""),
+    (re.compile(r"\bSPEC:\s*"), ""),
+    (re.compile(r"\bthe SPEC's\b|\bSPEC's\b"), "the model's"),
+    (re.compile(r"\bSPEC\b"), "the model"),
+    (re.compile(r"(?:,|;)?\s*(?:\.\./shared|tests)/[\w./-]*"), ""),
+    (re.compile(r"\(\s*\)"), ""),
+    (re.compile(r"\(\s*[;,]\s*"), "("),
+)
+"""Internal references (the project's specification, its test files, its shared folders) and
+the plain words a user reads instead; a reference that only pointed there is dropped."""
+
+
+def unit_text(units: str) -> str:
+    """A UDUNITS-style unit string in the paper's spelling: 'N m-1' -> 'N/m', 'N m^(-1.5)'
+    -> 'N/m^1.5', 'm s-2' -> 'm/s^2', 's m-1' -> 's/m', '1' -> '' (a pure number). A string
+    that is not such a unit (already 'kN/mm', or words) comes back as it is."""
+    units = units.strip()
+    if units in ("", "1"):
+        return ""
+    above, below = [], []
+    for token in units.split():
+        m = _UNIT_TOKEN.match(token)
+        if m is None:
+            return units
+        name, power = m.group(1), float(m.group(2)) if m.group(2) else 1.0
+        (above if power > 0 else below).append(name if abs(power) == 1 else
+                                               f"{name}^{abs(power):g}")
+    if not below:
+        return " ".join(above)
+    under = below[0] if len(below) == 1 else f"({' '.join(below)})"
+    return f"{' '.join(above) or '1'}/{under}"
+
+
+def user_text(text: str) -> str:
+    """Text for a user (help, warnings, summaries): units in the paper's spelling (unit_text)
+    and plain words instead of internal references (the project's specification, test files
+    and shared folders); a paper's equation or a standard's clause stays."""
+    text = _UNIT_IN_TEXT.sub(lambda m: unit_text(m.group(1)), text)
+    for pattern, plain in _INTERNAL:
+        text = pattern.sub(plain, text)
+    return text
+
+
 @dataclass(frozen=True)
 class Parameter:
     """One numeric parameter of an impact or isolator law.
@@ -106,12 +161,21 @@ class Parameter:
         return f"{self.name} = {value:g}" + ("" if self.units == "1" else f" {self.units}")
 
     def describe(self) -> str:
-        """'thickness: bumper thickness t, m, in (0, inf), default 0.05 (Eq. 11)'."""
+        """'thickness: bumper thickness t, m, in (0, inf), default 0.05 (Eq. 11)': the unit in
+        the paper's spelling (user_text), written once."""
         default = ("required" if self.required else "unset" if self.default is None
                    else f"default {self.default:g}")
-        units = "" if self.units == "1" else f", {self.units}"
-        equation = f" ({self.equation})" if self.equation else ""
-        return f"{self.name}: {self.meaning}{units}, in {self.valid}, {default}{equation}"
+        return f"{self.name}: {self.help_text()}, in {self.valid}, {default}" + (
+            f" ({user_text(self.equation)})" if user_text(self.equation) else "")
+
+    def help_text(self) -> str:
+        """'bumper thickness t, m': the meaning and the unit for a reader (the paper's
+        spelling, N/m^1.5 for N m^(-1.5); the unit left out when the meaning already says
+        it; no unit for a pure number)."""
+        meaning, units = user_text(self.meaning), unit_text(self.units)
+        if not units or meaning.endswith(units) or ("/" in units and units in meaning):
+            return meaning
+        return f"{meaning}, {units}"
 
 
 @dataclass(frozen=True)
@@ -129,7 +193,8 @@ class Option:
         return value
 
     def describe(self) -> str:
-        return f"{self.name}: {self.meaning}, one of {self.choices}, default {self.default!r}"
+        return (f"{self.name}: {user_text(self.meaning)}, one of {self.choices}, "
+                f"default {self.default!r}")
 
 
 class Declaration(Mapping):

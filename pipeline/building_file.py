@@ -37,7 +37,7 @@ from pathlib import Path
 import numpy as np
 
 import engine
-from engine.building import FIELD_UNITS, PER_LEVEL, PER_STORY
+from engine.building import FIELD_UNITS, MAX_STORIES, PAPER_MASSES, PER_LEVEL, PER_STORY
 from engine.isolators import LAWS as ISOLATOR_LAWS
 from engine.parameters import REQUIRED, Parameter
 from engine.stories import LAWS as STORY_LAWS
@@ -100,6 +100,11 @@ def check_plausible(building: engine.Building) -> None:
 def read_building(path) -> engine.Building:
     """The engine.Building described by a TOML (.toml) or JSON (.json) file."""
     path = Path(path)
+    return building(_read_data(path), where=f"building file {path}")
+
+
+def _read_data(path: Path) -> dict:
+    """The mapping of a TOML or JSON building file, as written."""
     if not path.is_file():
         raise BuildingError(f"building file {path} does not exist")
     try:
@@ -114,21 +119,28 @@ def read_building(path) -> engine.Building:
                             f"{path.suffix.lstrip('.').upper()}: {err}") from None
     if not isinstance(data, dict):
         raise BuildingError(f"building file {path}: expected a table of building fields")
-    return building(data, where=f"building file {path}")
+    return data
 
 
 def building_from(specs: Sequence[str] = ()) -> engine.Building:
     """The building of a command line's --building options: at most one FILE (TOML or JSON)
     and any NAME=VALUE settings applied over it (or over the paper's building), e.g.
-    `masses=320e3,320e3,250e3` (comma lists for per-level and per-story fields)."""
+    `masses=320e3,320e3,250e3 story_stiffness=5e8,4e8` (comma lists for per-level and
+    per-story fields). A building of another height than the paper's needs its masses and
+    story_stiffness both; a field of the user's building left at the paper's value (masses,
+    story_stiffness, the isolator) is said in one 'note: ...' line on stderr (the archive's
+    building_* attributes record every value)."""
     files = [s for s in specs if "=" not in s]
     if len(files) > 1:
         raise BuildingError(f"--building: one building file at most, got {files}")
-    fields = {}
+    fields, where = {}, "--building"
     if files:
-        base = read_building(files[0])
-        fields = {name: getattr(base, name) for name in FIELD_UNITS}
-    for setting in (s for s in specs if "=" in s):
+        fields = dict(_read_data(Path(files[0])))
+        where = f"building file {files[0]}"
+    settings = [s for s in specs if "=" in s]
+    if settings:
+        where = f"--building (over building file {files[0]})" if files else "--building"
+    for setting in settings:
         name, _, text = setting.partition("=")
         name = name.strip()
         tables = ("isolator", "stories")
@@ -139,7 +151,91 @@ def building_from(specs: Sequence[str] = ()) -> engine.Building:
         fields[name] = text if FIELD_UNITS[name] is None else \
             _numbers(name, text.split(",") if name in PER_LEVEL + PER_STORY else text,
                      f"--building {setting!r}")
-    return building(fields, where="--building")
+    result = building(fields, where=where)
+    notice = defaults_notice(fields, where, described=bool(files))
+    if notice:
+        check_plausible(result)  # an implausible value: one error line, no notice before it
+        print(f"note: {notice}", file=sys.stderr)
+    return result
+
+
+def _given(data: dict) -> set:
+    """The fields a mapping gives (a JSON null is the field's default: not given)."""
+    return {name for name, value in data.items() if value is not None}
+
+
+def _stories_implied(data: dict) -> dict:
+    """field -> the number of stories its length implies, for the per-level and per-story
+    fields a mapping gives as lists."""
+    implied = {}
+    for name in PER_LEVEL + PER_STORY:
+        value = data.get(name)
+        if isinstance(value, (list, tuple)) and value:
+            implied[name] = len(value) - 1 if name in PER_LEVEL else len(value)
+    return implied
+
+
+PAPER_STORIES = len(PAPER_MASSES) - 1
+"""The paper's building: 4 stories (5 levels, the isolation slab included)."""
+
+
+def check_complete(data: dict, where: str) -> None:
+    """BuildingError in one line, naming only what the user gave, when the building's height
+    differs from the paper's and masses or story_stiffness is not given (the paper's would not
+    fit), or masses are given without story_stiffness (the paper's stories belong to the
+    paper's masses)."""
+    given = _given(data)
+    implied = _stories_implied(data)
+    other = {name: n for name, n in implied.items() if n != PAPER_STORIES}
+    required = ["masses", "story_stiffness"] if other else \
+        ["story_stiffness"] if "masses" in given else []
+    missing = [name for name in required if name not in given]
+    levels = implied.get("masses")
+    if not missing or (levels is not None and not 1 <= levels <= MAX_STORIES):
+        return  # nothing missing, or masses the engine refuses by themselves
+    for name in sorted(given & set(PLAUSIBLE)):  # a unit slip first: it explains the rest
+        try:
+            plausible(name, PLAUSIBLE[name], np.asarray(data[name], float), option=False)
+        except SweepError as err:
+            raise BuildingError(f"building {err}") from None
+    basis = next(name for name in ("masses", "story_stiffness", *implied) if name in implied) \
+        if implied else None
+    stories = PAPER_STORIES if basis is None else implied[basis]
+    wants = {"masses": f"masses in kg ({stories + 1} values, the isolation slab first)",
+             "story_stiffness": f"story_stiffness in N/m ({stories} value"
+                                f"{'s' if stories != 1 else ''}, the first story first)"}
+    because = "" if basis is None else \
+        f", as {basis} gives {stories + 1} levels" if basis in PER_LEVEL else \
+        f", as {basis} gives {stories} stor{'ies' if stories != 1 else 'y'}"
+    raise BuildingError(f"{where}: {' and '.join(missing)} "
+                        f"{'is' if len(missing) == 1 else 'are'} missing: give "
+                        + " and ".join(wants[name] for name in missing) + because)
+
+
+def defaults_notice(data: dict, where: str, described: bool = False) -> str | None:
+    """What the user's building takes from the paper's (masses, story_stiffness, the bilinear
+    isolator), in one line; None when the user gave no building of their own (no file,
+    neither masses nor story_stiffness) or gave all of them."""
+    given = _given(data)
+    if not (described or given & {"masses", "story_stiffness"}):
+        return None
+    paper = engine.Building()
+    taken = []
+    if "masses" not in given:
+        taken.append("masses " + ", ".join(map(_engineering, paper.masses)) + " kg")
+    if "story_stiffness" not in given:
+        taken.append("story_stiffness " + ", ".join(map(_engineering, paper.story_stiffness))
+                     + " N/m")
+    if "isolator" not in given:
+        isolator = [f"{name} {_engineering(getattr(paper, name))}{unit}"
+                    for name, unit in (("k1", " N/m"), ("k2", " N/m"), ("fy_ratio", ""))
+                    if name not in given]
+        if isolator:
+            taken.append("bilinear isolator " + ", ".join(isolator))
+    if not taken:
+        return None
+    return (f"{where}: not given, so the paper's {'; '.join(taken)} (recorded in the "
+            "archive's building_* attributes)")
 
 
 def building(data: dict, where: str = "building") -> engine.Building:
@@ -164,10 +260,19 @@ def building(data: dict, where: str = "building") -> engine.Building:
             fields[name] = value
         else:
             fields[name] = _numbers(name, value, where)
+    check_complete(fields, where)
     try:
         return engine.Building(**fields)
     except engine.EngineError as err:
         raise BuildingError(f"{where}: {err}") from None
+
+
+def _engineering(value: float) -> str:
+    """A value as the building files write it: 320e3, 600e6, 0.1."""
+    if abs(value) < 1e3:
+        return f"{value:g}"
+    exponent = int(np.floor(np.log10(abs(value)) / 3) * 3)
+    return f"{value / 10 ** exponent:g}e{exponent}"
 
 
 def _flag(name: str, value, where: str) -> bool:

@@ -27,6 +27,8 @@ import sys
 import textwrap
 from dataclasses import dataclass
 
+from .common.program import RUNNING, program  # noqa: F401 - program: the name in use
+
 PACKAGE = "studies"
 NOT_RECIPES = frozenset({"cli", "sweep", "common", "archive_tools"})
 """Modules of studies/ that are not recipes (cli: this one; sweep: a command of its own;
@@ -126,12 +128,17 @@ def listing(found: list[Command]) -> str:
     return "\n".join(lines)
 
 
-def run(module: str, argv: list[str]) -> int:
-    """Run `module.main(argv)` and return its exit status, as `python -m` would end."""
+def run(module: str, argv: list[str], name: str | None = None) -> int:
+    """Run `module.main(argv)` and return its exit status, as `python -m` would end; name: the
+    command's name under `bumpers` (its help and errors then say `bumpers NAME`)."""
+    if name:
+        RUNNING[module] = name
     try:
         status = importlib.import_module(module).main(argv)
     except SystemExit as stop:  # argparse's --help and usage errors end this way
         status = stop.code
+    finally:
+        RUNNING.pop(module, None)
     if status is None or isinstance(status, int):
         return status or 0
     print(status, file=sys.stderr)  # SystemExit("message"): Python prints it, status 1
@@ -164,8 +171,10 @@ def main(argv: list[str] | None = None) -> int:
         print(f"bumpers: unknown {kind} {argv[0]!r}; the commands are {', '.join(found)} "
               "(bumpers --help describes them)", file=sys.stderr)
         return 2
-    return run(found[argv[0]].module, argv[1:])
+    return run(found[argv[0]].module, argv[1:], argv[0])
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    # `python -m studies.cli` runs this file as __main__, a module apart from studies.cli,
+    # which the commands read `program` from: run that one.
+    raise SystemExit(importlib.import_module("studies.cli").main())

@@ -19,6 +19,7 @@ import sys
 
 import numpy as np
 
+from engine import DEFAULT_DT
 from engine.impact import M_EFF
 from engine.units import CM, KN_PER_MM
 from pipeline.cluster import add_tls_options
@@ -32,6 +33,7 @@ from pipeline.grid import (
     declarations,
 )
 
+from .common.program import program
 from .common.recipe import (
     OneLineParser,
     accept_negative_numbers,
@@ -55,8 +57,7 @@ def declared(name: str) -> str:
             "required" if p.required else f"default {p.default:g}"
         if name in PLAN_PARAMS:
             default += "; runs in plan only (--moat)"
-        units = "" if p.units == "1" else f", {p.units}"
-        texts[law] = f"{p.meaning}{units}, in {p.valid}, {default}"
+        texts[law] = f"{p.help_text()}, in {p.valid}, {default}"
     if len(set(texts.values())) == 1:
         return next(iter(texts.values()))
     return "per law: " + "; ".join(f"{law}: {text}" for law, text in texts.items())
@@ -105,7 +106,7 @@ def add_parameters(p: argparse.ArgumentParser) -> None:
 
 def parser() -> argparse.ArgumentParser:
     p = OneLineParser(
-        prog="python -m studies.sweep",
+        prog=program("studies.sweep"),
         description="Simulate the isolated building pounding on its moat wall for every "
                     "combination of the given parameters and records, and write the peak "
                     "responses to a NetCDF archive. One value holds a parameter fixed, several "
@@ -120,7 +121,7 @@ def parser() -> argparse.ArgumentParser:
     add_parameters(p)
     p.add_argument("--moat", choices=("rectangular", "circular"), default=None,
                    help="run in plan: --records are then record PAIRS (RSN<n>, a paper key, "
-                        "or A.AT2+B.AT2; see pipeline.records.load_pair), the building moves "
+                        "or A.AT2+B.AT2: two components of one recording), the building moves "
                         "in x and y against a square (rectangular) or circular moat with the "
                         "same walls on every side, --angle rotates the pairs (default: the "
                         "paper's planar model)")
@@ -136,19 +137,22 @@ def parser() -> argparse.ArgumentParser:
                    help="also run each record without moat wall")
     mass = p.add_mutually_exclusive_group()
     mass.add_argument("--m-eff", type=float, default=None, metavar="KG",
-                      help=f"{M_EFF.meaning}, kg (default: {M_EFF.default:g})")
+                      help=f"{M_EFF.help_text()} (default: {M_EFF.default:g})")
     mass.add_argument("--m-eff-t", type=float, default=None, metavar="T",
                       help="m_eff in t")
     p.add_argument("--building", action="append", default=[], metavar="FILE|NAME=VALUE",
                    help="the building: a TOML or JSON file (see examples/) and/or "
-                        "engine.Building fields as NAME=VALUE in SI units (repeatable; "
+                        "its fields as NAME=VALUE in SI units, e.g. zeta_sup=0.03, or "
+                        "masses=500e3,400e3,300e3 with story_stiffness=9e8,8e8 (repeatable; "
                         "default: the paper's building)")
     p.add_argument("--damping", choices=("paper", "modal"), default=None,
-                   help="building damping model, see engine.Building (default: the "
+                   help="building damping model: paper (an isolation dashpot plus "
+                        "stiffness-proportional story dashpots) or modal (classical damping: "
+                        "zeta_iso in the first mode, zeta_sup in the others) (default: the "
                         "building's, paper)")
     p.add_argument("--dt", type=float, metavar="S",
-                   help="integration step, s (default: engine.DEFAULT_DT); refused above the "
-                        "stability limit")
+                   help=f"integration step, s (default: {DEFAULT_DT * 1e3:g} ms, converged "
+                        "for the paper's runs); refused above the stability limit")
     p.add_argument("--workers", type=int, default=1,
                    help="1 (default): in this process, the compiled kernel on every core "
                         "through threads; N >= 2: N local dask worker processes, one thread "

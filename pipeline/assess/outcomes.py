@@ -9,10 +9,17 @@
   1 by construction, not a finding.
 - `judged`: a claim with the paper's quantifier ("every", "almost every", "most", "some")
   held at `held` of `counted` points; None when nothing was counted (not tested).
+- `count` (-> `Count`): THE counting rule every study's verdicts use (SPEC section 6): the
+  quantifier as the paper's sentence states it; ties (within the tolerance) and cases where
+  what the claim speaks of does not happen (no contact) outside the denominator and reported
+  beside it; each pair carries its earthquake's weight once, however many angles, levels or
+  gaps it runs at (see `count` for the rule).
 - `weighted_quantiles`: quantiles over the records weighted per earthquake; QUANTILES, the
   ones the studies report.
 """
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -28,6 +35,25 @@ QUANTIFIERS = {"every": "at every counted point",
                "almost every": f"at {ALMOST_EVERY:.0%} at least of the counted points",
                "most": "at more than half the counted points",
                "some": "at one counted point at least"}
+ALIASES = {"all": "every", "almost all": "almost every", "may": "some", "can": "some",
+           "could": "some"}
+"""The paper's wordings of the four quantifiers: "may" / "can" assert that it happens at
+least once ("some"); "almost all" is "almost every"."""
+COUNT_TEXT = {"every": "every counted pair holds at every counted case",
+              "almost every": f"held weight >= {ALMOST_EVERY:.0%} of the counted weight",
+              "most": "held weight > half the counted weight",
+              "some": "one counted case at least holds"}
+"""The verdict rule of each quantifier over `count`'s weights (ties and cases not counted
+outside the denominator)."""
+
+
+def canonical(quantifier: str) -> str:
+    """The quantifier among QUANTIFIERS for the paper's wording (ALIASES); ValueError else."""
+    q = ALIASES.get(quantifier, quantifier)
+    if q not in QUANTIFIERS:
+        raise ValueError(f"quantifier must be one of {tuple(QUANTIFIERS) + tuple(ALIASES)}, "
+                         f"got {quantifier!r}")
+    return q
 
 
 def amplification(with_bumpers, without) -> np.ndarray:
@@ -82,14 +108,131 @@ def tally(effects, counted, weights=None) -> dict:
 
 
 def judged(quantifier: str, held: float, counted: float) -> bool | None:
-    """Whether a claim with `quantifier` (QUANTIFIERS) holds at `held` of `counted` points;
-    None where nothing was counted."""
-    if quantifier not in QUANTIFIERS:
-        raise ValueError(f"quantifier must be one of {tuple(QUANTIFIERS)}, got {quantifier!r}")
+    """Whether a claim with `quantifier` (QUANTIFIERS, or its wording in ALIASES) holds at
+    `held` of `counted` points; None where nothing was counted."""
+    quantifier = canonical(quantifier)
     if not counted:
         return None
-    return {"every": held == counted, "some": held > 0, "most": held > counted / 2,
-            "almost every": held >= ALMOST_EVERY * counted}[quantifier]
+    eps = 1e-12 * abs(counted)  # the rounding of weighted sums, never a case's weight
+    return {"every": held >= counted - eps, "some": held > eps,
+            "most": held > counted / 2 + eps,
+            "almost every": held >= ALMOST_EVERY * counted - eps}[quantifier]
+
+
+@dataclass(frozen=True)
+class Count:
+    """A claim counted by `count`. Weights (the pairs', per earthquake): held and counted (the
+    denominator), ties (pairs whose only cases where the claim applies are within the
+    tolerance) and not_counted (pairs where it never applies: no contact); the four add up to
+    the total weight. Cases (ints): held_cases, counted_cases, tie_cases, not_counted_cases,
+    failed_cases (counted and not held). pairs, events: the pairs and earthquakes in the
+    denominator (events None when no earthquake ids were given). verdict: True / False, None
+    when nothing was counted (not tested)."""
+
+    quantifier: str
+    wording: str
+    held: float
+    counted: float
+    ties: float
+    not_counted: float
+    held_cases: int
+    counted_cases: int
+    tie_cases: int
+    not_counted_cases: int
+    pairs: int
+    events: int | None
+    verdict: bool | None
+
+    @property
+    def failed_cases(self) -> int:
+        return self.counted_cases - self.held_cases
+
+    @property
+    def fraction(self) -> float | None:
+        """held / counted (weights), None when nothing was counted."""
+        return self.held / self.counted if self.counted else None
+
+    def text(self, unit: str = "cases", tol: float = TOLERANCE) -> str:
+        """'holds for 67% of the weight of 3 pairs (2 earthquakes; 7 of 12 cases); beside,
+        not counted: 2 cases within the 2% tolerance (weight 0.5), 5 cases without contact
+        (weight 1)'."""
+        who = f"{self.pairs} pair{'s' * (self.pairs != 1)}"
+        if self.events is not None:
+            who += f", {self.events} earthquake{'s' * (self.events != 1)}"
+        head = (f"holds for {self.fraction:.0%} of the weight of {who} ({self.held_cases} of "
+                f"{self.counted_cases} {unit})" if self.counted else f"nothing counted (0 {unit})")
+        return (f"{head}; beside, not counted: {self.tie_cases} {unit} within the {tol:.0%} "
+                f"tolerance (pairs with only such: weight {self.ties:.3g}), "
+                f"{self.not_counted_cases} where it does not apply (weight "
+                f"{self.not_counted:.3g})")
+
+    def numbers(self) -> dict:
+        """The count for an archive (JSON-ready)."""
+        return {"quantifier": self.quantifier, "wording": self.wording,
+                "rule": COUNT_TEXT[self.quantifier], "held_weight": self.held,
+                "counted_weight": self.counted, "fraction": self.fraction,
+                "tie_weight": self.ties, "not_counted_weight": self.not_counted,
+                "held_cases": self.held_cases, "counted_cases": self.counted_cases,
+                "failed_cases": self.failed_cases, "tie_cases": self.tie_cases,
+                "not_counted_cases": self.not_counted_cases, "pairs_counted": self.pairs,
+                "events_counted": self.events,
+                "verdict": None if self.verdict is None else bool(self.verdict)}
+
+
+def count(quantifier: str, holds, applies, changed=None, weights=None, events=None) -> Count:
+    """One way to count a claim (SPEC section 6), for every study.
+
+    Cases are arrays (R, ...) over the pairs (axis 0) and whatever else they run at (angles,
+    levels, gaps, ...): holds (bool: the claim holds there), applies (bool: what it speaks of
+    happens there, e.g. contact in one of the two configurations), changed (bool: the
+    quantity changes beyond the tolerance; None for a yes/no claim: no ties). A case is
+    COUNTED where it applies and changed; a TIE where it applies and did not change; NOT
+    COUNTED where it does not apply. weights (R,): each pair's weight (e.g. a suite's
+    record_weight); None: `event_weights(events)` when events (R,) earthquake ids are given
+    (the pairs of one earthquake share its weight), else 1 per pair.
+
+    The rule: a pair with counted cases puts its whole weight w in the denominator once,
+    however many cases it has, and w x (its held cases / its counted cases) in the held
+    weight; a pair with no counted case puts w in `ties` if some of its cases are ties, else in
+    `not_counted`. The verdict of the quantifier (QUANTIFIERS or the paper's wording, ALIASES):
+    "every": no counted case fails (ties ignored); "almost every": held >= ALMOST_EVERY x
+    counted; "most": held > counted / 2; "some" ("may", "can"): one counted case holds; None
+    when nothing is counted."""
+    wording, quantifier = quantifier, canonical(quantifier)
+    applies = np.asarray(applies, bool)
+    holds = np.broadcast_to(np.asarray(holds, bool), applies.shape)
+    ch = np.ones(applies.shape, bool) if changed is None else np.broadcast_to(
+        np.asarray(changed, bool), applies.shape)
+    n_pairs = applies.shape[0] if applies.ndim else 1
+    flat = lambda a: np.reshape(a, (n_pairs, -1))  # noqa: E731  (pair, case)
+    applies, holds, ch = flat(applies), flat(holds), flat(ch)
+    if weights is None:
+        if events is None:
+            weights = np.ones(n_pairs)
+        else:
+            from .fragility_outcomes import event_weights
+
+            weights = event_weights(np.asarray(events))
+    w = np.broadcast_to(np.asarray(weights, float), (n_pairs,))
+    counted, tie = applies & ch, applies & ~ch
+    n_c, n_h = counted.sum(axis=1), (counted & holds).sum(axis=1)
+    in_count = n_c > 0
+    tie_only = ~in_count & tie.any(axis=1)
+    outside = ~in_count & ~tie_only
+    share = np.where(in_count, n_h / np.maximum(n_c, 1), 0.0)
+    held, total = float(np.sum(w[in_count] * share[in_count])), float(np.sum(w[in_count]))
+    n_events = None if events is None else int(np.unique(np.asarray(events)[in_count]).size)
+    if not in_count.any():
+        verdict = None
+    elif quantifier == "every":
+        verdict = bool(n_h.sum() == n_c.sum())
+    elif quantifier == "some":
+        verdict = bool(n_h.sum() > 0)
+    else:
+        verdict = judged(quantifier, held, total)
+    return Count(quantifier, wording, held, total, float(w[tie_only].sum()),
+                 float(w[outside].sum()), int(n_h.sum()), int(n_c.sum()), int(tie.sum()),
+                 int((~applies).sum()), int(in_count.sum()), n_events, verdict)
 
 
 QUANTILES = (0.16, 0.5, 0.84)

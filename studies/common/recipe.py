@@ -60,14 +60,20 @@ class Recipe:
         return not self.not_resumable
 
     def parser(self) -> argparse.ArgumentParser:
-        epilog = f"Values the paper does not state: {self.chosen}" if self.chosen else None
+        from engine.parameters import user_text
+        from studies.common.program import program
+
+        epilog = (user_text(f"Values the paper does not state: {self.chosen}")
+                  if self.chosen else None)
         p = OneLineParser(
-            prog=f"python -m studies.{self.name}",
-            description=f"{self.summary} (paper {self.figure}). Writes {self.name}.nc, "
+            prog=program(f"studies.{self.name}"),
+            description=user_text(f"{self.summary} (paper {self.figure}). ") + (
+                        f"Writes {self.name}.nc, "
                         f"{self.name}.png and {self.name}.pdf into --out. " + (
                             "Ctrl-C keeps the finished simulations: the same command again "
                             "resumes." if self.resumable else "Ctrl-C stops it and keeps "
-                            f"nothing: the same command again starts over ({self.not_resumable})."),
+                            f"nothing: the same command again starts over "
+                            f"({user_text(self.not_resumable)}).")),
             epilog=epilog)
         accept_negative_numbers(p)
         if self.records is None:
@@ -103,9 +109,10 @@ class Recipe:
             p.add_argument("--building", action="append", default=[],
                            metavar="FILE|NAME=VALUE",
                            help="the building: a TOML or JSON file (see examples/) and/or "
-                                "engine.Building fields as NAME=VALUE in SI units, e.g. "
-                                "zeta_sup=0.03 or masses=500e3,400e3,300e3 (repeatable; "
-                                "default: the paper's building)")
+                                "its fields as NAME=VALUE in SI units, e.g. "
+                                "zeta_sup=0.03, or masses=500e3,400e3,300e3 with "
+                                "story_stiffness=9e8,8e8 (repeatable; default: the paper's "
+                                "building)")
         p.add_argument("--out", type=Path, default=Path("results"), metavar="PATH",
                        help=f"where the archive goes: a path ending in .nc is the archive "
                             f"itself (the figures take its stem), one ending in .zarr a Zarr "
@@ -390,7 +397,9 @@ def announce_stand_ins():
 
     def show(message, category, filename, lineno, file=None, line=None):
         if issubclass(category, (StandInWarning, PlausibilityWarning)):
-            print(f"warning: {message}", file=sys.stderr)
+            from engine.parameters import user_text
+
+            print(f"warning: {user_text(str(message))}", file=sys.stderr)
         else:
             default(message, category, filename, lineno, file, line)
 

@@ -74,13 +74,12 @@ zeros), which the tests check against a direct run.
 from __future__ import annotations
 
 import functools
-import json
 
 import numpy as np
 
 from engine.impact.laws import rubber_bumper
 from engine.impact.laws.rubber_bumper import GENT_LINDLEY_K
-from engine.units import CM, KN_PER_MM, G
+from engine.units import CM, G
 from pipeline.motions.code_suite import LEVELS
 
 from ..common.options import (
@@ -94,8 +93,8 @@ from ..common.options import (
     wall_capacity,
 )
 from ..common.plot import plt
-from ..common.recipe import Recipe, Verdict, provenance, run_options
-from .archive import dataset, flagged_text, table_lines
+from ..common.recipe import Recipe, provenance, run_options
+from .archive import dataset
 from .search import (
     Problem,
     Search,
@@ -103,8 +102,6 @@ from .search import (
 )
 from .space import (
     COARSE,
-    CRITERIA,
-    DESIGN,
     MCE,
     OBJECTIVES,
     QUICK,
@@ -114,7 +111,6 @@ from .space import (
     ROUNDS,
     SHAPE_FACTOR,
     THICKNESS_MIN,
-    VARIABLES,
     WALL_LENGTH,
     WITHIN_LIMITS,
     Bounds,
@@ -122,6 +118,7 @@ from .space import (
     grid,
     usable_strain,
 )
+from .verdicts import check, objective_statistic
 
 GAP_FRACTION = 0.8
 """Default gap / D_M: short of the code's clearance D_TM (1.15 D_M), where bumpers matter."""
@@ -270,150 +267,6 @@ def compute(args):
 # ------------------------------------------------------------------------------ reporting
 
 
-def check(ds) -> list[Verdict]:
-    """The search's result, and the paper's advice on cavities (5.3), soft walls (5.5) and
-    bumpers at narrow gaps (6) asked of the evaluated candidates."""
-    for line in [f"design gap {float(ds.attrs['design_gap']) / CM:.3g} cm = "
-                 f"{float(ds.attrs['gap_over_D_M']):.3g} D_M (D_M {ds.attrs['D_M'] / CM:.3g} "
-                 f"cm, D_TM {ds.attrs['D_TM'] / CM:.3g} cm); {ds.sizes['record']} pairs; "
-                 f"{ds.sizes['candidate']} candidates",
-                 f"criteria: {ds.attrs['criteria']}", f"bounds: {ds.attrs['bounds']}",
-                 *table_lines(ds), f"optimum: {ds.attrs['optimum_nature']}",
-                 shape_text(ds)]:
-        print(line)
-    return [_design_verdict(ds), _cavity_verdict(ds), _wall_verdict(ds), _narrow_verdict(ds)]
-
-
-def shape_text(ds) -> str:
-    """The shape factor of the chosen pads (the closest ones if none is feasible) and what it
-    makes of their stiffness."""
-    i = int(ds.attrs["closest_candidate"])
-    which = "chosen" if int(ds.attrs["chosen_candidate"]) >= 0 else "closest (infeasible)"
-    s, t = float(ds.shape_factor[i]), float(ds.thickness[i])
-    return (f"shape factor of the {which} pads: S {s:.3g} (side {float(ds.side[i]) / CM:.3g} "
-            f"cm, t {t / CM:.3g} cm): k_st {float(ds.shape_ratio[i]):.3g} x the paper's Eq. 11 "
-            f"(Gent & Lindley, k = {float(ds.attrs['bumper_shape_k']):g}, against the "
-            f"calibration pad's S {float(ds.attrs['bumper_shape_factor_cal']):g})")
-
-
-DESIGN_CLAIM = ("A bumper layout meets the constraints at the gap and mitigates the pounding "
-                "(paper 6: bumpers an effective measure for narrow gaps, against the response "
-                "without them): agrees when the best feasible layout's objective is no worse "
-                "than the bare wall's at the same gap")
-"""The design verdict's claim and criterion (_design_verdict)."""
-
-
-def _design_verdict(ds) -> Verdict:
-    chosen = int(ds.attrs["chosen_candidate"])
-    n_feasible = int(ds.feasible.sum())
-    nature_text = ds.attrs["optimum_nature"]
-    if chosen < 0:
-        i = int(ds.attrs["closest_candidate"])
-        fails = [c for c in CRITERIA if float(ds[f"margin_{c}"][i]) < -1e-12]
-        over = int(ds.n_invalid_bumper_stress.isel(level=MCE, candidate=i))
-        return Verdict("design", DESIGN_CLAIM,
-                       f"none of {ds.sizes['candidate']} candidates does; the closest "
-                       f"({ds.attrs['optimum']}) fails {', '.join(fails)}, its bumpers over "
-                       f"the stress limit under {over} of {ds.sizes['record']} pairs at the "
-                       f"MCE_R; {nature_text}", False,
-                       {"closest": ds.attrs["optimum"], "fails": fails,
-                        "shape_factor": float(ds.shape_factor[i]),
-                        "shape_ratio": float(ds.shape_ratio[i])})
-    over = int(ds.n_invalid_bumper_stress.isel(level=MCE, candidate=chosen))
-    code = REFERENCES.index("code clearance D_TM")
-    bare = REFERENCES.index("bare wall at the gap")
-    objective = float(ds.objective[chosen])
-    at_bare = float(ds["reference_" + _stat(ds)][MCE, bare])
-    at_code = float(ds["reference_" + _stat(ds)][MCE, code])
-    mitigates = objective <= at_bare
-    return Verdict("design", DESIGN_CLAIM,
-                   f"{n_feasible} of {ds.sizes['candidate']} candidates meet the constraints; "
-                   f"the best, {ds.attrs['optimum']}, objective {objective / G:.3g} g "
-                   f"{'within' if mitigates else 'above'} the bare wall's at the gap "
-                   f"({at_bare / G:.3g} g); the code's design at D_TM, beside (not the "
-                   f"criterion: the paper compares bumpers with the bare wall at the same gap, "
-                   f"never with a wider one): {at_code / G:.3g} g, the layout "
-                   f"{'within it' if objective <= at_code else f'{objective / at_code:.3g} x it'}"
-                   f"; bumpers over "
-                   f"the stress limit under {over} of {ds.sizes['record']} pairs at the MCE_R; "
-                   f"flagged pairs at the MCE_R: "
-                   f"{flagged_text(ds, '', 'candidate', chosen, MCE) or 'none'} (the code's "
-                   f"design: {flagged_text(ds, 'reference_', 'reference', code, MCE) or 'none'})"
-                   f"; optimum {nature_text}", mitigates,
-                   {"chosen": ds.attrs["optimum"], "objective": objective,
-                    "objective_bare_wall_at_gap": at_bare, "objective_code_design": at_code,
-                    "optimum": json.loads(ds.attrs["optimum_bounds"]),
-                    "shape_factor": float(ds.shape_factor[chosen]),
-                    "shape_ratio": float(ds.shape_ratio[chosen])})
-
-
-def _stat(ds) -> str:
-    """The statistic the objective takes: median_peak_floor_accel or p84_peak_floor_accel."""
-    return f"{ds.attrs['objective']}_peak_floor_accel"
-
-
-def _paired(ds, name: str, low, high):
-    """Pairs of candidates equal but in `name` (low vs high value): (objective at low,
-    at high), (P,) each."""
-    others = [v for v in VARIABLES if v != name]
-    key = {tuple(np.round([float(ds[v][i]) for v in others], 9)): i
-           for i in range(ds.sizes["candidate"]) if high(float(ds[name][i]))}
-    pairs = [(i, key[k]) for i in range(ds.sizes["candidate"]) if low(float(ds[name][i]))
-             and (k := tuple(np.round([float(ds[v][i]) for v in others], 9))) in key]
-    obj = ds.objective.values
-    return np.array([obj[i] for i, _ in pairs]), np.array([obj[j] for _, j in pairs])
-
-
-def _compare(conclusion, claim, ds, name, low, high, what) -> Verdict:
-    """A claim that `low` beats `high` in `name`, asked of every pair of candidates that differ
-    only there: counted where the objective changes by more than the tolerance."""
-    from pipeline.assess import outcomes
-
-    a, b = _paired(ds, name, low, high)
-    effect = outcomes.effect(a, b)
-    counted = int((effect != outcomes.NEUTRAL).sum())
-    held = int((effect == outcomes.HELPED).sum())
-    agrees = outcomes.judged("most", held, counted)
-    return Verdict(conclusion, claim,
-                   f"{what}: the objective lower in {held} of {counted} pairs of candidates "
-                   f"differing only there and changing by more than "
-                   f"{outcomes.TOLERANCE:.0%} ({a.size} pairs in all)", agrees,
-                   {"pairs": int(a.size), "counted": counted, "held": held})
-
-
-def _cavity_verdict(ds) -> Verdict:
-    return _compare("5.3", "Bumpers set in cavities (using more of the rubber) lower the "
-                    "responses", ds, "cavity_ratio", lambda r: r > 0, lambda r: r == 0,
-                    "a cavity against none")
-
-
-def _wall_verdict(ds) -> Verdict:
-    lo, hi = float(ds.wall_k.min()), float(ds.wall_k.max())
-    return _compare("5.5", "A flexible moat wall lowers the floor accelerations", ds, "wall_k",
-                    lambda k: k == lo, lambda k: k == hi,
-                    f"k_w {lo / KN_PER_MM:.4g} against {hi / KN_PER_MM:.4g} kN/mm")
-
-
-def _narrow_verdict(ds) -> Verdict:
-    from pipeline.assess import outcomes
-
-    i = int(ds.attrs["chosen_candidate"])
-    if i < 0:
-        return Verdict("6", "Bumpers reduce the floor accelerations at gaps narrow compared with "
-                       "the displacement", "no feasible design to ask", None)
-    at = {lev: (float(ds.fraction_helped[lev, i]), float(ds.fraction_hurt[lev, i]),
-                float(ds.fraction_counted[lev, i])) for lev in (DESIGN, MCE)}
-    helped, hurt, counted = at[MCE]
-    agrees = outcomes.judged("most", helped, counted)
-    return Verdict("6", "Bumpers reduce the floor accelerations at gaps narrow compared with "
-                   "the displacement",
-                   f"the chosen design against the bare wall at the gap, weighted pairs where "
-                   f"contact occurs: at the MCE_R helped {helped:.0%}, hurt {hurt:.0%} of "
-                   f"{counted:.0%} counted; at the design level helped {at[DESIGN][0]:.0%}, "
-                   f"hurt {at[DESIGN][1]:.0%} of {at[DESIGN][2]:.0%}", agrees,
-                   {"MCE_R": at[MCE], "design": at[DESIGN]})
-
-
 def plot(ds):
     fig, (left, right) = plt.subplots(1, 2, figsize=(9, 3.8), layout="constrained")
     stress = bool(ds.attrs["stress_limit_counted"])
@@ -428,7 +281,7 @@ def plot(ds):
     fig.colorbar(points, ax=left, label="thickness (cm)")
     left.axvline(float(ds.attrs["within_limits_required"]), color="k", ls=":", lw=0.8,
                  label="required")
-    stat = _stat(ds)
+    stat = objective_statistic(ds)
     for j, (name, ls) in enumerate(zip(REFERENCES[1:], ("--", "-."), strict=True), start=1):
         left.axhline(float(ds[f"reference_{stat}"].isel(level=MCE, reference=j)) / G,
                      color="k", ls=ls, lw=0.8, label=name)

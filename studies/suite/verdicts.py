@@ -9,14 +9,21 @@ import numpy as np
 
 from engine.units import CM, KN_PER_MM
 from pipeline.assess.derived import crushed
-from pipeline.assess.outcomes import HELPED, HURT, NEUTRAL, TOLERANCE, amplification, effect, judged
+from pipeline.assess.outcomes import (
+    COUNT_TEXT,
+    HELPED,
+    HURT,
+    NEUTRAL,
+    QUANTIFIERS,
+    amplification,
+    count,
+    effect,
+)
 
 from ..common.paper import DELTA_U, N_BUMPERS, STRAIN, THICKNESS, WALL_K
 from ..common.recipe import Verdict, verdict
 from .archive import (
     PREFIX,
-    QUANTIFIER_TEXT,
-    broadcast_weights,
     outside,
     runs,
 )
@@ -27,8 +34,10 @@ class Case:
     """A conclusion asked of the runs: held, counted (bool over POINT: the cases where what it
     speaks of happens) and changed (bool: the quantity changes beyond the tolerance; None for
     a yes/no claim); runs: the runs behind each case (dicts of `runs`: their flags "outside"
-    and "outside_any" over POINT); by_record: judged per pair (it holds for a pair when it
-    holds at every counted case of that pair)."""
+    and "outside_any" over POINT). Counted by pipeline.assess.outcomes.count: each pair
+    carries its earthquake's weight once, with the fraction of its counted cases that hold;
+    ties (not changed) and cases without what it speaks of outside the denominator, beside.
+    by_record: kept for callers; the count is per pair for every claim."""
 
     held: np.ndarray
     counted: np.ndarray
@@ -39,54 +48,32 @@ class Case:
 
 
 def judge(conclusion, claim, quantifier, points, case: Case, weights, levels,
-          extra="") -> Verdict:
-    """The Verdict of a claim with the paper's quantifier over the counted cases (those that
-    change, for "most" and "almost every"), pairs weighted per earthquake; the runs outside
-    the model's range among them counted and stated, and the fraction without them."""
-    weighted = broadcast_weights(weights, case.counted.shape)
-    denominator = case.counted if case.changed is None or quantifier in ("every", "some") \
-        else case.counted & case.changed
-    flagged = denominator & np.any([r["outside_any"] for r in case.runs], axis=0)
-    all_ = _held_counted(case, denominator, weighted, weights)
-    kept = _held_counted(case, denominator & ~flagged, weighted, weights)
-    h, n, units = all_
-    unit = "pairs" if case.by_record else case.unit
-    share = f"{h / n:.0%} (weighted) of {units} {unit}" if n else f"none of 0 {unit}"
-    neutral = int((case.counted & ~denominator).sum())
-    text = f"holds for {share} ({points})"
-    if case.changed is not None and quantifier not in ("every", "some"):
-        text += f"; {neutral} more within the {TOLERANCE:.0%} tolerance, not counted"
+          extra="", events=None) -> Verdict:
+    """The Verdict of a claim with the paper's quantifier (its wording: "may", "can", "almost
+    all" as outcomes.ALIASES), counted by pipeline.assess.outcomes.count over the cases where
+    it applies and changes (ties and cases where it does not apply beside), each pair with
+    its earthquake's weight once; the runs outside the model's range among them counted and
+    stated, and the count without them."""
+    c = count(quantifier, case.held, case.counted, case.changed, weights, events)
+    changed = np.ones(case.counted.shape, bool) if case.changed is None else case.changed
+    denominator = case.counted & changed
+    flagged = case.counted & np.any([r["outside_any"] for r in case.runs], axis=0)
+    kept = count(quantifier, case.held, case.counted & ~flagged, case.changed, weights, events)
+    text = f"{c.text(case.unit)} ({points})"
     text += "; " + _outside_text(case, denominator)
-    if flagged.any():
-        text += (f"; without them: {kept[0] / kept[1]:.0%} of {kept[2]}" if kept[1]
-                 else "; without them: nothing left")
-    agrees = judged(quantifier, h, n)
+    if (flagged & denominator).any():
+        text += (f"; without them: {kept.fraction:.0%} of {kept.counted_cases} {case.unit}"
+                 if kept.counted else "; without them: nothing left")
     by_level = {str(lv): [int((case.held & denominator)[:, i].sum()),
                           int(denominator[:, i].sum())] for i, lv in enumerate(levels)}
-    return Verdict(conclusion, f"{claim} [{QUANTIFIER_TEXT[quantifier]}]", text + extra,
-                   agrees, {"quantifier": quantifier, "counted_at": points,
-                            "fraction": h / n if n else None, "held_weight": h,
-                            "counted_weight": n, "counted": units, "unit": unit,
-                            "not_counted_within_tolerance": neutral,
-                            "fraction_inside_range": kept[0] / kept[1] if kept[1] else None,
-                            "verdict_inside_range": verdict(judged(quantifier, kept[0],
-                                                                   kept[1])),
-                            "held_counted_by_level": by_level,
-                            **_outside_numbers(case, denominator)})
-
-
-def _held_counted(case: Case, denominator, weighted, weights) -> tuple[float, float, int]:
-    """(weight held, weight counted, number counted) over cases, or over pairs (a pair holds
-    when every counted case of it holds)."""
-    held = case.held & denominator
-    if case.by_record:
-        axes = tuple(range(1, denominator.ndim))
-        counted = denominator.any(axis=axes)
-        ok = counted & ~(denominator & ~held).any(axis=axes)
-        w = np.asarray(weights, float)
-        return float(w[ok].sum()), float(w[counted].sum()), int(counted.sum())
-    return (float(weighted[held].sum()), float(weighted[denominator].sum()),
-            int(denominator.sum()))
+    return Verdict(conclusion, f"{claim} [{QUANTIFIERS[c.quantifier]}: {COUNT_TEXT[c.quantifier]}]",
+                   text + extra, c.verdict,
+                   {**c.numbers(), "counted_at": points, "counted": c.counted_cases,
+                    "unit": case.unit, "not_counted_within_tolerance": c.tie_cases,
+                    "fraction_inside_range": kept.fraction,
+                    "verdict_inside_range": verdict(kept.verdict),
+                    "held_counted_by_level": by_level,
+                    **_outside_numbers(case, denominator)})
 
 
 def _outside_numbers(case: Case, denominator) -> dict:
@@ -108,6 +95,13 @@ def _outside_text(case: Case, denominator) -> str:
             + (f" ({kinds})" if kinds else ""))
 
 
+def events(ds):
+    """(R,) the pairs' earthquakes (record_event), None if the archive has none: the count
+    then states no number of earthquakes (the weights, record_weight, are per earthquake)."""
+    return ds.record_event.values if "record_event" in ds.coords or "record_event" in ds \
+        else None
+
+
 def paper_config(ds) -> tuple[int, float]:
     """The paper's bumpers (4) and wall (1500 kN/mm), or the nearest the grid has."""
     n = N_BUMPERS if N_BUMPERS in ds.n_bumpers else int(ds.n_bumpers.min())
@@ -125,18 +119,21 @@ def check(ds) -> list[Verdict]:
     out = []
 
     def add(conclusion, claim, quantifier, points, case, extra=""):
-        out.append(judge(conclusion, claim, quantifier, points, case, w, levels, extra))
+        out.append(judge(conclusion, claim, quantifier, points, case, w, levels, extra,
+                         events(ds)))
 
     floor = effect(paper["floor"], bare["floor"])
-    add("5.1", "For wide gaps, where poundings would not occur without bumpers, bumpers "
-        "increase the response (here: the largest peak floor acceleration; stated without "
-        "quantifier, read as wherever it happens)", "every",
+    add("5.1", "'For relatively wide seismic gap sizes the usage of rubber shock-absorbers "
+        "may increase the response instead of reducing it. In particular, this may happen for "
+        "seismic gap sizes where poundings would not occur without the incorporation of rubber "
+        "bumpers' (the paper's conclusions; its section 5.1 states it without quantifier) "
+        "(here: the largest peak floor acceleration)", "may",
         f"cases where the {n_p} bumpers are hit and the bare wall is not",
-        Case(floor == HURT, paper["hit"] & ~bare["hit"], None, (paper, bare)))
+        Case(floor == HURT, paper["hit"] & ~bare["hit"], floor != NEUTRAL, (paper, bare)))
     base = effect(paper["base"], bare["base"])
     add("5.1", "For narrow gaps, under strong motions, bumpers can be beneficial (here: the "
-        "peak base acceleration lower)", "some", "cases where the bare wall is hit",
-        Case(base == HELPED, bare["hit"], None, (paper, bare)))
+        "peak base acceleration lower)", "can", "cases where the bare wall is hit",
+        Case(base == HELPED, bare["hit"], base != NEUTRAL, (paper, bare)))
     ratio = effect(amplification(paper["base"], bare["base"]),
                    amplification(paper["upper"], bare["upper"]))
     add("5.1", "Bumpers are more beneficial for the base than for the floors above (the "
@@ -158,9 +155,9 @@ def check(ds) -> list[Verdict]:
                                 "the peaks", "the suite keeps the declared COR "
                                 "(studies.restitution)"), flexible]
     force = effect(paper["force"], bare["force"])
-    add("6", "Rubber bumpers may reduce the maximum impact force", "some",
-        "cases where both the bumpers and the bare wall are hit",
-        Case(force == HELPED, paper["hit"] & bare["hit"], None, (paper, bare)))
+    add("6", "'Employing rubber shock-absorbers at impact locations may reduce the maximum "
+        "impact force'", "may", "cases where both the bumpers and the bare wall are hit",
+        Case(force == HELPED, paper["hit"] & bare["hit"], force != NEUTRAL, (paper, bare)))
     out.append(narrow_more_effective(ds, paper, bare, w, levels))
     return out
 
@@ -182,15 +179,19 @@ def _number_of_bumpers(ds, k_p, w, levels) -> list[Verdict]:
              f"{float(ds.bumper_shape_factor):.2f}; a crushed bumper is always above the "
              "limit)" if bool(stress.notnull().any()) else "")
     return [
-        judge("5.4", f"More bumpers raise the peak responses in almost all examined cases "
-              f"(here: {many} rather than {few}, the largest peak floor acceleration)",
-              "almost every", f"cases where the {few} or the {many} bumpers are hit",
-              Case(more == HURT, a["hit"] | b["hit"], more != NEUTRAL, (a, b)), w, levels),
-        judge("5.4", f"With {many} bumpers the indentation does not exceed the crush limit "
-              f"({DELTA_U / CM:g} cm) for all examined excitations", "every",
-              f"pairs whose {many} bumpers are hit at some level and gap; a pair holds when "
-              "they are never crushed", Case(~crushed(a["indentation"], DELTA_U), a["hit"], None,
-                                            (a,), by_record=True), w, levels, extra)]
+        judge("5.4", f"'By increasing the number of bumpers ... the maximum responses ... "
+              f"increase in almost all examined cases' (here: {many} rather than {few}, the "
+              "largest peak floor acceleration)", "almost all",
+              f"cases where the {few} or the {many} bumpers are hit",
+              Case(more == HURT, a["hit"] | b["hit"], more != NEUTRAL, (a, b)), w, levels,
+              events=events(ds)),
+        judge("5.4", f"'For the case of using {many} bumpers the indentation does not exceed "
+              f"the limit of {DELTA_U / CM:g} cm for all examined earthquake excitations' (the "
+              "crush limit)", "all",
+              f"cases where the {many} bumpers are hit (a pair fails where they are crushed "
+              "at one level and gap)", Case(~crushed(a["indentation"], DELTA_U), a["hit"], None,
+                                            (a,), by_record=True), w, levels, extra,
+              events(ds))]
 
 
 def _wall_stiffness(ds, n_p, bare, w, levels) -> list[Verdict]:
@@ -211,13 +212,15 @@ def _wall_stiffness(ds, n_p, bare, w, levels) -> list[Verdict]:
               f"{stiff / KN_PER_MM:g} kN/mm; stated without quantifier, read as in most "
               "cases)", "most", f"cases where the {n_p} bumpers are crushed with either wall "
               "(only there does the wall behind them act)",
-              Case(lower == HELPED, either, lower != NEUTRAL, (a, b)), w, levels),
+              Case(lower == HELPED, either, lower != NEUTRAL, (a, b)), w, levels,
+              events=events(ds)),
         judge("6", "With a relatively flexible moat wall both floor accelerations and "
               "interstory deflections are reduced compared with no bumpers (here: k_w "
               f"{soft / KN_PER_MM:g} kN/mm against the bare wall; read as in most cases)",
               "most", "cases with contact (bumpers or bare wall); changed: either quantity",
               Case((floor == HELPED) & (drift == HELPED), a["hit"] | bare["hit"],
-                   (floor != NEUTRAL) | (drift != NEUTRAL), (a, bare)), w, levels)]
+                   (floor != NEUTRAL) | (drift != NEUTRAL), (a, bare)), w, levels,
+              events=events(ds))]
 
 
 def narrow_more_effective(ds, paper, bare, w, levels) -> Verdict:
@@ -248,7 +251,7 @@ def narrow_more_effective(ds, paper, bare, w, levels) -> Verdict:
                  "compared with the induced displacement (read as in most cases)", "most",
                  "(pair, level) with contact at two gaps at least: the base amplification at "
                  "the narrowest gap with contact lower than at the widest with contact", case,
-                 w, levels)
+                 w, levels, events=events(ds))
 
 
 def _expand(value) -> np.ndarray:

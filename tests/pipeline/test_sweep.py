@@ -394,13 +394,13 @@ def test_progress_bar_shows_counts_and_time_left():
     progress.advance(3)
     progress.close()
     text = stream.getvalue()
-    assert " 50% (5 of 10 simulations finished)" in text and "left" in text
+    assert " 50% done (5 of 10 simulations finished)" in text and "left" in text
     # a running batch's partial work moves the percentage, never the count of finished ones
     partial = io.StringIO()
     progress = progress_module.Progress(total=10, stream=partial, delay=0.0)
     progress.running("batch", 1.4)
     progress.close()
-    assert " 14% (0 of 10 simulations finished)" in partial.getvalue()
+    assert " 14% done (0 of 10 simulations finished, others under way)" in partial.getvalue()
     # no time left is guessed before anything finished (the kernel may be compiling)
     assert "time left: once the first finishes" in partial.getvalue()
     assert "~" not in partial.getvalue()

@@ -96,4 +96,4 @@ def test_quantifiers():
     assert outcomes.judged("some", 1, 9) and not outcomes.judged("some", 0, 9)
     assert outcomes.judged("most", 0, 0) is None
     with pytest.raises(ValueError):
-        outcomes.judged("all", 1, 1)
+        outcomes.judged("nearly", 1, 1)  # the paper's words are known; others refused

@@ -9,13 +9,14 @@ import re
 
 from pipeline.execute.progress import Progress
 
-LINE = re.compile(r"sweep: +(\d+)% \((\d+) of 10 simulations finished\), \S+ elapsed, (.*)")
+LINE = re.compile(r"sweep: +(\d+)% done \((\d+) of 10 simulations finished"
+                  r"(?:, others under way)?\), \S+ elapsed, (.*)")
 
 
 def test_a_batch_counts_once_whatever_its_reports():
     stream = io.StringIO()
     progress = Progress(total=10, stream=stream, delay=0.0)
-    progress.every = 0.0  # a line for every report
+    progress.step = 0.0  # a line for every report (not every 10%)
     progress.running("a", 3.0)  # batch a (4 simulations) three quarters done...
     progress.running("a", 0.4)  # ...its worker died: a runs again, from the start
     assert progress.partial == {"a": 0.4}

@@ -96,7 +96,7 @@ def test_arguments_and_status_pass_through(name, module, monkeypatch):
 
 def test_command_help_is_the_commands_own(capsys):
     assert cli.main(["gap_size", "--help"]) == 0
-    assert "usage: python -m studies.gap_size" in capsys.readouterr().out
+    assert "usage: bumpers gap_size" in capsys.readouterr().out
 
 
 def test_usage_error_of_a_command_is_status_2(capsys):
