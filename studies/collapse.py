@@ -35,7 +35,7 @@ from .common.options import (
     site_options,
 )
 from .common.paper import THICKNESS
-from .common.plot import plt
+from .common.plot import letter_panels, plt, store_caption
 from .common.recipe import Recipe, Verdict, provenance, run_options
 
 LEVELS = (0.5, 0.75, 1.0, 1.25, 1.5, 1.75, 2.0, 2.25, 2.5, 3.0, 3.5, 4.0)
@@ -66,8 +66,8 @@ def options(p) -> None:
     add_moat(p)
     p.add_argument("--mu-t", type=float, default=MU_T, metavar="MU_T",
                    help=f"the period-based ductility for the spectral shape factor and "
-                        f"beta_TOT (FEMA P695 Eq. 6-6; default {MU_T:g}: stated choice, see "
-                        "pipeline.assess.collapse)")
+                        f"beta_TOT (FEMA P695 Eq. 6-6; default {MU_T:g}: a stated choice, the "
+                        "least at which P695 takes the record-to-record beta as 0.4)")
     p.add_argument("--refinements", type=int, default=None, metavar="N",
                    help=f"bisections between each pair's last standing and first collapsing "
                         f"level (default {REFINEMENTS}; 0 with --quick)")
@@ -259,9 +259,17 @@ def plot(ds):
     ax.legend(fontsize=8, ncol=2, loc="upper right")
     bx.set_xlabel("seismic gap (cm)")
     bx.set_ylabel("median collapse intensity S_CT (x MCE_R)")
-    for axis, letter in ((ax, "(a)"), (bx, "(b)")):
-        axis.set_title(letter, loc="left", fontweight="bold", fontsize=10)
+    letter_panels((ax, bx))
+    store_caption(ds, caption(ds))
     return fig
+
+
+def caption(ds) -> str:
+    """The figure's caption (the archive's figure_caption)."""
+    return ("Collapse of the building against the seismic gap, one curve per barrier. (a) the "
+            "probability of collapse at the MCE_R (log scale; large triangles: upper bounds, "
+            f"no collapse seen; dashed: ASCE 7's {100 * ACCEPTABLE_PROBABILITY:g}%); (b) the "
+            "median collapse intensity S_CT, a multiple of the MCE_R.")
 
 
 def check(ds) -> list[Verdict]:

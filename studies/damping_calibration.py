@@ -19,7 +19,7 @@ from engine.impact.laws.rubber_bumper import (
     EQ9_VELOCITY_EXPONENT,
 )
 
-from .common.plot import plt
+from .common.plot import letter_panels, plt, short_title, store_caption
 from .common.recipe import Recipe, Verdict
 
 # One large pad of the paper's rubber (K_r 55,835 kN/m^2, n 2.65, alpha 2.25), thick enough
@@ -141,7 +141,7 @@ def plot(ds):
     ax_c.set_yscale("log")
     ax_c.set_xlabel("Impact velocity $v_{imp}$ (m/s)")
     ax_c.set_ylabel("$C_{imp}$ / (1 - COR$^2$)  (s/m)")
-    ax_c.set_title("(a) Impact damping coefficient")
+    ax_c.set_title("Impact damping coefficient")
     ticks = [t for t in (0.5, 1, 2, 4) if v.min() <= t <= v.max()]
     ax_c.set_xticks(ticks, [f"{t:g}" for t in ticks])
     low, high = ax_c.get_ylim()
@@ -176,15 +176,25 @@ def plot(ds):
     ax_r.set_xticks(target)
     ax_r.set_xlabel("Target COR")
     ax_r.set_ylabel("Realised COR / target - 1 (%)")
-    ax_r.set_title("(b) Realised COR, all $m_{eff}$ and $v_{imp}$\n"
-                   "(refit: the same at every $m_{eff}$ and $v_{imp}$)")
+    ax_r.set_title("Realised COR, all $m_{eff}$ and $v_{imp}$")
     ax_r.legend(loc="upper right")
-    fig.suptitle("Eq. 9 re-derived by energy equilibrium (section 3.2): "
-                 f"{ds.sizes['cor']} COR x {ds.sizes['m_eff']} $m_{{eff}}$ "
-                 f"({_mass(ds.m_eff.values.min())} to {_mass(ds.m_eff.values.max())}) x "
-                 f"{ds.sizes['v_imp']} $v_{{imp}}$ ({v.min():g} to {v.max():g} m/s)")
+    letter_panels((ax_c, ax_r))
+    short_title(fig, "Eq. 9 re-derived by energy equilibrium (paper section 3.2)")
+    store_caption(ds, caption(ds))
     fig.tight_layout()
     return fig
+
+
+def caption(ds) -> str:
+    """The figure's caption (the archive's figure_caption)."""
+    v = ds.v_imp.values
+    return ("Eq. 9 re-derived by energy equilibrium (paper section 3.2): "
+            f"{ds.sizes['cor']} COR x {ds.sizes['m_eff']} $m_{{eff}}$ "
+            f"({_mass(ds.m_eff.values.min())} to {_mass(ds.m_eff.values.max())}) x "
+            f"{ds.sizes['v_imp']} $v_{{imp}}$ ({v.min():g} to {v.max():g} m/s). (a) the impact "
+            "damping coefficient found by energy equilibrium (markers), the refit law (solid) "
+            "and the paper's Eq. 9 (dashed), coloured by COR; (b) the COR each law realises, "
+            "over every $m_{eff}$ and $v_{imp}$ (the refit's is the same at every one).")
 
 
 def _mass(kg: float) -> str:

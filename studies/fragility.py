@@ -332,50 +332,70 @@ def check(ds) -> list[Verdict]:
                      "invalid_counts": counts})]
 
 
-STYLES = ("--", "-", ":")  # the line of each barrier, BARRIERS order
+COLOURS = ("0.35", "C0", "C3")  # the colour of each barrier, BARRIERS order
+GAP_STYLES = (("-", "o"), ("--", "s"), (":", "^"))  # line and marker of each gap, in order
 TITLES = {"contact": "contact with the wall or bumpers", "bumpers_crushed": "bumpers crushed",
           "floor_accel": "floor acceleration above {accel:g} g",
           "drift": "interstory drift above {drift:g} cm"}
 
 
 def plot(ds):
+    """One panel per event; a curve per barrier (colour) and gap (line and marker), named by
+    a two-part legend below the panels."""
     from scipy.stats import norm
 
+    from .common.plot import letter_panels, short_title, store_caption
+
     shown = [e for e in TITLES if e in ds.event.values]
-    fig, axes = plt.subplots(1, len(shown), figsize=(2.6 * len(shown), 3.2), sharey=True)
-    axes = np.atleast_1d(axes)
+    fig, axes = plt.subplots(1, len(shown), figsize=(2.4 * len(shown), 3.0), sharey=True,
+                             squeeze=False)
+    axes = axes[0]
     x = np.linspace(0.0, ds.level.values.max() * 1.25, 300)[1:]
     weights = ds.record_weight.values
     for ax, event in zip(axes, shown, strict=True):
-        for g, fraction in enumerate(ds.gap_fraction.values):
-            for barrier, style, mark in zip(ds.barrier.values, STYLES, "xo^", strict=True):
+        for g, (line, mark) in zip(range(ds.sizes["gap_fraction"]), GAP_STYLES, strict=False):
+            for barrier, colour in zip(ds.barrier.values, COLOURS, strict=False):
                 if event == "bumpers_crushed" and barrier == "bare wall":
                     continue
                 fit = ds.sel(event=event, barrier=barrier).isel(gap_fraction=g)
                 seen = ds[f"event_{event}"].sel(barrier=barrier).isel(gap_fraction=g).values
                 share = (weights[:, None] * seen).sum(axis=0) / weights.sum()
-                ax.plot(ds.level.values, share, mark, color=f"C{g}", ms=3)
+                ax.plot(ds.level.values, share, mark, color=colour, ms=3, mfc="none")
                 theta, beta = float(fit.fragility_median), float(fit.fragility_beta)
                 if np.isfinite(theta) and np.isfinite(beta):
-                    ax.plot(x, norm.cdf(np.log(x / theta) / beta), style, color=f"C{g}",
-                            lw=1 if int(fit.fragility_identifiable) else 0.5,
-                            label=f"{barrier}, gap {fraction:.2f} D_M")
+                    ax.plot(x, norm.cdf(np.log(x / theta) / beta), line, color=colour,
+                            lw=1.2 if int(fit.fragility_identifiable) else 0.6)
         ax.axvline(1.0, color="k", lw=0.6, ls=":")
         ax.set_title(TITLES[event].format(accel=ds.attrs["accel_threshold"] / G,
-                                          drift=ds.attrs["drift_threshold"] / CM), fontsize=8)
-        ax.set_xlabel("intensity, x MCE_R (dotted: MCE_R)", fontsize=7)
+                                          drift=ds.attrs["drift_threshold"] / CM))
+        ax.set_xlabel("intensity, x MCE$_R$")
         ax.set_xlim(0, x[-1])
     axes[0].set_ylabel("probability of the event")
-    axes[0].legend(fontsize=5, loc="lower right")
-    styles = ", ".join(f"{b} ({n}, {m})" for b, n, m in zip(
-        ds.barrier.values, ("dashed", "solid", "dotted"), "xo^", strict=True))
-    fig.suptitle(f"Fragility of the moat: {styles}; "
-                 f"{ds.sizes['record']} pairs, {ds.attrs['scaling_rule']} scaling, "
-                 f"T_M {ds.attrs['T_M']:.2f} s, D_M {ds.attrs['D_M'] / CM:.1f} cm\nmarkers: "
-                 f"observed shares (pairs weighted per earthquake); thin: beta not identified",
-                 fontsize=8)
-    fig.tight_layout()
+    barriers = [plt.Line2D([], [], color=c, lw=2, label=str(b))
+                for b, c in zip(ds.barrier.values, COLOURS, strict=False)]
+    gaps = [plt.Line2D([], [], color="k", ls=line, marker=mark, mfc="none",
+                       label=f"gap {fraction:.2f} $D_M$")
+            for fraction, (line, mark) in zip(ds.gap_fraction.values, GAP_STYLES,
+                                              strict=False)]
+    letter_panels(axes)
+    short_title(fig, "Fragility of the moat with and without bumpers")
+    store_caption(ds, caption(ds))
+    fig.tight_layout(rect=(0, 0.12, 1, 1))
+    fig.legend(handles=barriers, loc="lower left", bbox_to_anchor=(0.08, 0.0), ncol=3,
+               frameon=False, title="barrier (colour)")
+    fig.legend(handles=gaps, loc="lower right", bbox_to_anchor=(0.98, 0.0), ncol=3,
+               frameon=False, title="clear gap (line, marker)")
     return fig
+
+
+def caption(ds) -> str:
+    """The figure's caption (the archive's figure_caption)."""
+    return (f"Fragility of the moat: probability of each event against the intensity "
+            f"(a multiple of the MCE_R, dotted), {ds.sizes['record']} record pairs, "
+            f"{ds.attrs['scaling_rule']} scaling, T_M {ds.attrs['T_M']:.2f} s, D_M "
+            f"{ds.attrs['D_M'] / CM:.1f} cm. Colour: the barrier (bare wall, bumpers); line "
+            "and marker: the clear gap. Lines: lognormal fits (thin: beta not identified); "
+            "open markers: observed shares, pairs weighted per earthquake.")
 
 
 recipe = Recipe(

@@ -7,8 +7,6 @@ linear viscoelastic wall at the full gap. Amplification = peak with bumpers / pe
 """
 from __future__ import annotations
 
-import textwrap
-
 import numpy as np
 
 from engine.units import CM
@@ -18,10 +16,13 @@ from .common.peaks_vs_gap import gaps, ranges
 from .common.plot import (
     building_text,
     floor_labels,
+    letter_panels,
     plt,
     record_label,
     records_text,
+    short_title,
     shown,
+    store_caption,
     story_labels,
 )
 from .common.recipe import Recipe, Verdict, sweep_options
@@ -35,7 +36,8 @@ def compute(args):
 
 
 def plot(ds):
-    fig, axes = plt.subplots(2, 5, figsize=(10, 4.4), sharex=True)
+    # sharey by row: a row's panels show one quantity, read against each other
+    fig, axes = plt.subplots(2, 5, figsize=(10, 4.2), sharex=True, sharey="row")
     gap_cm = ds.gap.values / CM
     # Five floors and four stories fit (the paper's building whole); of a taller building the
     # base, the roof and levels spread between.
@@ -58,11 +60,19 @@ def plot(ds):
     axes[1, 4].axis("off")
     handles, labels = axes[0, 0].get_legend_handles_labels()
     axes[1, 4].legend(handles, labels, loc="center", frameon=False)
-    width = int(15 * fig.get_figwidth())  # characters per line at the title's size
-    fig.suptitle("\n".join(textwrap.fill(line, width) for line in title_lines(ds)),
-                 fontsize=9)
+    letter_panels(axes)
+    short_title(fig, "Amplification by rubber bumpers against the seismic gap "
+                     "(paper Figs. 14-15)")
+    store_caption(ds, caption(ds))
     fig.tight_layout()
     return fig
+
+
+def caption(ds) -> str:
+    """The figure's caption (the archive's figure_caption): what it shows, for a reader
+    without the paper."""
+    return ("; ".join(title_lines(ds)[:-1]) + ". (a)-(e): floors, (f)-(i): stories; each "
+            "row's panels share one scale; paper Figs. 14-15.")
 
 
 def title_lines(ds) -> list[str]:
@@ -74,7 +84,7 @@ def title_lines(ds) -> list[str]:
             f"amplification = peak with {n} bumpers of {t:g} cm per side (clear gap = gap "
             f"\u2212 {t:g} cm) / peak against the bare moat wall; above 1, bumpers make "
             "it worse",
-            f"{building_text(ds)}, {records_text(ds.sizes['record'])} (legend); "
+            f"{building_text(ds)}, {records_text(ds.sizes['record'])} (legend)",
             "paper Figs. 14-15"]
 
 

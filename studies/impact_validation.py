@@ -23,7 +23,7 @@ from .common.paper import (
     TEST_PAD_THICKNESS,
     TEST_ROD_MASS,
 )
-from .common.plot import plt
+from .common.plot import letter_panels, plt, short_title, store_caption
 from .common.recipe import Recipe, Verdict
 
 # The test (rod mass, pad, static fit, COR) and the rubber's ultimate strain (0.8: delta_u =
@@ -157,20 +157,20 @@ def plot(ds):
             label=f"Static: $k_{{st}}$ = {k_st:.2g} kN/mm$^{{{n:g}}}$")
     ax.plot(grid_mm, k_imp * grid_mm**n, color="0.5", ls="--",
             label=f"Impact: $k_{{imp}}$ = {k_imp:.2f} kN/mm$^{{{n:g}}}$")
-    ax.set_title("(a) Static test curve")
+    ax.set_title("Static test curve")
     ax.axvline(delta_u_mm, color="0.3", lw=0.8)
     ax.annotate(f"$\\delta_u$ = {delta_u_mm:g} mm", (delta_u_mm, 2), xytext=(-3, 0),
                 textcoords="offset points", ha="right", va="bottom")
     ax.legend(loc="upper left")
     styles = {"proposed": dict(color="C0"), "hertzdamp": dict(color="C3", ls="-.")}
-    for ax, v, letter in zip(axes.flat[1:], ds.velocity.values, "bcd", strict=True):
+    for ax, v in zip(axes.flat[1:], ds.velocity.values, strict=True):
         for model in ds.model.values:
             case = ds.sel(model=model, velocity=v)
             end = int(case.n_contact_steps)
             ax.plot(case.indentation.values[:end] / MM, case.force.values[:end] / KN,
                     label=MODEL_LABELS.get(str(model), str(model)), **styles.get(str(model), {}))
         ax.plot(grid_mm, static, color="k", ls=":", lw=0.9, label="Static curve")
-        ax.set_title(f"({letter}) $v_{{imp}}$ = {v:.2g} m/s")
+        ax.set_title(f"$v_{{imp}}$ = {v:.2g} m/s")
     axes[0, 1].legend(loc="upper left")
     # Loop direction, on the fastest impact's proposed loop.
     ax = axes[1, 1]
@@ -189,10 +189,20 @@ def plot(ds):
         ax.set_ylabel("Impact force (kN)")
     axes[0, 0].set_xlim(0, 1.06 * delta_u_mm)
     axes[0, 0].set_ylim(0, 1.15 * max(float(ds.peak_force.max()) / KN, static[-1]))
-    fig.suptitle(f"Fig. 6: 10 mm rubber bumper between two {float(ds.rod_mass):g} kg steel rods "
-                 f"(COR {float(ds.cor):g})")
+    letter_panels(axes)
+    short_title(fig, "Fig. 6: impact tests of a 10 mm rubber bumper")
+    store_caption(ds, caption(ds))
     fig.tight_layout()
     return fig
+
+
+def caption(ds) -> str:
+    """The figure's caption (the archive's figure_caption)."""
+    return (f"Fig. 6: a 10 mm rubber bumper between two {float(ds.rod_mass):g} kg steel rods "
+            f"(COR {float(ds.cor):g}). (a) the static test curve and the impact stiffness; "
+            "(b)-(d) force against indentation at three impact velocities, the proposed model "
+            "and the Hertz-damp model against the static curve (dotted); all panels on one "
+            "scale.")
 
 
 def check(ds) -> list[Verdict]:

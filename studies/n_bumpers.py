@@ -13,7 +13,7 @@ import numpy as np
 from engine.units import CM, KN_PER_MM, MM
 
 from .common.paper import FIG19_COUNTS, STRAIN, THICKNESS, WALL_K
-from .common.peaks_vs_gap import accel_g, drift_cm, gaps, plot_vs_gap, ranges
+from .common.peaks_vs_gap import accel_g, drift_cm, gaps, plot_vs_gap, ranges, vs_gap_caption
 from .common.recipe import Recipe, Verdict, sweep_options
 
 LIMIT = STRAIN * THICKNESS  # m: delta_u, 4 cm
@@ -29,11 +29,20 @@ def compute(args):
                           unconstrained=True, **sweep_options(args))
 
 
+TITLE = ("Figs. 19-20: peak responses and maximum indentation vs seismic gap, "
+         f"number of {THICKNESS / CM:g} cm bumpers per side ($k_w$ = "
+         f"{WALL_K / KN_PER_MM:g} kN/mm)")
+"""The figure's one-line title (its caption: caption)."""
+
+
 def plot(ds):
     return plot_vs_gap(ds, "n_bumpers", lambda n: f"{n:g} bumpers",
-                       "Figs. 19-20: peak responses and maximum indentation vs seismic gap, "
-                       f"number of {THICKNESS / CM:g} cm bumpers per side ($k_w$ = "
-                       f"{WALL_K / KN_PER_MM:g} kN/mm)", indentation_limit=LIMIT)
+                       TITLE, indentation_limit=LIMIT)
+
+
+def caption(ds) -> str:
+    """The figure's caption (the archive's figure_caption)."""
+    return vs_gap_caption(TITLE)
 
 
 def check(ds) -> list[Verdict]:

@@ -33,7 +33,15 @@ from .common.paper import (
     THICKNESS,
     WALL_K,
 )
-from .common.plot import floor_labels, ordinal, plt, record_label
+from .common.plot import (
+    floor_labels,
+    letter_panels,
+    ordinal,
+    plt,
+    record_label,
+    short_title,
+    store_caption,
+)
 from .common.recipe import Recipe, Verdict
 
 EVERY = 4  # integration steps per history sample: 2 ms at the default 0.5 ms step
@@ -154,10 +162,21 @@ def plot(ds):
                           label=CONFIG_LABELS.get(c, c))
                for c in (str(c) for c in ds.configuration.values) if c in CONFIG_LABELS]
     fig.legend(handles=handles, loc="outside lower center", ncol=len(handles), frameon=False)
-    quick = " [--quick: first part of each record only]" if ds.attrs.get("quick", 0) else ""
-    fig.suptitle("Practical example (paper section 4): no poundings, bare moat wall without "
-                 "bumpers, and four 5 cm rubber bumpers on each side" + quick)
+    # lettered as read: row by row, left to right (not in the order they were drawn)
+    letter_panels(sorted(fig.axes, key=lambda ax: (-round(ax.get_position().y1, 2),
+                                                   ax.get_position().x0)))
+    short_title(fig, "Practical example (paper section 4)")
+    store_caption(ds, caption(ds))
     return fig
+
+
+def caption(ds) -> str:
+    """The figure's caption (the archive's figure_caption)."""
+    quick = " [--quick: first part of each record only]" if ds.attrs.get("quick", 0) else ""
+    return ("Practical example (paper section 4): no poundings, bare moat wall without "
+            "bumpers, and four 5 cm rubber bumpers on each side" + quick + ". Per record: the "
+            "base acceleration history (paper Figs. 9-10), the force-indentation loops (Fig. "
+            "11) and the peak floor accelerations and interstory deflections (Figs. 12-13).")
 
 
 def _gap_text(ds, record: str) -> str:

@@ -20,7 +20,15 @@ import numpy as np
 from engine.units import CM, G
 
 from .common.paper import GAP_FRACTION, RESTITUTION_GAP, THICKNESS
-from .common.plot import floor_labels, plt, record_label, story_labels
+from .common.plot import (
+    floor_labels,
+    letter_panels,
+    plt,
+    record_label,
+    short_title,
+    store_caption,
+    story_labels,
+)
 from .common.recipe import Recipe, Verdict, sweep_options
 
 NO_EFFECT = 0.05  # largest spread over the CORs, relative to the mean, read as 'no effect'
@@ -162,11 +170,21 @@ def plot(ds):
     fig.legend(handles=[plt.Line2D([], [], color=NEUTRAL, label=gap_legend_label(ds, gap),
                                    **style) for gap, style in styles.items()],
                loc="lower center", ncol=len(styles), handlelength=4, frameon=False)
-    fig.suptitle(f"Fig. 22: peak responses vs the bumpers' coefficient of restitution\n"
-                 f"{record_label(ds, record)}, {float(ds.thickness) / CM:g} cm bumpers, "
-                 f"seismic gaps {' and '.join(f'{g / CM:.1f}' for g in sorted(styles))} cm")
+    letter_panels((left, right))
+    short_title(fig, "Fig. 22: peak responses vs the bumpers' coefficient of restitution")
+    store_caption(ds, caption(ds))
     fig.tight_layout(rect=(0, 0.3 / fig.get_figheight(), 1, 1))  # the gaps' legend below
     return fig
+
+
+def caption(ds) -> str:
+    """The figure's caption (the archive's figure_caption)."""
+    record = str(ds.record.values[0])
+    gaps = " and ".join(f"{g / CM:.1f}" for g in sorted(gap_styles(ds)))
+    return ("Fig. 22: peak responses against the bumpers' coefficient of restitution, "
+            f"{record_label(ds, record)}, {float(ds.thickness) / CM:g} cm bumpers, seismic "
+            f"gaps {gaps} cm (line styles, legend below). (a) peak floor accelerations, one "
+            "colour per floor; (b) peak interstory deflections, one colour per story.")
 
 
 def check(ds) -> list[Verdict]:

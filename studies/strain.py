@@ -11,7 +11,7 @@ from __future__ import annotations
 from engine.units import CM
 
 from .common.paper import THICKNESS
-from .common.peaks_vs_gap import gaps, lowered, plot_vs_gap
+from .common.peaks_vs_gap import gaps, lowered, plot_vs_gap, vs_gap_caption
 from .common.recipe import Recipe, Verdict, sweep_options
 
 STRAINS = (0.6, 0.8, 1.0)  # chosen, the paper does not state them (0.8: its default, _paper)
@@ -24,10 +24,19 @@ def compute(args):
                           baseline=True, unconstrained=True, **sweep_options(args))
 
 
+TITLE = ("Fig. 18: peak responses vs seismic gap, ultimate compressive strain "
+         "$\\varepsilon_u$ of the bumpers (4 x 5 cm)")
+"""The figure's one-line title (its caption: caption)."""
+
+
 def plot(ds):
     return plot_vs_gap(ds, "strain", lambda e: f"$\\varepsilon_u$ = {e:g}",
-                       "Fig. 18: peak responses vs seismic gap, ultimate compressive strain "
-                       "$\\varepsilon_u$ of the bumpers (4 x 5 cm)")
+                       TITLE)
+
+
+def caption(ds) -> str:
+    """The figure's caption (the archive's figure_caption)."""
+    return vs_gap_caption(TITLE)
 
 
 def check(ds) -> list[Verdict]:

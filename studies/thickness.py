@@ -10,7 +10,7 @@ from __future__ import annotations
 from engine.units import CM, KN_PER_MM
 
 from .common.paper import N_BUMPERS, WALL_K
-from .common.peaks_vs_gap import accel_g, drift_cm, gaps, plot_vs_gap, spread
+from .common.peaks_vs_gap import accel_g, drift_cm, gaps, plot_vs_gap, spread, vs_gap_caption
 from .common.recipe import Recipe, Verdict, sweep_options
 
 THICKNESSES = (0.03, 0.05, 0.08)  # m: chosen, the paper does not state them
@@ -25,10 +25,19 @@ def compute(args):
                           unconstrained=True, **sweep_options(args))
 
 
+TITLE = ("Fig. 16: peak responses vs seismic gap, bumper thickness t "
+         f"({N_BUMPERS} bumpers, $k_w$ = {WALL_K / KN_PER_MM:g} kN/mm)")
+"""The figure's one-line title (its caption: caption)."""
+
+
 def plot(ds):
     return plot_vs_gap(ds, "thickness", lambda t: f"t = {t / CM:g} cm",
-                       "Fig. 16: peak responses vs seismic gap, bumper thickness t "
-                       f"({N_BUMPERS} bumpers, $k_w$ = {WALL_K / KN_PER_MM:g} kN/mm)")
+                       TITLE)
+
+
+def caption(ds) -> str:
+    """The figure's caption (the archive's figure_caption)."""
+    return vs_gap_caption(TITLE)
 
 
 def check(ds) -> list[Verdict]:

@@ -9,7 +9,7 @@ from __future__ import annotations
 from engine.units import CM, KN_PER_MM
 
 from .common.paper import FIG21_WALL_KS
-from .common.peaks_vs_gap import gaps, lowered, plot_vs_gap
+from .common.peaks_vs_gap import gaps, lowered, plot_vs_gap, vs_gap_caption
 from .common.recipe import Recipe, Verdict, sweep_options
 
 SIGNIFICANT = 0.1  # mean relative reduction of the peak acceleration
@@ -22,10 +22,19 @@ def compute(args):
                           unconstrained=True, **sweep_options(args))
 
 
+TITLE = ("Fig. 21: peak responses vs seismic gap, moat-wall stiffness $k_w$ "
+         "(4 x 5 cm bumpers)")
+"""The figure's one-line title (its caption: caption)."""
+
+
 def plot(ds):
     return plot_vs_gap(ds, "wall_k", lambda k: f"$k_w$ = {k / KN_PER_MM:g} kN/mm",
-                       "Fig. 21: peak responses vs seismic gap, moat-wall stiffness $k_w$ "
-                       "(4 x 5 cm bumpers)")
+                       TITLE)
+
+
+def caption(ds) -> str:
+    """The figure's caption (the archive's figure_caption)."""
+    return vs_gap_caption(TITLE)
 
 
 def check(ds) -> list[Verdict]:

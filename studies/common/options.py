@@ -113,10 +113,10 @@ def add_bound(p) -> None:
                    help="upper-bound property modification factor on the isolators' "
                         "characteristic strength Q_d and post-yield stiffness K_d (friction "
                         "pendulum: the friction), ASCE 7-22 17.2.8.4 (default "
-                        f"{LAMBDA_MAX:g}, UNVERIFIED: see pipeline.motions.bounds)")
+                        f"{LAMBDA_MAX:g}, not checked against the standard's text)")
     p.add_argument("--lambda-min", type=float, default=LAMBDA_MIN, metavar="FACTOR",
                    help="lower-bound property modification factor on Q_d and K_d (default "
-                        f"{LAMBDA_MIN:g}, UNVERIFIED: see pipeline.motions.bounds)")
+                        f"{LAMBDA_MIN:g}, not checked against the standard's text)")
 
 
 STORY_CHOICES = ("imk", "bilinear", "linear")
@@ -148,8 +148,8 @@ def add_stories(p) -> None:
                         f"17.5.4.2; default {R_I:g})")
     p.add_argument("--overstrength", type=float, default=OVERSTRENGTH, metavar="FACTOR",
                    help="story strength over its design shear (default "
-                        f"{OVERSTRENGTH:g}: a stated choice, see "
-                        "pipeline.motions.superstructure)")
+                        f"{OVERSTRENGTH:g}: a stated choice, the overstrength factor of a "
+                        "steel special concentrically braced frame)")
 
 
 def property_factors(args):

@@ -9,7 +9,6 @@ checks compare.
 """
 from __future__ import annotations
 
-import textwrap
 from collections.abc import Callable
 
 import numpy as np
@@ -17,7 +16,7 @@ import numpy as np
 from engine.units import CM, KN_PER_MM, G
 
 from .paper import GAP_RANGE_CM
-from .plot import plt, record_label
+from .plot import letter_panels, plt, record_label, short_title, store_caption
 
 MARKERS = ("o", "s", "^", "D", "v", "P")
 
@@ -48,16 +47,16 @@ def plot_vs_gap(ds, dim: str, label: Callable[[float], str], title: str,
          indentation_limit: float | None = None):
     """Rows: peak floor acceleration (g), peak interstory deflection (cm) and, when
     indentation_limit (m) is given, maximum indentation (cm) with that limit drawn; columns:
-    records; one line per value of `dim`, the no-bumper baseline dashed."""
-    from pipeline.grid import BASELINE
-
+    records; one line per value of `dim`, the no-bumper baseline dashed; `title` one line,
+    the rest in the caption (vs_gap_caption)."""
     rows = [("Peak floor\nacceleration (g)", accel_g, True),
             ("Peak interstory\ndeflection (cm)", drift_cm, True)]
     if indentation_limit is not None:
         rows.append(("Maximum\nindentation (cm)", indentation_cm, False))
     records = [str(r) for r in ds.record.values]
-    height = 0.9 + 2.0 * len(rows)  # inches: rows plus title and legend
-    fig, axes = plt.subplots(len(rows), len(records), sharex=True, squeeze=False,
+    height = 0.7 + 2.0 * len(rows)  # inches: rows plus title and legend
+    # sharey by row: a row's panels (the records) show one quantity, read against each other
+    fig, axes = plt.subplots(len(rows), len(records), sharex=True, sharey="row", squeeze=False,
                              figsize=(1.2 + 2.6 * len(records), height))
     gap_cm = ds.gap.values / CM
     for col, record in enumerate(records):
@@ -74,23 +73,33 @@ def plot_vs_gap(ds, dim: str, label: Callable[[float], str], title: str,
             else:
                 ax.axhline(indentation_limit / CM, color="r", lw=0.9, ls=":",
                            label=f"Limit $\\delta_u$ = {indentation_limit / CM:g} cm")
-            ax.set_ylim(bottom=0)
             if col == 0:
                 ax.set_ylabel(ylabel)
         axes[-1, col].set_xlabel("Seismic gap (cm)")
+    for ax in axes[:, 0]:  # after every column is drawn: a row's shared limits cover them all
+        ax.set_ylim(bottom=0)
     legend = {}
     for ax in axes[:, 0]:
         for handle, text in zip(*ax.get_legend_handles_labels(), strict=True):
             legend.setdefault(text, handle)
-    note = ("Acceleration: largest over the floors; deflection: largest over the stories; "
-            f"dashed: no bumpers (bare wall, {BASELINE['wall_k'] / KN_PER_MM:g} kN/mm, at the "
-            "full gap)")
-    width = int(15 * fig.get_figwidth())  # characters per line at this font size
-    fig.suptitle(textwrap.fill(title, width) + "\n" + textwrap.fill(note, width), fontsize=9)
+    letter_panels(axes)
+    short_title(fig, title)
+    store_caption(ds, vs_gap_caption(title))
     fig.tight_layout(rect=(0, 0.3 / height, 1, 1))
     fig.legend(legend.values(), legend.keys(), loc="lower center", ncol=len(legend),
                frameon=False)
     return fig
+
+
+def vs_gap_caption(title: str) -> str:
+    """The caption of a plot_vs_gap figure titled `title`."""
+    from pipeline.grid import BASELINE
+
+    return (f"{title}. Rows: peak floor acceleration, the largest over the floors; peak "
+            "interstory deflection, the largest over the stories (and, where drawn, the "
+            "maximum indentation against the bumpers' limit); columns: records, panels of a "
+            "row on one scale. Dashed: no bumpers (bare wall, "
+            f"{BASELINE['wall_k'] / KN_PER_MM:g} kN/mm, at the full gap).")
 
 
 def lowered(ds, dim: str, new, old, where) -> tuple[list[int], list[float]]:

@@ -130,3 +130,33 @@ def is_paper_building(ds) -> bool:
 def records_text(n: int) -> str:
     """'1 record' or '4 records'."""
     return f"{n} record{'' if n == 1 else 's'}"
+
+
+PANEL_LETTER_GID = "panel-letter"
+"""The gid of the panel letters letter_panels draws (tests find them by it)."""
+
+
+def letter_panels(axes, start: int = 0) -> None:
+    """Panel letters (a), (b), ... at the top left of each visible axes, outside the frame,
+    row by row (an axes switched off, as a legend holder, gets none)."""
+    shown = [ax for ax in np.ravel(axes) if ax.axison]
+    for i, ax in enumerate(shown, start=start):
+        ax.annotate(f"({chr(ord('a') + i)})", xy=(0, 1), xycoords="axes fraction",
+                    xytext=(-3, 4), textcoords="offset points", ha="right", va="bottom",
+                    fontsize=9, fontweight="bold", gid=PANEL_LETTER_GID)
+
+
+def short_title(fig, text: str) -> None:
+    """A figure's one-line title (the long text belongs in the caption: `caption(ds)` of
+    the recipe module, stored as the archive's figure_caption by store_caption)."""
+    if "\n" in text:
+        raise ValueError(f"a figure title is one line: {text!r}")
+    fig.suptitle(text, fontsize=9)
+
+
+def store_caption(ds, text: str) -> str:
+    """Keep a figure's caption with its archive: the attribute figure_caption (a recipe's
+    plot runs before a new archive is written, so it is saved with it; a --replot leaves the
+    archive as it was). Returns the text."""
+    ds.attrs["figure_caption"] = text
+    return text

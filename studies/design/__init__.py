@@ -149,8 +149,8 @@ def options(p) -> None:
                    help="uncrushed only, no stress limit (the old criterion; the cavity is "
                         "then bounded by the crush strain)")
     p.add_argument("--stress-limit-mpa", type=float, default=None, metavar="MPA",
-                   help="the rubber's contact stress limit, MPa (default 30.9: "
-                        "pipeline.assess.validity.RUBBER_STRESS_LIMIT)")
+                   help="the rubber's contact stress limit, MPa (default 30.9: the largest "
+                        "stress of the rubber tests the bumper law is calibrated on)")
     p.add_argument("--service-contact", type=float, default=0.0, metavar="FRACTION",
                    help="largest weighted fraction of the pairs touching the bumpers at the "
                         "service level (default 0: none)")
@@ -306,10 +306,21 @@ def plot(ds):
     right.set_ylabel("largest peak floor acceleration (g): median, 16-84%")
     right.set_title("At each level")
     right.legend(fontsize=6)
-    fig.suptitle(f"Bumper design at a {float(ds.attrs['design_gap']) / CM:.3g} cm gap "
-                 f"({float(ds.attrs['gap_over_D_M']):.2g} D_M), {ds.sizes['record']} pairs; "
-                 f"optimum {'interior' if ds.attrs['optimum_interior'] else 'at a bound'}")
+    from ..common.plot import letter_panels, short_title, store_caption
+
+    letter_panels((left, right))
+    short_title(fig, f"Bumper design at a {float(ds.attrs['design_gap']) / CM:.3g} cm gap")
+    store_caption(ds, caption(ds))
     return fig
+
+
+def caption(ds) -> str:
+    """The figure's caption (the archive's figure_caption)."""
+    return (f"Bumper design at a {float(ds.attrs['design_gap']) / CM:.3g} cm gap "
+            f"({float(ds.attrs['gap_over_D_M']):.2g} D_M), {ds.sizes['record']} pairs; "
+            f"optimum {'interior' if ds.attrs['optimum_interior'] else 'at a bound'}. (a) the "
+            "candidates (o feasible, x infeasible, colour: thickness) against the references; "
+            "(b) the largest peak floor acceleration at each level, median and 16-84%.")
 
 
 recipe = Recipe(

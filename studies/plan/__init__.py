@@ -382,8 +382,8 @@ def plot(ds):
         left.set_aspect("equal")
         left.set_xlabel("x (cm)")
         left.set_ylabel("y (cm)")
-        left.set_title(f"orbits in plan with bumpers, angle 0, gap {GAP_FRACTION} x\n"
-                       "dashed: the moats; filled: the first pair's bumpers", fontsize=9)
+        left.set_title(f"orbits in plan with bumpers, angle 0, gap {GAP_FRACTION} x",
+                       fontsize=9)
         left.legend(fontsize=6, loc="upper right")
     data = ratios(ds)
     # One line per part: three labels side by side in a third of the figure's width.
@@ -395,16 +395,26 @@ def plot(ds):
     middle.axhline(1.0, color="k", lw=0.8, ls="--")
     middle.set_ylabel("plan / planar")
     middle.set_title(f"plan / planar, {ds.sizes['record']} pairs x {ds.sizes['angle']} "
-                     f"angles, gap {GAP_FRACTION} x\nbox 25-75%, whiskers 5-95%; above 1: "
-                     "planar underestimates", fontsize=9)
+                     f"angles, gap {GAP_FRACTION} x", fontsize=9)
     _shares(right, ds)
-    fig.suptitle(f"Beyond the paper: record pairs in plan, {ds.attrs['moat']} moat, the "
-                 f"paper's building and bumpers ({N_BUMPERS} x {THICKNESS / CM:g} cm), gap "
-                 "a fraction of the planar peak without wall; the largest peak floor "
-                 f"acceleration of any run: {float(ds.peak_floor_accel.max()) / G:.1f} g",
-                 fontsize=8)
+    from ..common.plot import letter_panels, short_title, store_caption
+
+    letter_panels([ax for ax in (left, middle, right) if ax.has_data()])
+    short_title(fig, f"Beyond the paper: record pairs in plan, {ds.attrs['moat']} moat")
+    store_caption(ds, caption(ds))
     fig.tight_layout()
     return fig
+
+
+def caption(ds) -> str:
+    """The figure's caption (the archive's figure_caption)."""
+    return (f"Beyond the paper: record pairs in plan, {ds.attrs['moat']} moat, the paper's "
+            f"building and bumpers ({N_BUMPERS} x {THICKNESS / CM:g} cm), the gap a fraction "
+            "of the planar peak without wall; the largest peak floor acceleration of any run: "
+            f"{float(ds.peak_floor_accel.max()) / G:.1f} g. (a) orbits in plan with bumpers "
+            "(dashed: the moats; filled: the first pair's bumpers); (b) plan / planar peaks, "
+            "box 25-75%, whiskers 5-95%, above 1 the planar model underestimates; (c) the "
+            "paper's gap-size conclusions against the gap.")
 
 
 SHOWN = ((only_bumpers_amplify, "floor accel. amplified (only bumpers hit)"),

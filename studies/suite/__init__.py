@@ -405,7 +405,7 @@ recipe = Recipe(
     compute=compute, plot=plot, check=check, records=(), options=options,
     chosen=(f"site S_MS 1.5 g, S_M1 0.9 g, T_L 8 s; levels service 1/3, design 2/3, MCE_R; "
             f"gaps {', '.join(map(str, GAPS))} D_M and D_TM; {THICKNESS / CM:g} cm bumpers, "
-            f"strain {STRAIN:g}, no cavity; tolerance 2% (pipeline.assess.outcomes); pairs "
+            f"strain {STRAIN:g}, no cavity; tolerance 2%; pairs "
             f"weighted per earthquake; 'almost all' = {ALMOST_EVERY:.0%} of the cases that change; "
             f"quick: {QUICK_PAIRS} pairs, levels {', '.join(QUICK_LEVELS)}, gaps "
             f"{', '.join(map(str, QUICK_GAPS))} D_M and D_TM, {QUICK_COUNTS[0]} and "

@@ -8,7 +8,7 @@ from engine.units import CM, KN_PER_MM
 from pipeline.assess.outcomes import QUANTILES
 
 from ..common.paper import THICKNESS
-from ..common.plot import plt
+from ..common.plot import letter_panels, plt, short_title, store_caption
 from .archive import OUTCOMES, RESPONSES
 from .verdicts import all_outside_numbers, paper_config
 
@@ -19,6 +19,9 @@ def plot(ds):
     n_p, k_p = paper_config(ds)
     for ax, name in zip(axes[0], RESPONSES, strict=True):
         _fan(ax, ds, name, top, n_p)
+    limits = np.array([ax.get_ylim() for ax in axes[0]])  # one scale: the fans are compared
+    for ax in axes[0]:
+        ax.set_ylim(limits[:, 0].min(), limits[:, 1].max())
     axes[0, 0].set_ylabel("amplification (bumpers / bare wall)")
     axes[0, 0].legend(fontsize=6)
     net = _net(ds, "floor_accel").sel(level=top)
@@ -37,22 +40,32 @@ def plot(ds):
         ax.set_xticks(range(ds.sizes["gap_fraction"]), _gap_labels(ds), fontsize=6)
         ax.set_ylabel(ylabel)
         ax.set_xlabel("gap / D_M")
-        ax.set_title(f"(helped - hurt) / pairs with contact, largest floor accel.\n{top}, "
-                     f"{fixed}; in each cell: % of the pairs with contact")
+        ax.set_title(f"(helped - hurt) / pairs with contact, {top}, {fixed}")
     bar = fig.colorbar(mesh, ax=axes[1, :2], shrink=0.8, ticks=[-1, -0.5, 0, 0.5, 1])
     bar.ax.set_yticklabels(["−1 all hurt", "−0.5", "0 neutral", "0.5", "1 all helped"])
     bar.ax.legend(handles=[no_contact_handle()], loc="upper center",
                   bbox_to_anchor=(0.5, -0.04), frameon=False, handlelength=1.5)
     _outcome_bars(axes[1, 2], ds, n_p, k_p)
-    n = all_outside_numbers(ds)
-    fig.suptitle(f"{ds.sizes['record']} record pairs scaled by {ds.attrs.get('scaling_rule', '?')}"
-                 f" (T_M {ds.attrs.get('T_M', np.nan):.2f} s, D_M "
-                 f"{ds.attrs.get('D_M', np.nan) / CM:.1f} cm), in plan: "
-                 f"{THICKNESS / CM:g} cm bumpers against the bare wall at the same gap; "
-                 f"{n['runs_outside_range']} of {n['runs']} runs outside the model's range\n"
-                 "(top: over the pairs with contact, hollow where most have a run outside the "
-                 "model's range; pairs weighted per earthquake)")
+    letter_panels(axes)
+    short_title(fig, f"{ds.sizes['record']} record pairs in plan: "
+                     f"{THICKNESS / CM:g} cm bumpers against the bare wall at the same gap")
+    store_caption(ds, caption(ds))
     return fig
+
+
+def caption(ds) -> str:
+    """The figure's caption (the archive's figure_caption)."""
+    n = all_outside_numbers(ds)
+    return (f"{ds.sizes['record']} record pairs scaled by "
+            f"{ds.attrs.get('scaling_rule', '?')} (T_M {ds.attrs.get('T_M', np.nan):.2f} s, "
+            f"D_M {ds.attrs.get('D_M', np.nan) / CM:.1f} cm), in plan: {THICKNESS / CM:g} cm "
+            "bumpers against the bare wall at the same gap; "
+            f"{n['runs_outside_range']} of {n['runs']} runs outside the model's range. "
+            "(a)-(c) amplification (bumpers / bare wall) of the peak responses, weighted median "
+            "and 16-84% band, over the pairs with contact, hollow where most have a run "
+            "outside the model's range; (d), (e) (helped - hurt) / pairs with contact of the "
+            "largest floor acceleration, in each cell the % of the pairs with contact; (f) "
+            "the outcomes of the largest floor acceleration. Pairs weighted per earthquake.")
 
 
 def _gap_labels(ds) -> list[str]:
