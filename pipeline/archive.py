@@ -142,12 +142,13 @@ def level_coords(n_levels: int) -> dict:
             for axis, (values, units, long_name) in level_axes(n_levels).items()}
 
 
-def derived_variables(ds: xr.Dataset, building: engine.Building) -> dict:
+def derived_variables(ds: xr.Dataset, building: engine.Building, grid: Grid | None = None) -> dict:
     """Variables computed from a sweep's peaks, name -> (DataArray, the peak whose dims and
     chunks it shares), lazy when ds is: the amplification ratios bumpers / no bumpers when ds
     has a baseline block; the peak story ductility (peak drift / yield drift F_i / k_i) of
-    every block when the building's stories yield."""
-    derived = {}
+    every block when the building's stories yield; with the grid, every block's validity
+    flags (`validity_variables`)."""
+    derived = {} if grid is None else validity_variables(ds, grid, building)
     if "baseline_peak_total_accel" in ds:
         for name, (peak, long_name) in AMPLIFICATION.items():
             ratio = (ds[peak] / ds["baseline_" + peak]).transpose(*ds[peak].dims)
@@ -163,6 +164,53 @@ def derived_variables(ds: xr.Dataset, building: engine.Building) -> dict:
                                "long_name": block_long_name(STORY_DUCTILITY, prefix)}
             derived[prefix + "peak_story_ductility"] = (ductility, drift)
     return derived
+
+
+def validity_variables(ds: xr.Dataset, grid: Grid, building: engine.Building) -> dict:
+    """Every block's `invalid_*` flags, name -> (int8 DataArray over the block's dims, 1 where
+    the run left the model's range; the peak it follows), lazy when ds is
+    (pipeline.assess.validity at its default limits: the bumpers' calibration stress and
+    strain where the block has bumpers, the rigid-floor acceleration, a collapse where the
+    building can collapse; a sweep knows no story or wall capacity: those are not checked,
+    and the archive's validity_limits says so)."""
+    from engine.impact import LAWS as IMPACT_LAWS
+
+    from .assess.validity import ACCEL_LIMIT, FLAGS, Limits
+
+    limits = Limits()
+    default_area = IMPACT_LAWS["bumper"].PARAMETERS["area"].default
+    out, start = {}, 0
+    for block in grid.blocks:
+        part = slice(start, start + block.size)
+        start += block.size
+        p = block.prefix
+        force = ds[p + "max_impact_force"]
+        members = np.stack([grid.members_of(r)[part] for r in range(ds.sizes["record"])])
+
+        def along(values, force=force):  # (R, M) -> the block's (record, *dims)
+            return xr.DataArray(values.reshape(force.shape), dims=force.dims)
+
+        def flag(name, value, peak, p=p, dims=force.dims):
+            value = value.astype(np.int8).transpose(*dims)
+            value.attrs = {"units": "1", "long_name": f"1 where {FLAGS[name]}"}
+            out[p + name] = (value, peak)
+
+        flag("invalid_floor_accel", ds[p + "peak_total_accel"].max("floor") > ACCEL_LIMIT,
+             p + "peak_total_accel")
+        bumper = members["law"] == "bumper"
+        if bumper.any():
+            area = np.where(np.isnan(members["area"]), default_area, members["area"])
+            carried = along(np.where(bumper, members["n_bumpers"] * area, np.inf))
+            flag("invalid_bumper_stress", force / carried > limits.bumper_stress,
+                 p + "max_impact_force")
+            thickness = along(np.where(bumper, members["thickness"], np.inf))
+            flag("invalid_bumper_strain",
+                 ds[p + "max_indentation"] > limits.bumper_strain * thickness,
+                 p + "max_indentation")
+        if p + "collapsed" in ds:
+            flag("invalid_collapse", ds[p + "collapsed"], p + "collapsed")
+    ds.attrs["validity_limits"] = limits.describe()
+    return out
 
 
 def record_coords(records, names: list[str]) -> dict:
@@ -323,7 +371,7 @@ def build_dataset(grid: Grid, run, results: list[dict[str, np.ndarray]] | None,
     ds = labelled_dataset(data_vars, coords, attrs)
     if results is not None:
         ds = ds.assign({name: value for name, (value, _) in
-                        derived_variables(ds, building).items()})
+                        derived_variables(ds, building, grid).items()})
     return ds
 
 

@@ -203,8 +203,8 @@ class ZarrStore:
         from ..archive import derived_variables
 
         ds = xr.open_zarr(self.out, consolidated=False)
-        derived = {name: pair for name, pair in derived_variables(ds, self.run.building).items()
-                   if name not in ds}
+        derived = {name: pair for name, pair in
+                   derived_variables(ds, self.run.building, self.grid).items() if name not in ds}
         if derived:
             variables = {}
             for name, (value, peak) in derived.items():

@@ -137,3 +137,23 @@ def test_one_value_on_the_grid_is_named_once():
     assert "upper bound" not in text
     text = Nature((bound("lower", "grid"), bound("upper", "grid")), ()).text()
     assert text.count("thickness") == 1 and "the only value evaluated" in text
+
+
+def test_a_sweep_archive_flags_runs_outside_the_models_range():
+    """The bumpers' stress and strain beyond their calibration and the rigid-floor
+    acceleration, flagged per run like the studies' (a 5 cm bumper crushed at an 8 cm gap
+    under Pacoima is beyond both); the same in a Zarr store."""
+    import pipeline
+    from pipeline.assess import validity
+    from pipeline.records import paper_record
+
+    ds = pipeline.sweep([paper_record("pacoima")], gap=[0.08, 0.3], n_bumpers=[4, 32],
+                        baseline=True, quiet=True)
+    stress = validity.bumper_stress(ds.max_impact_force, ds.n_bumpers, 0.15 * 0.15)
+    assert (ds.invalid_bumper_stress == (stress > validity.RUBBER_STRESS_LIMIT)).all()
+    assert (ds.invalid_bumper_strain == (ds.max_indentation > 0.8 * 0.05)).all()
+    assert ds.invalid_bumper_stress.sel(gap=0.08, n_bumpers=4).item() == 1
+    assert ds.invalid_bumper_stress.sel(gap=0.3).sum() == 0
+    assert "baseline_invalid_floor_accel" in ds and "baseline_invalid_bumper_stress" not in ds
+    assert "invalid_collapse" not in ds  # the paper's building has no collapse criterion
+    assert ds.invalid_bumper_stress.dtype == np.int8 and "validity_limits" in ds.attrs
