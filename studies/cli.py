@@ -20,6 +20,7 @@ from __future__ import annotations
 import ast
 import importlib
 import importlib.util
+import os
 import pkgutil
 import re
 import shutil
@@ -30,6 +31,9 @@ from dataclasses import dataclass
 from .common.program import RUNNING, program  # noqa: F401 - program: the name in use
 
 PACKAGE = "studies"
+PROGRAM_ENV = "BUMPERS_PROGRAM"
+"""The environment variable that names the command `bumpers` runs, for the commands of
+pipeline/ (which import nothing of studies/)."""
 NOT_RECIPES = frozenset({"cli", "sweep", "common", "archive_tools"})
 """Modules of studies/ that are not recipes (cli: this one; sweep: a command of its own;
 common: what the recipes share; archive_tools: the export and plot commands)."""
@@ -133,12 +137,15 @@ def run(module: str, argv: list[str], name: str | None = None) -> int:
     command's name under `bumpers` (its help and errors then say `bumpers NAME`)."""
     if name:
         RUNNING[module] = name
+        # a command outside studies/ (pipeline.records) cannot read RUNNING: it reads this
+        os.environ[PROGRAM_ENV] = f"bumpers {name}"
     try:
         status = importlib.import_module(module).main(argv)
     except SystemExit as stop:  # argparse's --help and usage errors end this way
         status = stop.code
     finally:
         RUNNING.pop(module, None)
+        os.environ.pop(PROGRAM_ENV, None)
     if status is None or isinstance(status, int):
         return status or 0
     print(status, file=sys.stderr)  # SystemExit("message"): Python prints it, status 1

@@ -5,6 +5,7 @@ name resolve to (files of ``--records-dir`` first), without running anything."""
 from __future__ import annotations
 
 import argparse
+import os
 import re
 import sys
 
@@ -16,7 +17,8 @@ from .record import RECORDS_DIR_ENV, RecordError
 def main(argv: list[str] | None = None) -> int:
     """``python -m pipeline.records``: the paper's records first, then the library listing."""
     parser = argparse.ArgumentParser(
-        prog="python -m pipeline.records",
+        # `bumpers records` names itself so (studies/cli.py sets BUMPERS_PROGRAM)
+        prog=os.environ.get("BUMPERS_PROGRAM") or "python -m pipeline.records",
         description="Where the paper's records are found (records directory, built-in data, "
                     "library or stand-in), then the embedded ground-motion library.")
     parser.add_argument("--records-dir", help=f"folder of AT2 files (default: ${RECORDS_DIR_ENV})")

@@ -109,7 +109,7 @@ def test_the_installed_console_script_runs_a_command():
     done = subprocess.run([script, "records", "--help"], capture_output=True, text=True,
                           timeout=60)
     assert done.returncode == 0, done.stderr
-    assert "usage: python -m pipeline.records" in done.stdout
+    assert "usage: bumpers records" in done.stdout
     unknown = subprocess.run([script, "nope"], capture_output=True, text=True, timeout=60)
     assert unknown.returncode == 2
     assert unknown.stderr.count("\n") == 1 and unknown.stdout == ""

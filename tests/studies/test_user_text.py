@@ -139,3 +139,11 @@ def test_a_terminal_gets_one_line_redrawn_in_place():
     text = stream.getvalue()
     assert text.count("\n") == 1 and text.endswith("\n") and text.count("\r") > 10
     assert text.rsplit("\r", 1)[1].startswith("sweep: 100% done (10 of 10")
+
+
+def test_bumpers_records_names_itself_so(capsys):
+    assert cli.main(["records", "--help"]) == 0
+    assert capsys.readouterr().out.startswith("usage: bumpers records")
+    import os
+
+    assert "BUMPERS_PROGRAM" not in os.environ  # set only while the command runs
