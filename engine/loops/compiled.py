@@ -74,15 +74,22 @@ def _link_story(code, force, otherwise):
     return njit(**LINK)(dispatch)
 
 
+SHARED_PHYSICS = (hysteresis.__name__,)
+"""Modules whose physics a law may call (the slip element of isolators/hysteresis.py):
+compiled with the law like its own helpers."""
+
+
 def compiled_in_module(function):
-    """`function` compiled for scalars, with the plain functions of its own module that it
-    calls compiled alongside (a law may write its physics as several small functions; numba
-    would otherwise refuse them as untyped globals). The module itself is left as it is."""
+    """`function` compiled for scalars, with the plain functions of its own module (and of
+    SHARED_PHYSICS) that it calls compiled alongside (a law may write its physics as several
+    small functions; numba would otherwise refuse them as untyped globals). The module itself
+    is left as it is."""
     module_name = function.__module__
     scope = dict(function.__globals__)
     for name in function.__code__.co_names:
         value = scope.get(name)
-        if isinstance(value, types.FunctionType) and value.__module__ == module_name:
+        if isinstance(value, types.FunctionType) and (
+                value.__module__ == module_name or value.__module__ in SHARED_PHYSICS):
             scope[name] = compiled_in_module(value)
     rebuilt = types.FunctionType(function.__code__, scope, function.__name__,
                                  function.__defaults__, function.__closure__)

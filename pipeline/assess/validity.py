@@ -71,10 +71,10 @@ def code_story_capacity(design, building, r_i: float = 2.0, overstrength: float 
     strength a designed structure has beyond its design force. design: a
     pipeline.motions.target.IsolationDesign (k_m N/m, d_m m, beta_m); building: engine.Building.
     Applied to every story (the first carries the most)."""
+    from pipeline.motions.superstructure import superstructure_share
+
     v_b = design.k_m * design.d_m
-    masses = np.asarray(building.masses, float)
-    share = (masses[1:].sum() / building.total_mass) ** (1 - 2.5 * design.beta_m)
-    return float(overstrength * v_b * share / r_i)
+    return float(overstrength * v_b * superstructure_share(building, design.beta_m) / r_i)
 
 
 @dataclass(frozen=True)

@@ -90,6 +90,14 @@ class SuperstructureDesign:
                 + ", ".join(f"{s / 1e3:.0f}" for s in self.strength) + " kN")
 
 
+def superstructure_share(building, beta_m: float) -> float:
+    """V_st / V_b (-), the superstructure's unreduced share of the base shear:
+    (W_s / W)^(1 - 2.5 beta_M), W_s the weight above the isolation level (ASCE 7-22 eq.
+    17.5-8); building: engine.Building, beta_m the effective damping (ratio)."""
+    masses = np.asarray(building.masses, float)
+    return (masses[1:].sum() / masses.sum()) ** (1 - 2.5 * beta_m)
+
+
 def code_designed_building(design, building, *, r_i: float = R_I,
                            overstrength: float = OVERSTRENGTH, story_law: str = STORY_LAW,
                            p_delta: bool = True,
@@ -118,7 +126,7 @@ def code_designed_building(design, building, *, r_i: float = R_I,
     heights = np.full(building.n_stories, STORY_HEIGHT) if building.story_height is None \
         else np.asarray(building.story_height, float)
     v_b = design.k_m * design.d_m
-    v_st = v_b * (masses[1:].sum() / masses.sum()) ** (1 - 2.5 * design.beta_m)
+    v_st = v_b * superstructure_share(building, design.beta_m)
     activation = 1.5 * building.yield_force if activation_force is None \
         else float(activation_force)
     v_s = max(v_st / r_i, activation)

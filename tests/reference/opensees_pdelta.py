@@ -561,3 +561,23 @@ def last_standing(flags) -> int:
     """Index of the last False (-1 if none)."""
     flags = np.asarray(flags, bool)
     return int(np.flatnonzero(~flags)[-1]) if (~flags).any() else -1
+
+
+RTOL = 5e-3
+"""The cross-checks' tolerance on every peak: 0.5 %."""
+PEAKS = ("peak_total_accel", "peak_interstory_drift", "peak_isolator_disp")
+WALL_PEAKS = ("max_indentation", "max_impact_force")
+
+
+def assert_free_and_wall_match(result, references) -> None:
+    """An engine Result of two members, free (0) and pounding on the wall (1), against the
+    OpenSees runs `references` ("none", "wall"): neither collapsed, every peak within RTOL,
+    the impacts counted alike (and some)."""
+    assert not np.any(result.collapsed)
+    for member, case in enumerate(("none", "wall")):
+        reference = references[case]
+        for name in PEAKS + (WALL_PEAKS if case == "wall" else ()):
+            np.testing.assert_allclose(getattr(result, name)[member], reference[name],
+                                       rtol=RTOL, atol=1e-12, err_msg=f"{case}: {name}")
+    assert references["wall"]["n_impacts"] > 0
+    assert result.n_impacts[1] == references["wall"]["n_impacts"]

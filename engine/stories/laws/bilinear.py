@@ -6,6 +6,7 @@ engine/isolators/hysteresis.py, for one story). OpenSees' Steel01 without isotro
 is the same law (tests/reference/opensees_reference.py)."""
 import numpy as np
 
+from ...isolators.hysteresis import plastic_spring_force
 from ...parameters import REQUIRED, Declaration, Parameter
 
 NAME = "bilinear"
@@ -41,9 +42,7 @@ def initial_state(row):
 def force(drift, state, row):
     """The post-yield spring's force plus the slip element's, return-mapped over the drift
     increment since the last step (N); commits the slip force and the drift."""
-    f_limit = row[2]
-    trial = state[0] + row[1] * (drift - state[1])
-    slip = min(max(trial, -f_limit), f_limit)
+    slip = plastic_spring_force(state[0], drift - state[1], row[1], row[2])
     state[0] = slip
     state[1] = drift
     return row[0] * drift + slip
