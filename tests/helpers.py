@@ -11,8 +11,9 @@ SHARED_RECORDS = PROJECT.parent / "shared" / "records"
 """../shared/records: real AT2 files the project must read in place, never copy."""
 
 
-NAMED_SCALED_UNITS = {"degree"}
-"""Units whose UDUNITS definition is a scaled SI unit by name (degree: pi/180 rad)."""
+NAMED_SCALED_UNITS = {"degree", "yr-1"}
+"""Units whose UDUNITS definition is a scaled SI unit by name (degree: pi/180 rad; yr-1: per
+year, UDUNITS' year of 365.24 days)."""
 
 
 def assert_udunits(ds) -> None:

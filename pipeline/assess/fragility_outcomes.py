@@ -95,3 +95,32 @@ def event_weights(event_ids) -> np.ndarray:
     _, inverse, counts = np.unique(ids, return_inverse=True, return_counts=True)
     w = 1.0 / counts[inverse.ravel()]
     return w * (ids.size / np.sum(w))
+
+
+BOOTSTRAP_QUANTILES = (0.05, 0.95)
+"""The bootstrap interval of a fragility's parameters: 5% to 95%."""
+
+
+def bootstrap(levels, outcomes, weights=None, method: str = "stripes", n: int = 200,
+              seed: int = 0, q=BOOTSTRAP_QUANTILES) -> dict:
+    """Percentile bootstrap intervals of a fragility fit (Efron & Tibshirani 1993): the records
+    (rows of outcomes, each with its weight) resampled with replacement n times and refitted
+    (fit_outcomes). Returns theta (len(q),) and beta (len(q),) quantiles over the resamples
+    whose fit is identifiable (NaN when fewer than half are), and identifiable, the share of
+    the resamples that are."""
+    x = np.asarray(levels, dtype=float)
+    y = np.asarray(outcomes, dtype=float)
+    w = np.ones(y.shape[0]) if weights is None else np.asarray(weights, dtype=float)
+    rng = np.random.default_rng(seed)
+    thetas, betas = np.full(n, np.nan), np.full(n, np.nan)
+    for k in range(n):
+        pick = rng.integers(0, y.shape[0], y.shape[0])
+        fit = fit_outcomes(x, y[pick], w[pick], method=method)
+        if fit.identifiable:
+            thetas[k], betas[k] = fit.theta, fit.beta
+    share = float(np.mean(np.isfinite(thetas)))
+    if share < 0.5:
+        return {"theta": np.full(len(q), np.nan), "beta": np.full(len(q), np.nan),
+                "identifiable": share}
+    return {"theta": np.nanquantile(thetas, q), "beta": np.nanquantile(betas, q),
+            "identifiable": share}

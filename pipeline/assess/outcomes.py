@@ -156,6 +156,13 @@ class Count:
         """'holds for 67% of the weight of 3 pairs (2 earthquakes; 7 of 12 cases); beside,
         not counted: 2 cases within the 2% tolerance (weight 0.5), 5 cases without contact
         (weight 1)'."""
+        if self.events is None and self.pairs + self.ties + self.not_counted <= 1:
+            # one set of cases (configurations compared from fits over all the pairs): no
+            # weights to state
+            head = (f"holds in {self.held_cases} of {self.counted_cases} {unit}"
+                    if self.counted else f"nothing counted (0 {unit})")
+            return (f"{head}; beside, not counted: {self.tie_cases} within the {tol:.0%} "
+                    f"tolerance, {self.not_counted_cases} where it does not apply")
         who = f"{self.pairs} pair{'s' * (self.pairs != 1)}"
         if self.events is not None:
             who += f", {self.events} earthquake{'s' * (self.events != 1)}"

@@ -120,3 +120,17 @@ def test_weights_partition_and_numbers():
     assert n["verdict"] is False  # 1.0 of 2.0 is not more than half
     with pytest.raises(ValueError):
         count("usually", holds, applies)
+
+
+def test_configurations_compared_by_fits_count_as_one_set_of_cases():
+    """The fragility and loss verdicts compare configurations whose values pool every pair
+    (fits, decision-table medians): one set of cases, no weights to state."""
+    holds = np.array([[True, False, False, False]])
+    applies = np.array([[True, True, True, False]])
+    changed = np.array([[True, True, False, True]])
+    c = count("can", holds, applies, changed)
+    assert c.verdict is True and (c.held_cases, c.counted_cases, c.tie_cases) == (1, 2, 1)
+    assert c.text("configurations") == (
+        "holds in 1 of 2 configurations; beside, not counted: 1 within the 2% tolerance, 1 "
+        "where it does not apply")
+    assert count("can", holds, np.zeros_like(applies)).verdict is None

@@ -334,3 +334,23 @@ def test_bad_input_is_refused():
         fit_outcomes([1.0, 2.0], np.zeros((3, 2), bool), method="probit")
     with pytest.raises(ValueError, match="finite and > 0"):
         fit_ida([1.0, np.inf])  # a censored record with no censoring point
+
+
+def test_bootstrap_intervals_cover_the_truth_and_shrink_with_more_records():
+    from pipeline.assess.fragility_outcomes import bootstrap
+
+    rng = np.random.default_rng(11)
+    levels = np.array([0.5, 0.75, 1.0, 1.25, 1.5, 2.0, 2.5])
+
+    def interval(n):
+        capacity = np.exp(rng.normal(0.0, 0.4, n))  # theta 1, beta 0.4
+        return bootstrap(levels, levels[None, :] > capacity[:, None], n=100, seed=2)
+
+    few, many = interval(20), interval(200)
+    for b in (few, many):
+        assert b["identifiable"] > 0.9
+        assert b["theta"][0] < 1.0 < b["theta"][1] and b["beta"][0] < 0.4 < b["beta"][1]
+    assert np.diff(many["theta"])[0] < 0.6 * np.diff(few["theta"])[0]
+    # too few records to identify beta in most resamples: no interval
+    none = bootstrap(levels[:2], np.array([[False, True]] * 3), n=20)
+    assert np.isnan(none["theta"]).all() and none["identifiable"] < 0.5

@@ -593,7 +593,7 @@ def test_built_in_data_is_package_data():
     assert resource.is_file() and Path(str(resource)) == BUILTIN_FILE
     assert BUILTIN_FILE.stat().st_size < 200_000
     pyproject = (ROOT / "pyproject.toml").read_text()
-    assert '[tool.setuptools.package-data]\npipeline = ["data/*.nc"]' in pyproject
+    assert '[tool.setuptools.package-data]\npipeline = ["data/*.nc", "data/*.csv"]' in pyproject
 
 
 def test_built_in_data_metadata():

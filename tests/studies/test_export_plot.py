@@ -88,7 +88,7 @@ def test_csv_holds_the_archive_values(archive, tmp_path, suffix, capsys):
     out = tmp_path / "peaks.csv"
     assert cli.main(["export", str(path.with_suffix(suffix)), "--csv", str(out)]) == 0
     assert "wrote" in capsys.readouterr().out
-    check_table(pd.read_csv(out), ds)
+    check_table(pd.read_csv(out, float_precision="round_trip"), ds)
 
 
 def test_csv_of_one_block_at_one_value(archive, tmp_path):
@@ -96,7 +96,7 @@ def test_csv_of_one_block_at_one_value(archive, tmp_path):
     out = tmp_path / "peaks.csv"
     assert export.main([str(path), "--csv", str(out), "--block", "bumpers",
                         "--sel", "n_bumpers=8"]) == 0
-    table = pd.read_csv(out)
+    table = pd.read_csv(out, float_precision="round_trip")
     assert len(table) == 2 and set(table.block) == {"bumpers"}
     np.testing.assert_array_equal(table["peak_isolator_disp [m]"],
                                   ds.peak_isolator_disp.sel(n_bumpers=8).values.ravel())
@@ -112,7 +112,7 @@ def test_pelicun_sample_columns_and_units_row(archive, tmp_path):
     assert lines[0].split(",") == ["", *(f"1-PFA-{f}-1" for f in range(floors)),
                                    *(f"1-PID-{s}-1" for s in range(1, stories + 1))]
     assert lines[1].split(",") == ["Units", *["g"] * floors, *["rad"] * stories]
-    sample = pd.read_csv(out, index_col=0, skiprows=[1])
+    sample = pd.read_csv(out, index_col=0, skiprows=[1], float_precision="round_trip")
     assert list(sample.index) == [0, 1]  # one row per run: n_bumpers 4 and 8
     np.testing.assert_allclose(sample["1-PFA-4-1"], ds.peak_total_accel.sel(
         gap=0.1, floor=4).values.ravel() / export.PELICUN_G, rtol=1e-14)

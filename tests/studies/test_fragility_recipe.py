@@ -36,8 +36,13 @@ def test_archive(quick):
     assert ds.attrs["D_M_lower"] > ds.attrs["D_M_nominal"] > ds.attrs["D_M_upper"]
     assert ds.attrs["D_M_with_dashpot"] < ds.attrs["D_M"]
     assert_udunits(ds)
-    (verdict,) = json.loads(ds.attrs["paper_verdicts"])
-    assert verdict["verdict"] in ("agrees", "differs", "not tested")
+    # one verdict per floor acceleration threshold, each naming its threshold
+    verdicts = json.loads(ds.attrs["paper_verdicts"])
+    accel = [e for e in json.loads(ds.attrs["thresholds"]) if e.startswith("floor_accel_")]
+    assert [v["numbers"]["event"] for v in verdicts] == accel
+    for v in verdicts:
+        assert v["verdict"] in ("agrees", "differs", "not tested")
+        assert f"above {v['numbers']['threshold'] / G:g} g" in v["claim"]
 
 
 def test_scaling_and_one_member_are_the_engines(quick):
@@ -61,8 +66,12 @@ def test_scaling_and_one_member_are_the_engines(quick):
 def test_events_and_fits_follow_from_the_stored_numbers(quick):
     ds = quick
     np.testing.assert_array_equal(ds.event_contact.values, ds.n_impacts.values > 0)
-    np.testing.assert_array_equal(ds.event_floor_accel.values,
-                                  ds.peak_floor_accel.values > ds.attrs["accel_threshold"])
+    thresholds = json.loads(ds.attrs["thresholds"])
+    assert thresholds["floor_accel_lights"]["component"] == "C.30.34.001"
+    for event, t in thresholds.items():
+        if event.startswith("floor_accel_"):
+            np.testing.assert_array_equal(ds[f"event_{event}"].values,
+                                          ds.peak_floor_accel.values > t["value"])
     crushed = ds.event_bumpers_crushed
     assert not crushed.sel(barrier="bare wall").any()
     np.testing.assert_array_equal(crushed.sel(barrier="4 bumpers").values,
@@ -75,6 +84,14 @@ def test_events_and_fits_follow_from_the_stored_numbers(quick):
             stored = ds.sel(event=event, barrier=barrier).isel(gap_fraction=0)
             np.testing.assert_equal(float(stored.fragility_median), fit.theta)
             assert str(stored.fragility_status.values) == fit.status
+    # beta_TOT: the fitted beta with the default ratings' (B B B) uncertainties; the
+    # bootstrap intervals ordered where the fit is identified
+    np.testing.assert_allclose(ds.fragility_beta_total,
+                               np.sqrt(ds.fragility_beta ** 2 + 3 * 0.2 ** 2), rtol=1e-12)
+    interval = ds.fragility_median_interval
+    known = np.isfinite(interval.isel(bound=0))
+    assert (interval.isel(bound=0) <= interval.isel(bound=1)).values[known.values].all()
+    assert (ds.fragility_identifiable == 1).values[known.values].all()
     # the stronger the shaking, the likelier every event (stripes nest: a record's peaks grow
     # with the level here)
     share = ds.event_contact.mean("record")

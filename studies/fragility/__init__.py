@@ -9,13 +9,17 @@ wall (the paper's linear law) and with the paper's bumpers (4 x 5 cm a side).
 
 Per pair, level and configuration the archive keeps the peaks and the events (`event_*`, 1
 where it happens): contact with the wall or bumpers, bumpers crushed beyond their ultimate
-strain, the largest floor acceleration or interstory drift above a threshold (defaults
-ACCEL_THRESHOLD, DRIFT_THRESHOLD), a story beyond its capacity (yielding stories: their yield
+strain, the largest floor acceleration or interstory drift ratio above each of its thresholds
+(the median capacities of the first damage states of an office building's components, FEMA
+P-58: pipeline.assess.thresholds; --accel-threshold-g and --drift-threshold-ratio for others),
+a story beyond its capacity (yielding stories: their yield
 drift; linear ones: the code's superstructure capacity,
 pipeline.assess.validity.code_story_capacity), and, if a capacity is given, the wall's force above
 it. For each event and configuration a lognormal fragility P(event | IM) = Phi(ln(IM / theta) /
 beta) is fitted by maximum likelihood over the stripes (Baker 2015; pipeline.assess.fragility),
-pairs weighted per earthquake; IM is the level as a fraction of the MCE_R (and, equivalently, the
+pairs weighted per earthquake, with percentile bootstrap intervals of theta and beta over the
+pairs, and beta_TOT beside the record-to-record beta (FEMA P695 section 7.3.1 with the
+quality ratings, --ratings); IM is the level as a fraction of the MCE_R (and, equivalently, the
 target's Sa(T_M)). Runs outside the model's range (pipeline.assess.validity) are flagged
 (`invalid_*`) and counted in the summary. The
 largest floor acceleration and interstory drift, the bumpers' stress and "crushed" are
@@ -30,9 +34,11 @@ import numpy as np
 
 from engine.units import CM, G
 from pipeline.assess import derived
+from pipeline.assess.collapse import RATINGS
+from pipeline.assess.thresholds import ACCELERATION, DRIFT, Threshold
 from pipeline.motions.code_suite import archive_variables, describe
 
-from .common.options import (
+from ..common.options import (
     QUICK_PAIRS,
     add_bound,
     add_moat,
@@ -44,9 +50,9 @@ from .common.options import (
     site_options,
     wall_capacity,
 )
-from .common.paper import AREA, DELTA_U, N_BUMPERS, THICKNESS
-from .common.plot import plt
-from .common.recipe import Recipe, Verdict, provenance, run_options
+from ..common.paper import AREA, DELTA_U, N_BUMPERS, THICKNESS
+from ..common.recipe import Recipe, Verdict, provenance, run_options
+from .figure import caption, plot  # noqa: F401 - caption: the recipe's caption, as every recipe has
 
 LEVELS = (0.5, 0.75, 1.0, 1.25, 1.5, 1.75, 2.0, 2.5)
 """Intensity levels, multiples of the MCE_R target (1 = MCE_R), the stripes run (the archive's
@@ -58,18 +64,14 @@ BUMPER_COUNTS = (N_BUMPERS, 32)
 """Bumpers per wall of the configurations (the paper's 4, and Fig. 19's 32, which section 5.4
 says stay within the crush limit), each 5 cm thick."""
 BARRIERS = ("bare wall", *(f"{n} bumpers" for n in BUMPER_COUNTS))
-ACCEL_THRESHOLD = 1.0 * G
-"""m/s^2: a floor acceleration an isolated building is not designed for (isolation keeps its
-floors near 0.3-0.5 g at the MCE_R: the paper's building, 0.51 g median without wall) and that
-damages contents and equipment: beyond it, pounding rather than the ground motion drives it."""
-DRIFT_THRESHOLD = 0.015
-"""m: 0.5% of a 3 m story, about where a superstructure designed to stay elastic (R_I <= 2)
-starts to be damaged."""
+BOOTSTRAP = 200
+"""Bootstrap resamples of the pairs per fit (QUICK_BOOTSTRAP with --quick)."""
+QUICK_BOOTSTRAP = 20
 EVENTS = {
     "contact": "the slab touches the wall or the bumpers",
     "bumpers_crushed": "the bumpers are compressed beyond their ultimate strain (delta_u)",
-    "floor_accel": "the largest peak floor acceleration exceeds the threshold",
-    "drift": "the largest peak interstory drift exceeds the threshold",
+    "floor_accel": "the largest peak floor acceleration exceeds {what}",
+    "drift": "the largest peak interstory drift ratio exceeds {what}",
     "story_capacity": "a story exceeds its capacity (its yield drift, or a linear story's "
                       "shear above the code's superstructure capacity)",
     "wall_force": "the wall's largest force exceeds its capacity",
@@ -82,12 +84,20 @@ def options(p) -> None:
     site_options(p)
     add_bound(p)
     add_stories(p)
-    p.add_argument("--accel-threshold-g", type=float, default=ACCEL_THRESHOLD / G, metavar="G",
-                   help=f"floor acceleration event threshold in g (default "
-                        f"{ACCEL_THRESHOLD / G:g})")
-    p.add_argument("--drift-threshold-cm", type=float, default=DRIFT_THRESHOLD / CM,
-                   metavar="CM", help=f"interstory drift event threshold in cm (default "
-                                      f"{DRIFT_THRESHOLD / CM:g})")
+    p.add_argument("--accel-threshold-g", type=float, nargs="+", default=None, metavar="G",
+                   help="floor acceleration event thresholds in g, one event each (default: "
+                        "the FEMA P-58 median capacities of an office's acceleration-sensitive "
+                        "components, " + ", ".join(f"{t.value / G:g} g ({t.name})"
+                                                   for t in ACCELERATION) + ")")
+    p.add_argument("--drift-threshold-ratio", type=float, nargs="+", default=None,
+                   metavar="RATIO",
+                   help="interstory drift ratio event thresholds, one event each (default: "
+                        "the FEMA P-58 median capacities of its drift-sensitive components, "
+                        + ", ".join(f"{t.value:g} ({t.name})" for t in DRIFT) + ")")
+    p.add_argument("--ratings", nargs=3, default=list(RATINGS), metavar=("DR", "TD", "MDL"),
+                   choices=("A", "B", "C", "D"),
+                   help="quality ratings of the design requirements, test data and model for "
+                        f"beta_TOT (FEMA P695 ch. 3 and 5; default {' '.join(RATINGS)})")
     add_wall_capacity(p, "its event and the validity flag invalid_wall_force")
     add_moat(p)
     p.add_argument("--method", choices=("stripes", "ida"), default="stripes",
@@ -96,7 +106,40 @@ def options(p) -> None:
                         "its capacity (censored above the highest level)")
 
 
+def chosen_thresholds(args) -> tuple[Threshold, ...]:
+    """The event thresholds: the components' (pipeline.assess.thresholds), or the user's
+    (named by their value; SweepError for one not positive)."""
+    from pipeline.errors import SweepError
+
+    accel, drift = ACCELERATION, DRIFT
+    if args.accel_threshold_g is not None:
+        accel = tuple(Threshold(f"{g:g}g".replace(".", "p"), "floor_accel", g * G, "", 0,
+                                f"{g:g} g") for g in args.accel_threshold_g)
+    if args.drift_threshold_ratio is not None:
+        drift = tuple(Threshold(f"{r:g}".replace(".", "p"), "drift_ratio", r, "", 0,
+                                f"{r:g}") for r in args.drift_threshold_ratio)
+    if any(not t.value > 0 for t in accel + drift):
+        raise SweepError("--accel-threshold-g and --drift-threshold-ratio must be positive")
+    return accel + drift
+
+
+def event_text(name: str, thresholds) -> str:
+    """What event `name` is (EVENTS, a threshold's event naming its component)."""
+    for t in thresholds:
+        if name == f"{'floor_accel' if t.demand == 'floor_accel' else 'drift'}_{t.name}":
+            what = (f"{t.value / G:g} g" if t.demand == "floor_accel" else f"{t.value:g}")
+            if t.component:
+                what += (f", the median capacity of FEMA P-58 {t.component} damage state "
+                         f"{t.damage_state}: {t.description}")
+            return EVENTS["floor_accel" if t.demand == "floor_accel" else "drift"].format(
+                what=what)
+    return EVENTS[name]
+
+
 def compute(args):
+    args.thresholds = chosen_thresholds(args)
+    if not getattr(args, "bootstrap", None):
+        args.bootstrap = QUICK_BOOTSTRAP if args.quick else BOOTSTRAP
     pairs, names = chosen_pairs(args, QUICK_PAIRS)
     suite = scaled_suite(args, pairs, names)  # at --bound: its building, its D_M and D_TM
     levels = np.array(QUICK_LEVELS if args.quick else LEVELS)
@@ -140,7 +183,8 @@ PEAK_NAMES = ("peak_isolator_disp", "max_impact_force", "max_indentation", "n_im
 def _dataset(suite, levels, fractions, gaps, peaks, args):
     from engine.results import quantity
     from pipeline.archive import labelled_dataset, variable
-    from pipeline.assess.fragility_outcomes import fit_outcomes
+    from pipeline.assess.fragility_outcomes import BOOTSTRAP_QUANTILES
+    from pipeline.assess.thresholds import total_beta
     from pipeline.assess.validity import FLAGS, Limits, code_story_capacity, flags_of, shape_factor
 
     building = suite.building  # at the suite's bound
@@ -174,7 +218,7 @@ def _dataset(suite, levels, fractions, gaps, peaks, args):
     events = _events(peaks, building, args, capacity, wall_force, by_config)
     for name, value in events.items():
         data[f"event_{name}"] = variable(dims, value.astype(np.int8), "1",
-                                         f"1 where {EVENTS[name]}")
+                                         f"1 where {event_text(name, args.thresholds)}")
     flagged = flags_of(peaks, building, limits, n_bumpers=_bumper_counts(n_gaps)[None, None, :],
                        area=AREA, thickness=THICKNESS)
     for name, value in flagged.items():
@@ -185,7 +229,7 @@ def _dataset(suite, levels, fractions, gaps, peaks, args):
     stress[..., 0] = np.nan  # the bare wall has no bumpers
     data["bumper_stress"] = variable(dims, stress, q.units, q.long_name + " (NaN: no bumpers)")
 
-    fits = _fits(levels, events, suite.weights, fit_outcomes, args.method)
+    fits = _fits(levels, events, suite.weights, args)
     fit_dims = ("event", "gap_fraction", "barrier")
     target_tm = float(suite.target.at(suite.design.t_m))
     data["fragility_median"] = variable(fit_dims, fits["theta"], "1",
@@ -194,6 +238,15 @@ def _dataset(suite, levels, fractions, gaps, peaks, args):
                                            "median intensity as the target's Sa(T_M)")
     data["fragility_beta"] = variable(fit_dims, fits["beta"], "1",
                                       "logarithmic standard deviation of the fragility")
+    data["fragility_median_interval"] = variable(
+        (*fit_dims, "bound"), fits["theta_bounds"], "1", "bootstrap interval of the median "
+        "intensity, x MCE_R (pairs resampled; NaN: not identifiable)")
+    data["fragility_beta_interval"] = variable(
+        (*fit_dims, "bound"), fits["beta_bounds"], "1", "bootstrap interval of beta")
+    data["fragility_beta_total"] = variable(
+        fit_dims, total_beta(fits["beta"], args.ratings), "1", "beta_TOT: the fitted "
+        "(record-to-record) beta with the quality ratings' design, test and model "
+        "uncertainties (FEMA P695 section 7.3.1, unrounded)")
     data["fragility_identifiable"] = variable(fit_dims, fits["identifiable"].astype(np.int8),
                                               "1", "1 where the data identify both parameters")
     data["fragility_status"] = variable(fit_dims, fits["status"], "1",
@@ -216,13 +269,24 @@ def _dataset(suite, levels, fractions, gaps, peaks, args):
                             f"({bare_wall_text()}) or n bumpers of {THICKNESS / CM:g} cm "
                             "on each wall"),
         "event": variable("event", np.array(list(events)), "1", "what happens: "
-                          + "; ".join(f"{k}: {EVENTS[k]}" for k in events)),
+                          + "; ".join(f"{k}: {event_text(k, args.thresholds)}"
+                                      for k in events)),
+        "bound": variable("bound", np.array(BOOTSTRAP_QUANTILES), "1", "quantile of the "
+                          "bootstrap interval"),
         **more_coords,
     }
     counts = {name: int(by_config(value).sum()) for name, value in flagged.items()}
     attrs.update({
-        "moat": args.moat, "accel_threshold": args.accel_threshold_g * G,
-        "drift_threshold": args.drift_threshold_cm * CM, "story_capacity": capacity,
+        "moat": args.moat, "thresholds": json.dumps(
+            {f"{'floor_accel' if t.demand == 'floor_accel' else 'drift'}_{t.name}":
+             {"value": t.value, "units": "m s-2" if t.demand == "floor_accel" else "1",
+              "component": t.component, "damage_state": t.damage_state,
+              "what": t.description} for t in args.thresholds}),
+        "thresholds_source": "FEMA P-58 (2018) component fragilities, median capacities "
+                             "(pipeline.assess.thresholds)" if all(
+                                 t.component for t in args.thresholds) else "user-set",
+        "bootstrap": args.bootstrap, "quality_ratings": " ".join(args.ratings),
+        "story_capacity": capacity,
         "wall_capacity": "none" if wall_force is None else wall_force,
         "validity_limits": limits.describe(), "invalid_counts": json.dumps(counts),
         "runs": int(np.prod([len(suite.names), levels.size, gaps.size, len(BARRIERS)])),
@@ -258,6 +322,7 @@ def _events(peaks, building, args, capacity, wall_force, by_config) -> dict:
     event)."""
     accel = derived.largest_floor_accel(peaks["peak_total_accel"])
     drift_all = peaks["peak_interstory_drift"]
+    ratio = (drift_all / np.asarray(building.story_height, float)).max(axis=-1)
     crushed = derived.crushed(peaks["max_indentation"], DELTA_U)
     n_gaps = (peaks["n_impacts"].shape[2] - 1) // len(BARRIERS)
     crushed[:, :, :1 + n_gaps] = False  # no bumpers there
@@ -266,8 +331,10 @@ def _events(peaks, building, args, capacity, wall_force, by_config) -> dict:
     else:
         beyond = (drift_all * np.asarray(building.story_stiffness)).max(axis=-1) > capacity
     out = {"contact": peaks["n_impacts"] > 0, "bumpers_crushed": crushed,
-           "floor_accel": accel > args.accel_threshold_g * G,
-           "drift": derived.largest_story_drift(drift_all) > args.drift_threshold_cm * CM,
+           **{f"floor_accel_{t.name}": accel > t.value for t in args.thresholds
+              if t.demand == "floor_accel"},
+           **{f"drift_{t.name}": ratio > t.value for t in args.thresholds
+              if t.demand == "drift_ratio"},
            "story_capacity": beyond}
     if wall_force is not None:
         out["wall_force"] = peaks["max_impact_force"] > wall_force
@@ -280,122 +347,84 @@ def _events(peaks, building, args, capacity, wall_force, by_config) -> dict:
     return {name: by_config(value) for name, value in out.items()}
 
 
-def _fits(levels, events, weights, fit_outcomes, method: str) -> dict:
-    """theta, beta, identifiable, status over (event, gap, barrier)."""
+def _fits(levels, events, weights, args) -> dict:
+    """theta, beta, identifiable, status over (event, gap, barrier); theta_bounds and
+    beta_bounds (..., bound) the bootstrap intervals over the pairs (args.bootstrap
+    resamples) of the identifiable fits."""
+    from pipeline.assess.fragility_outcomes import BOOTSTRAP_QUANTILES, bootstrap, fit_outcomes
+
     names = list(events)
     shape = (len(names), *events[names[0]].shape[2:])
     out = {"theta": np.full(shape, np.nan), "beta": np.full(shape, np.nan),
-           "identifiable": np.zeros(shape, dtype=bool), "status": np.empty(shape, dtype=object)}
+           "identifiable": np.zeros(shape, dtype=bool), "status": np.empty(shape, dtype=object),
+           "theta_bounds": np.full((*shape, len(BOOTSTRAP_QUANTILES)), np.nan),
+           "beta_bounds": np.full((*shape, len(BOOTSTRAP_QUANTILES)), np.nan)}
     for e, name in enumerate(names):
         for g in range(shape[1]):
             for b in range(shape[2]):
-                fit = fit_outcomes(levels, events[name][:, :, g, b], weights, method=method)
+                seen = events[name][:, :, g, b]
+                fit = fit_outcomes(levels, seen, weights, method=args.method)
                 out["theta"][e, g, b], out["beta"][e, g, b] = fit.theta, fit.beta
                 out["identifiable"][e, g, b] = fit.identifiable
                 out["status"][e, g, b] = fit.status
+                if fit.identifiable:
+                    boot = bootstrap(levels, seen, weights, method=args.method,
+                                     n=args.bootstrap, seed=e * 1000 + g * 100 + b)
+                    out["theta_bounds"][e, g, b] = boot["theta"]
+                    out["beta_bounds"][e, g, b] = boot["beta"]
     out["status"] = out["status"].astype(str)
     return out
 
 
 def check(ds) -> list[Verdict]:
-    """Paper 4 and 5.1 in fragility terms: bumpers can reduce the floor accelerations due to
+    """Paper 4 and 5.1 in fragility terms, one verdict per floor acceleration threshold (each
+    a component's median capacity): bumpers can reduce the floor accelerations due to
     pounding, i.e. for some bumper configuration at some gap the median intensity at which the
-    floor acceleration exceeds its threshold is higher with bumpers than against the bare wall
+    floor acceleration exceeds the threshold is higher with bumpers than against the bare wall
     by more than the tolerance of pipeline.assess.outcomes (compared only where both fits are
-    identified)."""
-    from pipeline.assess.outcomes import TOLERANCE
+    identified), counted by pipeline.assess.outcomes.count: the configurations the claim
+    applies to (both fits identified) whose medians differ by more than the tolerance, the
+    others beside the count."""
+    from pipeline.assess.outcomes import TOLERANCE, count
 
-    median = ds.fragility_median.sel(event="floor_accel")
-    known = ds.fragility_identifiable.sel(event="floor_accel") == 1
-    bare = median.sel(barrier="bare wall").values
-    higher, compared, parts = [], 0, []
-    for barrier in ds.barrier.values[1:]:
-        ok = (known.sel(barrier=barrier) & known.sel(barrier="bare wall")).values
-        with_b = median.sel(barrier=barrier).values
-        higher.append(ok & (with_b > bare * (1 + TOLERANCE)))
-        compared += int(ok.sum())
-        parts.append(f"{barrier}: " + ", ".join(
-            f"{a:.2f}/{b:.2f}" if k else "not identified"
-            for a, b, k in zip(with_b, bare, ok, strict=True)))
     counts = json.loads(ds.attrs["invalid_counts"])
     flagged = ", ".join(f"{k.removeprefix('invalid_')} {v}" for k, v in counts.items() if v)
-    finding = (f"the median intensity (x MCE_R) of the floor acceleration event, with bumpers / "
-               f"bare wall, at gaps {', '.join(f'{f:.2f}' for f in ds.gap_fraction.values)} "
-               f"D_M: " + "; ".join(parts) + f"; runs outside the model's range (of "
-               f"{ds.attrs['runs']}): " + (flagged or "none"))
-    held = np.array(higher)
-    return [Verdict("4, 5.1", "Bumpers can reduce the floor accelerations due to pounding "
-                    f"[for one configuration at one gap at least: a median intensity higher "
-                    f"by more than {TOLERANCE:.0%}]", finding,
-                    bool(held.any()) if compared else None,
-                    {"higher_with_bumpers": held.tolist(), "compared": compared,
-                     "invalid_counts": counts})]
-
-
-COLOURS = ("0.35", "C0", "C3")  # the colour of each barrier, BARRIERS order
-GAP_STYLES = (("-", "o"), ("--", "s"), (":", "^"))  # line and marker of each gap, in order
-TITLES = {"contact": "contact with the wall or bumpers", "bumpers_crushed": "bumpers crushed",
-          "floor_accel": "floor acceleration above {accel:g} g",
-          "drift": "interstory drift above {drift:g} cm"}
-
-
-def plot(ds):
-    """One panel per event; a curve per barrier (colour) and gap (line and marker), named by
-    a two-part legend below the panels."""
-    from scipy.stats import norm
-
-    from .common.plot import letter_panels, short_title, store_caption
-
-    shown = [e for e in TITLES if e in ds.event.values]
-    fig, axes = plt.subplots(1, len(shown), figsize=(2.4 * len(shown), 3.0), sharey=True,
-                             squeeze=False)
-    axes = axes[0]
-    x = np.linspace(0.0, ds.level.values.max() * 1.25, 300)[1:]
-    weights = ds.record_weight.values
-    for ax, event in zip(axes, shown, strict=True):
-        for g, (line, mark) in zip(range(ds.sizes["gap_fraction"]), GAP_STYLES, strict=False):
-            for barrier, colour in zip(ds.barrier.values, COLOURS, strict=False):
-                if event == "bumpers_crushed" and barrier == "bare wall":
-                    continue
-                fit = ds.sel(event=event, barrier=barrier).isel(gap_fraction=g)
-                seen = ds[f"event_{event}"].sel(barrier=barrier).isel(gap_fraction=g).values
-                share = (weights[:, None] * seen).sum(axis=0) / weights.sum()
-                ax.plot(ds.level.values, share, mark, color=colour, ms=3, mfc="none")
-                theta, beta = float(fit.fragility_median), float(fit.fragility_beta)
-                if np.isfinite(theta) and np.isfinite(beta):
-                    ax.plot(x, norm.cdf(np.log(x / theta) / beta), line, color=colour,
-                            lw=1.2 if int(fit.fragility_identifiable) else 0.6)
-        ax.axvline(1.0, color="k", lw=0.6, ls=":")
-        ax.set_title(TITLES[event].format(accel=ds.attrs["accel_threshold"] / G,
-                                          drift=ds.attrs["drift_threshold"] / CM))
-        ax.set_xlabel("intensity, x MCE$_R$")
-        ax.set_xlim(0, x[-1])
-    axes[0].set_ylabel("probability of the event")
-    barriers = [plt.Line2D([], [], color=c, lw=2, label=str(b))
-                for b, c in zip(ds.barrier.values, COLOURS, strict=False)]
-    gaps = [plt.Line2D([], [], color="k", ls=line, marker=mark, mfc="none",
-                       label=f"gap {fraction:.2f} $D_M$")
-            for fraction, (line, mark) in zip(ds.gap_fraction.values, GAP_STYLES,
-                                              strict=False)]
-    letter_panels(axes)
-    short_title(fig, "Fragility of the moat with and without bumpers")
-    store_caption(ds, caption(ds))
-    fig.tight_layout(rect=(0, 0.12, 1, 1))
-    fig.legend(handles=barriers, loc="lower left", bbox_to_anchor=(0.08, 0.0), ncol=3,
-               frameon=False, title="barrier (colour)")
-    fig.legend(handles=gaps, loc="lower right", bbox_to_anchor=(0.98, 0.0), ncol=3,
-               frameon=False, title="clear gap (line, marker)")
-    return fig
-
-
-def caption(ds) -> str:
-    """The figure's caption (the archive's figure_caption)."""
-    return (f"Fragility of the moat: probability of each event against the intensity "
-            f"(a multiple of the MCE_R, dotted), {ds.sizes['record']} record pairs, "
-            f"{ds.attrs['scaling_rule']} scaling, T_M {ds.attrs['T_M']:.2f} s, D_M "
-            f"{ds.attrs['D_M'] / CM:.1f} cm. Colour: the barrier (bare wall, bumpers); line "
-            "and marker: the clear gap. Lines: lognormal fits (thin: beta not identified); "
-            "open markers: observed shares, pairs weighted per earthquake.")
+    thresholds = json.loads(ds.attrs["thresholds"])
+    verdicts = []
+    for event in [e for e in ds.event.values if str(e).startswith("floor_accel_")]:
+        median = ds.fragility_median.sel(event=event)
+        known = ds.fragility_identifiable.sel(event=event) == 1
+        bare = median.sel(barrier="bare wall").values
+        higher, compared, changed, parts = [], [], [], []
+        for barrier in ds.barrier.values[1:]:
+            ok = (known.sel(barrier=barrier) & known.sel(barrier="bare wall")).values
+            with_b = median.sel(barrier=barrier).values
+            higher.append(ok & (with_b > bare * (1 + TOLERANCE)))
+            compared.append(ok)
+            changed.append(np.abs(with_b - bare) > TOLERANCE * bare)
+            parts.append(f"{barrier}: " + ", ".join(
+                f"{a:.2f}/{b:.2f}" if k else "not identified"
+                for a, b, k in zip(with_b, bare, ok, strict=True)))
+        t = thresholds[str(event)]
+        what = f"{t['value'] / G:g} g" + (f" ({t['component']}: {t['what']})"
+                                          if t["component"] else "")
+        finding = (f"the median intensity (x MCE_R) of the floor acceleration above {what}, "
+                   f"with bumpers / bare wall, at gaps "
+                   f"{', '.join(f'{f:.2f}' for f in ds.gap_fraction.values)} D_M: "
+                   + "; ".join(parts) + f"; runs outside the model's range (of "
+                   f"{ds.attrs['runs']}): " + (flagged or "none"))
+        held = np.array(higher)
+        c = count("can", held[None], np.array(compared)[None], np.array(changed)[None])
+        finding += f"; {c.text('configurations')}"
+        verdicts.append(Verdict(
+            "4, 5.1", f"Bumpers can reduce the floor accelerations due to pounding [above "
+            f"{t['value'] / G:g} g: for one configuration at one gap at least, a median "
+            f"intensity higher by more than {TOLERANCE:.0%}]", finding,
+            c.verdict,
+            {"event": str(event), "threshold": t["value"],
+             "higher_with_bumpers": held.tolist(), "count": c.numbers(),
+             "invalid_counts": counts}))
+    return verdicts
 
 
 recipe = Recipe(
@@ -405,8 +434,9 @@ recipe = Recipe(
     compute=compute, plot=plot, check=check,
     chosen=(f"site S_MS 1.5 g, S_M1 0.9 g, T_L 8 s; ASCE 7-22 ch. 17 scaling; levels "
             f"{', '.join(map(str, LEVELS))} x MCE_R; gaps {', '.join(map(str, GAPS))} D_M and "
-            f"D_TM; floor acceleration threshold {ACCEL_THRESHOLD / G:g} g, drift "
-            f"{DRIFT_THRESHOLD / CM:g} cm; quick: {QUICK_PAIRS} pairs, levels "
+            f"D_TM; event thresholds the FEMA P-58 median capacities of an office's "
+            f"components; {BOOTSTRAP} bootstrap resamples; quick: {QUICK_PAIRS} pairs, "
+            f"{QUICK_BOOTSTRAP} resamples, levels "
             f"{', '.join(map(str, QUICK_LEVELS))}"),
     records=(), options=options)
 main = recipe.main

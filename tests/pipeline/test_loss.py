@@ -1,0 +1,128 @@
+"""pipeline.assess.hazard and pipeline.assess.loss: the time-based integration against closed
+forms of a power-law hazard, and pelicun's FEMA P-58 repair cost of one component against a
+hand calculation from that component's fragility and consequence data."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.stats import norm
+
+from engine.units import G
+from pipeline.assess import hazard
+
+
+def test_the_default_curve_passes_the_mce_r_rate_with_its_slope():
+    curve = hazard.default(0.8 * G)
+    assert curve.rate_at(0.8 * G) == pytest.approx(hazard.MCE_R_RATE, rel=1e-12)
+    # a power law: doubling Sa divides the rate by 2^k, beyond the table's points too
+    for sa in (0.1 * G, 2.0 * G, 500.0 * G):
+        assert curve.rate_at(2 * sa) / curve.rate_at(sa) == pytest.approx(2 ** -hazard.SLOPE,
+                                                                          rel=1e-9)
+
+
+def test_interval_rates_add_up_to_the_rate_at_the_lowest_edge():
+    curve = hazard.default(G)
+    sa = np.array([0.2, 0.4, 2 / 3, 1.0, 1.5]) * G
+    w = hazard.interval_rates(sa, curve)
+    lowest = sa[0] ** 2 / math.sqrt(sa[0] * sa[1])
+    assert w.sum() == pytest.approx(float(curve.rate_at(lowest)), rel=1e-12)
+    # the top interval is open: its rate is the rate above its lower edge
+    assert w[-1] == pytest.approx(float(curve.rate_at(math.sqrt(sa[-1] * sa[-2]))), rel=1e-12)
+    # a certain event at every stripe happens at that total rate; the mean is linear
+    assert hazard.mean_annual(sa, np.ones(5), curve) == pytest.approx(w.sum(), rel=1e-12)
+    x = np.stack([np.arange(5.0), 2 * np.arange(5.0)], axis=1)
+    assert hazard.mean_annual(sa, x, curve) == pytest.approx([w @ x[:, 0], 2 * w @ x[:, 0]])
+
+
+def test_a_lognormal_fragility_over_a_power_law_is_the_closed_form():
+    # lambda_c = lambda(median) exp(k^2 beta^2 / 2) (Cornell et al. 2002)
+    curve = hazard.default(0.9 * G)
+    for median, beta in ((1.5 * G, 0.5), (3.0 * G, 0.3)):
+        exact = float(curve.rate_at(median)) * math.exp((hazard.SLOPE * beta) ** 2 / 2)
+        assert hazard.lognormal_annual(median, beta, curve) == pytest.approx(exact, rel=1e-4)
+
+
+def test_a_hazard_table_is_read_and_a_bad_one_refused_in_one_line(tmp_path):
+    good = tmp_path / "site.csv"
+    good.write_text("sa_g,annual_rate\n1.0,0.0004\n0.1,0.1\n0.5,0.002\n")
+    curve = hazard.from_table(good)
+    assert curve.sa.tolist() == pytest.approx([0.1 * G, 0.5 * G, 1.0 * G])
+    assert curve.rate_at(0.5 * G) == pytest.approx(0.002)
+    bad = tmp_path / "bad.csv"
+    bad.write_text("sa_g,annual_rate\n0.1,0.001\n0.5,0.002\n")
+    with pytest.raises(ValueError, match="rates must decrease"):
+        hazard.from_table(bad)
+    (tmp_path / "cols.csv").write_text("sa,rate\n0.1,0.1\n")
+    with pytest.raises(ValueError, match="needs the columns sa_g and annual_rate"):
+        hazard.from_table(tmp_path / "cols.csv")
+
+
+def test_pelicuns_repair_cost_is_the_hand_calculation(tmp_path):
+    """Four pendant lights (FEMA P-58 C.30.34.001, one damage state, Peak Floor Acceleration
+    median 0.6 g, beta 0.4, non-directional, read at the floor above) on a one-story building
+    whose floor above peaks at 0.5 g both ways in every run: pelicun's non-directional demand
+    is 1.2 x 0.5 g = 0.6 g (FEMA P-58-1 section 5.2.5's factor), so P(DS1) = 1/2; the repair
+    costs 2.3 USD_2011 a light (the database's median for up to five, lognormal, dispersion
+    0.636941), so the mean cost is 1/2 x 4 x 2.3 x exp(0.636941^2 / 2). Collapse and
+    irreparable drift out of reach."""
+    loss = pytest.importorskip("pipeline.assess.loss")
+    pytest.importorskip("pelicun")
+    table = tmp_path / "one.csv"
+    table.write_text("component,quantity,per,unit,location,direction,description\n"
+                     "C.30.34.001,4,story,ea,stories,0,pendant lights\n")
+    rows = loss.read_inventory(table)
+    runs = 8
+    pfa = np.full((runs, 2, 2), 0.5 * G)
+    pid = np.full((runs, 1, 2), 1e-4)  # far below yield: no residual drift
+    samples = 20000
+    out = loss.losses([loss.Group(pfa, pid, -20.0)], rows, stories=1, floor_area=100.0,
+                      yield_drift=0.01, samples=samples, seed=3)
+    cost = out["repair_cost"][0]
+    assert out["collapse_probability"][0] < 1e-80 and not out["irreparable"].any()
+    expected = 0.5 * 4 * 2.3 * math.exp(0.636941 ** 2 / 2)
+    # the share damaged is a binomial of p = 1/2 over the samples: within 4 standard errors
+    damaged = np.mean(cost > 0)
+    assert abs(damaged - 0.5) < 4 * math.sqrt(0.25 / samples)
+    assert cost.mean() == pytest.approx(expected, rel=0.05)
+    # the median unit cost of the damaged lights is the database's 2.3
+    assert np.median(cost[cost > 0]) / 4 == pytest.approx(2.3, rel=0.05)
+
+
+def test_collapse_enters_by_its_probability():
+    loss = pytest.importorskip("pipeline.assess.loss")
+    pytest.importorskip("pelicun")
+    rows = loss.read_inventory()
+    rng = np.random.default_rng(0)
+    pfa = rng.lognormal(math.log(0.3 * G), 0.2, (10, 3, 2))
+    pid = rng.lognormal(math.log(0.003), 0.2, (10, 2, 2))
+    out = loss.losses([loss.Group(pfa, pid, 0.5), None, loss.Group(pfa, pid, -1.0)], rows,
+                      stories=2, floor_area=500.0, yield_drift=0.01, samples=300, seed=5)
+    assert out["collapse_probability"][[0, 2]] == pytest.approx(norm.cdf([0.5, -1.0]))
+    assert out["replacement_cost"] == loss.COST_PER_M2 * 500.0 * 2
+    # common random numbers: the same demands give the same realizations whatever the
+    # collapse probability
+    np.testing.assert_array_equal(out["repair_cost"][0], out["repair_cost"][2])
+    assert np.all(out["repair_cost"][0] < out["replacement_cost"])
+    assert np.isnan(out["repair_cost"][1]).all() and np.isnan(out["collapse_probability"][1])
+
+
+def test_the_mixture_of_collapse_and_repair():
+    loss = pytest.importorskip("pipeline.assess.loss")
+    given = np.array([[1.0, 2.0, 3.0, 4.0]])
+    mean, q = loss.mixture(given, np.array([0.25]), 100.0, (0.1, 0.5, 0.74, 0.76))
+    assert mean[0] == pytest.approx(0.25 * 100 + 0.75 * 2.5)
+    # each repair realization weighs 0.75 / 4: cumulative 0.1875, 0.375, 0.5625, 0.75, then 1
+    assert q[:, 0].tolist() == [1.0, 3.0, 4.0, 100.0]
+    none, _ = loss.mixture(given, np.array([0.0]), 100.0)
+    assert none[0] == 2.5
+
+
+def test_a_bad_inventory_is_refused_in_one_line(tmp_path):
+    loss = pytest.importorskip("pipeline.assess.loss")
+    bad = tmp_path / "bad.csv"
+    bad.write_text("component,quantity,per,unit,location,direction,description\n"
+                   "C.30.34.001,4,floor,ea,stories,0,lights\n")
+    with pytest.raises(ValueError, match="'per' is m2, story or building_m2"):
+        loss.read_inventory(bad)
