@@ -39,7 +39,7 @@ design earthquake (2/3, ASCE 7-22 section 11.4.5), the MCE_R and 1.5 x MCE_R."""
 QUICK_LEVELS = (1.0, 1.5)
 FLOOR_AREA = 900.0
 """Floor area per story, m^2 (a 30 m square plan: a stated choice)."""
-QUICK_SAMPLES = 200
+QUICK_SAMPLES = 100
 QUANTILES = (0.1, 0.5, 0.9)
 """The repair cost's and time's quantiles over the realizations."""
 PEAKS = ("peak_total_accel_xy", "peak_interstory_drift_xy", "n_impacts", "max_indentation",

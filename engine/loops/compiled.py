@@ -23,6 +23,13 @@ PHYSICS_FILES = [m.__file__ for m in (hysteresis, scheme, registry, *registry.LA
 
 JIT = {"cache": True, "nogil": True, "error_model": "numpy"}
 LINK = {"nogil": True, "error_model": "numpy"}  # compiled into the cached kernels that call it
+STORY_LINK = {**LINK, "_nrt": False}
+"""The story laws' options: LINK without numba's reference counting of arrays. A law takes
+views of arrays its loop owns and allocates nothing (numba refuses to compile one that
+would), but with reference counting each call of a law that calls a helper with its arrays
+keeps four refcount calls and is never inlined into the story loop: the deteriorating law
+then cost 2.4-2.6x the linear building's member-step, 1.3-1.4x without (numba's `_nrt`
+option, private but stable since numba 0.2x)."""
 
 isolator_force = njit(**LINK)(hysteresis.isolator_force)
 plastic_spring = njit(**LINK)(hysteresis.plastic_spring_force)
@@ -71,7 +78,7 @@ def _link_story(code, force, otherwise):
         if law == code:
             return force(drift, state, row)
         return otherwise(law, drift, state, row)
-    return njit(**LINK)(dispatch)
+    return njit(**STORY_LINK)(dispatch)
 
 
 SHARED_PHYSICS = (hysteresis.__name__,)
@@ -80,10 +87,10 @@ compiled with the law like its own helpers."""
 
 
 def compiled_in_module(function):
-    """`function` compiled for scalars, with the plain functions of its own module (and of
-    SHARED_PHYSICS) that it calls compiled alongside (a law may write its physics as several
-    small functions; numba would otherwise refuse them as untyped globals). The module itself
-    is left as it is."""
+    """`function` (a story law's force) compiled for scalars with STORY_LINK, with the plain
+    functions of its own module (and of SHARED_PHYSICS) that it calls compiled alongside (a
+    law may write its physics as several small functions; numba would otherwise refuse them
+    as untyped globals). The module itself is left as it is."""
     module_name = function.__module__
     scope = dict(function.__globals__)
     for name in function.__code__.co_names:
@@ -93,13 +100,13 @@ def compiled_in_module(function):
             scope[name] = compiled_in_module(value)
     rebuilt = types.FunctionType(function.__code__, scope, function.__name__,
                                  function.__defaults__, function.__closure__)
-    return njit(**LINK)(rebuilt)
+    return njit(**STORY_LINK)(rebuilt)
 
 
 def _story_dispatch():
     """The story force (N) of the member's story law, dispatched on its code: every law of
     the story registry, chained."""
-    dispatch = njit(**LINK)(_no_story)
+    dispatch = njit(**STORY_LINK)(_no_story)
     for code, module in enumerate(story_registry.LAWS.values()):
         dispatch = _link_story(code, compiled_in_module(module.force), dispatch)
     return dispatch

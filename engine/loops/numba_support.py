@@ -12,30 +12,36 @@ from llvmlite import ir
 from numba.core import cgutils, types
 from numba.extending import intrinsic
 
+KERNEL_SOURCES: dict[Path, list[Path]] = {}
+"""Kernel file -> the sources its cached kernels are stale without (install_cache_locator)."""
+
 
 def install_cache_locator(kernel_file: Path, physics_files: list[str]) -> None:
     """Make numba's on-disk cache of the kernels defined in `kernel_file` stale when that file
     or any of `physics_files` (the modules whose functions it compiles) changes; numba alone
-    would watch the kernel's file only. Private numba API: without it caching still works,
-    keyed on that file alone."""
+    would watch the kernel's file only. One locator serves every kernel file registered here
+    (each with its own sources: a kernel file registered second must not fall back to numba's
+    own locator, whose cache would outlive a change of the physics). Private numba API:
+    without it caching still works, keyed on that file alone."""
     try:
         from numba.core.caching import CacheImpl, InTreeCacheLocator
     except ImportError:  # pragma: no cover - other numba versions
         return
     kernel = Path(kernel_file).resolve()
     # This file too: stack_doubles is compiled into the kernels.
-    sources = [kernel, Path(__file__).resolve(), *(Path(f).resolve() for f in physics_files)]
+    KERNEL_SOURCES[kernel] = [kernel, Path(__file__).resolve(),
+                              *(Path(f).resolve() for f in physics_files)]
 
     class _PhysicsCacheLocator(InTreeCacheLocator):
         @classmethod
         def from_function(cls, py_func, py_file):
-            if Path(py_file).resolve() != kernel:
+            if Path(py_file).resolve() not in KERNEL_SOURCES:
                 return None
             return super().from_function(py_func, py_file)
 
         def get_source_stamp(self):
             digest = hashlib.sha256()
-            for path in sources:
+            for path in KERNEL_SOURCES[Path(self._py_file).resolve()]:
                 digest.update(path.read_bytes())
             return digest.hexdigest()
 

@@ -198,3 +198,25 @@ def test_compiled_kernel_loads_from_the_cache():
     seconds, hits, misses = float(out[0]), int(out[1]), int(out[2])
     assert hits >= 1 and misses == 0
     assert seconds < 3.0   # a cold compile takes 5-10 s
+
+
+def test_every_compiled_loop_is_cached_on_the_physics_it_compiles():
+    """Both kernel files, planar and in plan, are keyed on their physics (a change of a story
+    law must recompile the plan kernel too: it once kept its cache, keyed on its own file
+    alone, and ran a law's old state layout)."""
+    from pathlib import Path
+
+    from numba.core.caching import CacheImpl
+
+    from engine.loops import compiled, numba_loop, numba_plan, numba_support
+    from engine.stories.laws import imk
+
+    locator = CacheImpl._locator_classes[0]
+    assert locator.__name__ == "_PhysicsCacheLocator"
+    for module in (numba_loop, numba_plan):
+        sources = numba_support.KERNEL_SOURCES[Path(module.__file__).resolve()]
+        for physics in (imk.__file__, compiled.__file__, module.__file__):
+            assert Path(physics).resolve() in sources
+        found = locator.from_function(module._run.py_func, module.__file__)
+        assert found is not None and found.get_source_stamp() == locator.from_function(
+            module._member.py_func, module.__file__).get_source_stamp()

@@ -76,7 +76,7 @@ def test_pelicuns_repair_cost_is_the_hand_calculation(tmp_path):
     runs = 8
     pfa = np.full((runs, 2, 2), 0.5 * G)
     pid = np.full((runs, 1, 2), 1e-4)  # far below yield: no residual drift
-    samples = 20000
+    samples = 5000
     out = loss.losses([loss.Group(pfa, pid, -20.0)], rows, stories=1, floor_area=100.0,
                       yield_drift=0.01, samples=samples, seed=3)
     cost = out["repair_cost"][0]

@@ -126,7 +126,13 @@ POSITIVE, NEGATIVE = 7, 12
 # Offsets in a direction's block: yield strength, hardening slope, post-capping slope (its
 # magnitude), capping drift, capping strength.
 B_FY, B_KP, B_KPC, B_UCAP, B_FCAP = range(5)
-N_STATE = 17
+# Then the drifts (m) between which a step is common (`_elastic_range`), set wherever the rest
+# of the state changes.
+LOW, HIGH, N_STATE = 17, 18, 19
+ELASTIC_MARGIN = 1e-9
+"""How far (a share of the virgin capping strength, N/N) that range keeps the force from each
+limit: far beyond the rounding of the steps along the line, so that every step it admits is
+one the exact tests would find common, with the same bits."""
 
 # FAILURE: 0 elastic so far, 1 yielded, 2 residual branch reached (unloading along K_e/2 from
 # then on), 3 strength lost pushing positive, 4 lost pushing negative, 5 lost both ways.
@@ -193,6 +199,7 @@ def initial_state(par):
         state[block + B_KPC] = par[KPC0]
         state[block + B_UCAP] = par[UCAP0]
         state[block + B_FCAP] = par[FCAP0]
+    _elastic_range(state, par)
     return state
 
 
@@ -236,40 +243,76 @@ def _on_residual(state, drift, f, fres):
     return residual
 
 
+def _limit(low, high, gap, slope, margin):
+    """The offsets (low, high) from the committed drift (m) narrowed to where gap + slope x (N,
+    x the offset, slope N/m) stays above margin (N); empty (inf, -inf) if not at x = 0."""
+    if not gap > margin:
+        return math.inf, -math.inf
+    if slope > 0.0:
+        low = max(low, (margin - gap) / slope)
+    elif slope < 0.0:
+        high = min(high, (margin - gap) / slope)
+    return low, high
+
+
+def _elastic_range(state, par):
+    """Set state[LOW], state[HIGH], the open interval of drifts (m) where a step along the
+    unloading/reloading line (K_u from the committed drift and force) is common: off the
+    backbone, before the residual branch; under both backbones (the lower of each one's two
+    lines, never above it), these above F_r; short of the ultimate drift and, once yielded, of
+    zero force and of the residual branch (as `_on_residual` finds it). Else (inf, -inf)."""
+    low, high = math.inf, -math.inf
+    f0 = state[F]
+    k = state[K_UNLOAD]
+    failure = state[FAILURE]
+    if state[ON_BACKBONE] == 0.0 and failure < 2.0 and k > 0.0 and (failure == 0.0 or f0 != 0.0):
+        u0 = state[U]
+        fres = par[FRES]
+        margin = ELASTIC_MARGIN * par[FCAP0]
+        low, high = -math.inf, math.inf  # offsets from u0 (the force's limits)
+        floor, ceiling = -par[UU], par[UU]  # drifts (the exact limits)
+        if failure != 0.0:  # the force keeps its sign
+            low, high = _limit(low, high, abs(f0), math.copysign(k, f0), margin)
+        for block in (POSITIVE, NEGATIVE):
+            s = 1.0 if block == POSITIVE else -1.0  # to the block's frame
+            kp = state[block + B_KP]
+            kpc = state[block + B_KPC]
+            x = s * u0 - state[block + B_UCAP]
+            hard = state[block + B_FCAP] + x * kp
+            soft = state[block + B_FCAP] - x * kpc
+            low, high = _limit(low, high, hard - fres, s * kp, margin)
+            low, high = _limit(low, high, soft - fres, -s * kpc, margin)
+            low, high = _limit(low, high, hard - s * f0, s * (kp - k), margin)
+            low, high = _limit(low, high, soft - s * f0, -s * (kpc + k), margin)
+            if failure != 0.0 and kpc == 0.0:
+                gap = s * f0 - fres
+                low, high = _limit(low, high, abs(gap), s * math.copysign(k, gap), margin)
+            elif failure != 0.0:
+                u_res = state[block + B_UCAP] + (state[block + B_FCAP] - fres) / kpc
+                if block == POSITIVE:
+                    ceiling = min(ceiling, u_res)
+                else:
+                    floor = max(floor, -u_res)
+        low = max(u0 + low, floor)
+        high = min(u0 + high, ceiling)
+    state[LOW], state[HIGH] = low, high
+
+
 def force(drift, state, par):
     """Story force (N) at drift `drift` (m) from the committed state `state` (N_STATE,
     updated in place to the new committed state) of a story of field row `par` (`_step`'s,
-    which says how).
-
-    The common step first, inside a loop off the backbone before the residual branch: where
-    the force keeps its sign (or the story has not yielded), stays under the backbone and
-    short of the ultimate drift and the residual branch, `_step` would find no reversal from
-    the backbone, start no excursion, not reach the backbone and change no flag, so its few
-    operations are done here, the same ones in the same order, and `_step` (large) runs only
-    for the rest."""
-    failure = state[FAILURE]
-    if state[ON_BACKBONE] == 0.0 and failure < 2.0:
-        u_prev = state[U]
-        du = drift - u_prev
-        if du != 0.0:
-            f_prev = state[F]
-            f = f_prev + state[K_UNLOAD] * du
-            if du > 0.0:
-                s = 1.0
-                block = POSITIVE
-            else:
-                s = -1.0
-                block = NEGATIVE
-            u_local = s * drift
-            bound = _backbone(state, block, u_local)
-            fres = par[FRES]
-            if bound >= fres and s * f <= bound and u_local < par[UU] and (
-                    failure == 0.0 or (f_prev * f > 0.0
-                                       and not _on_residual(state, drift, f, fres))):
-                state[U] = drift
-                state[ENERGY] += 0.5 * (f + f_prev) * du  # trapezoidal, as OpenSees
-                state[F] = f
-                return f
+    which says how). A drift within the cached elastic range (`_elastic_range`) is a common
+    step: `_step` would find no reversal from the backbone, start no excursion, not reach the
+    backbone and change no flag, so its few operations are done here, the same ones in the
+    same order, and `_step` (large) runs only for the rest."""
+    if state[LOW] < drift < state[HIGH]:
+        f_prev = state[F]
+        du = drift - state[U]
+        f = f_prev + state[K_UNLOAD] * du
+        state[U] = drift
+        state[ENERGY] += 0.5 * (f + f_prev) * du  # trapezoidal, as OpenSees
+        state[F] = f
+        return f
     return _step(drift, state, par)
 
 
@@ -427,6 +470,7 @@ def _step(drift, state, par):
     state[F] = f
     state[FAILURE] = failure
     state[ON_BACKBONE] = 1.0 if on_backbone else 0.0
+    _elastic_range(state, par)
     return f
 
 
