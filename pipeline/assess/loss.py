@@ -227,10 +227,15 @@ def _assessment(assets, data, stories, cost, time, seed):
         a.asset.load_cmp_model({"marginals": assets})
         a.asset.generate_cmp_sample(1)
         a.damage.load_model_parameters([fragilities(), data[0]],
-                                       set(a.asset.list_unique_component_ids()))
+                                       sorted(a.asset.list_unique_component_ids()))
         a.loss.decision_variables = ("Cost", "Time")
-        a.loss.add_loss_map(pd.DataFrame(["replacement"], columns=["Repair"],
-                                         index=["irreparable"]), loss_map_policy="fill")
+        # The loss map written out in a fixed order (pelicun's "fill" policy builds it from a
+        # set, whose order, and so the draws' order, changes with Python's hash seed).
+        components = sorted(c for c in a.asset.list_unique_component_ids()
+                            if c not in ("excessiveRID", "irreparable"))
+        a.loss.add_loss_map(pd.DataFrame({"Repair": [*components, "replacement"]},
+                                         index=[*components, "irreparable"]),
+                            loss_map_policy=None)
         a.loss.load_model_parameters([replacement(cost, time), data[1]])
     return a
 
