@@ -24,6 +24,7 @@ import json
 import numpy as np
 
 from engine.units import CM
+from pipeline.assess import derived
 from pipeline.assess import hazard as hazards
 from pipeline.assess import loss as p58
 
@@ -167,7 +168,7 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
     ratio = peaks["peak_interstory_drift_xy"] / height[:, None]
     acmr = fragility.acmr.transpose("barrier", "gap_fraction").values
     beta = fragility.beta_total.transpose("barrier", "gap_fraction").values
-    groups, keys = [], []
+    groups = []
     for i, level in enumerate(levels):
         for b in range(n_b):
             for g in range(n_g):
@@ -176,7 +177,6 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
                 groups.append(p58.Group(peaks["peak_total_accel_xy"][keep, i, b, g],
                                         ratio[keep, i, b, g], deviate)
                               if keep.sum() >= p58.MIN_RUNS else None)
-                keys.append((i, b, g))
     yield_drift = float(np.median(np.asarray(building.story_yield_drift) / height))
     if not args.quiet:
         print(f"FEMA P-58 losses by pelicun {p58.version()}: {len(groups)} stripes x "
@@ -190,14 +190,13 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
                                     out["replacement_cost"], q)
     mean_time, time_q = p58.mixture(out["repair_time"].reshape(*shape, -1), p_c,
                                     out["replacement_time"], q)
-    _, median_cost = p58.mixture(out["repair_cost"].reshape(*shape, -1), p_c,
-                                 out["replacement_cost"], (0.5,))
+    median_cost = cost_q[QUANTILES.index(0.5)]
     weights = np.asarray(suite.weights, float)
     w = weights[:, None, None, None] / weights.sum()
     contact = np.einsum("rlbg,rlbg->lbg", np.broadcast_to(w, fell.shape),
                         (peaks["n_impacts"] > 0).astype(float))
     crushed = np.einsum("rlbg,rlbg->lbg", np.broadcast_to(w, fell.shape),
-                        (peaks["max_indentation"] >= DELTA_U).astype(float))
+                        derived.crushed(peaks["max_indentation"], DELTA_U).astype(float))
     crushed[:, :2] = np.nan  # no bumpers
     sa = levels * s_mt
     eal = hazards.mean_annual(sa, mean_cost, curve)
@@ -251,12 +250,17 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
                                          "of collapse (the collapse fragility over the hazard "
                                          "curve)"),
         "collapse_probability": variable(conf, fragility.collapse_probability.transpose(
-            *conf).values, "1", "P(collapse | MCE_R) (studies.collapse)"),
+            *conf).values, "1", "P(collapse | MCE_R) (studies.collapse; an upper bound where "
+            "collapse_probability_bound says so)"),
+        "collapse_probability_bound": variable(conf, fragility.collapse_probability_bound
+                                               .transpose(*conf).values.astype(str), "1",
+                                               "exact, or 'at most': S_CT above the highest "
+                                               "level of the collapse study"),
         "acmr": variable(conf, acmr, "1", "the collapse fragility's median, x MCE_R: the "
                          "adjusted collapse margin ratio (studies.collapse)"),
         "beta_total": variable(conf, beta, "1", "the collapse fragility's dispersion "
                                "beta_TOT (studies.collapse)"),
-        "median_repair_cost_mce": variable(conf, median_cost[0, at_mce],
+        "median_repair_cost_mce": variable(conf, median_cost[at_mce],
                                            "USD_2011", "median repair cost at the MCE_R, USD_2011"),
         "hazard_sa": variable("hazard_point", curve.sa, "m s-2", "the hazard curve's Sa(T_M)"),
         "hazard_rate": variable("hazard_point", curve.rate, "yr-1", "the hazard curve's "
@@ -309,7 +313,8 @@ def decision_table(ds) -> str:
             at = dict(barrier=b, gap_fraction=g)
             lines.append(
                 f"{gap / CM:6.1f}cm {barrier:>11} "
-                f"{100 * float(ds.collapse_probability[at]):13.1f}% "
+                f"{'<=' if str(ds.collapse_probability_bound[at].values) != 'exact' else '':>2}"
+                f"{100 * float(ds.collapse_probability[at]):11.1f}% "
                 f"{float(ds.median_repair_cost_mce[at]) / 1e6:14.2f} M$ "
                 f"{float(ds.expected_annual_loss[at]) / 1e3:7.1f} k$ "
                 f"{float(ds.annual_rate_contact[at]):13.2e}"
