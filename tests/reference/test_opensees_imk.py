@@ -248,9 +248,9 @@ def test_without_cyclic_deterioration_the_engine_misses_opensees(engine_imk, gro
                            ("peak_interstory_drift",)) > 10 * RTOL
 
 
-def test_engine_imk_collapses_in_an_ida_where_opensees_does(engine_imk, ground, ida_opensees):
-    """The IDA as one batch (scale=) in the compiled loop (the NumPy loop collapses at the same
-    step: tests/engine/test_collapse.py): the first collapsing intensity of the engine and of
+def test_engine_imk_collapses_in_an_ida_where_opensees_does(engine_imk, ground, ida_opensees,
+                                                            backend):
+    """The IDA as one batch (scale=): the first collapsing intensity of the engine and of
     OpenSees within one step of each other, and likewise the last standing one; where both
     collapse two steps or more above both thresholds, at the same time within 0.05 s; where
     both stand, every peak within 0.5 %."""
@@ -260,7 +260,7 @@ def test_engine_imk_collapses_in_an_ida_where_opensees_does(engine_imk, ground, 
                                collapse_drift_ratio=IDA_RATIO)
     scales = opd.IDA_SCALES
     result = engine.simulate(ag, ag_dt, Contact.none(len(scales)), building, scale=scales,
-                             backend="numba")
+                             backend=backend)
     mine = np.asarray(result.collapsed, bool)
     theirs = ida_opensees["collapsed"]
     summary = (f"engine {mine.astype(int)}, OpenSees {theirs.astype(int)} (by non-convergence "

@@ -199,9 +199,9 @@ def test_engine_yielding_stories_with_pdelta_match_opensees(engine_pdelta, groun
     opd.assert_free_and_wall_match(result, yielding_opensees)
 
 
-def test_engine_collapses_in_an_ida_where_opensees_does(engine_pdelta, ground, ida_opensees):
-    """The IDA as one batch (scale=) in the compiled loop (the NumPy loop collapses at the same
-    step: tests/engine/test_collapse.py): the first collapsing intensity of the engine and of
+def test_engine_collapses_in_an_ida_where_opensees_does(engine_pdelta, ground, ida_opensees,
+                                                        backend):
+    """The IDA as one batch (scale=): the first collapsing intensity of the engine and of
     OpenSees within one step of each other, and likewise the last standing one; where both
     collapse two steps or more above both thresholds, at the same time within 0.05 s."""
     ag, ag_dt = ground
@@ -210,7 +210,7 @@ def test_engine_collapses_in_an_ida_where_opensees_does(engine_pdelta, ground, i
                                p_delta=True, collapse_drift_ratio=IDA_RATIO)
     scales = opd.IDA_SCALES
     result = engine.simulate(ag, ag_dt, Contact.none(len(scales)), building, scale=scales,
-                             backend="numba")
+                             backend=backend)
     mine = np.asarray(result.collapsed, bool)
     theirs = ida_opensees["collapsed"]
     summary = f"engine {mine.astype(int)}, OpenSees {theirs.astype(int)}, scales {opd.IDA_SCALES}"
