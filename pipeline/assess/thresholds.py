@@ -5,7 +5,10 @@ uncertainties FEMA P695 adds to a record-to-record dispersion. Pure data and fun
 
 A floor acceleration event at a threshold is "the largest peak floor acceleration exceeds the
 median capacity of that component's first damage state": past it, more than half of those
-components are damaged. Drift events likewise, as interstory drift ratios.
+components are damaged. Drift events likewise, as interstory drift ratios. The studies
+compare the largest resultant peak in plan (the floor's, the story's), where FEMA P-58 takes
+a non-directional component's demand as 1.2 times the larger direction's peak: the events are
+thresholds on the response, not the damage assessment (pipeline.assess.loss does that).
 """
 from __future__ import annotations
 

@@ -138,8 +138,7 @@ def event_text(name: str, thresholds) -> str:
 
 def compute(args):
     args.thresholds = chosen_thresholds(args)
-    if not getattr(args, "bootstrap", None):
-        args.bootstrap = QUICK_BOOTSTRAP if args.quick else BOOTSTRAP
+    args.bootstrap = QUICK_BOOTSTRAP if args.quick else BOOTSTRAP
     pairs, names = chosen_pairs(args, QUICK_PAIRS)
     suite = scaled_suite(args, pairs, names)  # at --bound: its building, its D_M and D_TM
     levels = np.array(QUICK_LEVELS if args.quick else LEVELS)
