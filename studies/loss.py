@@ -192,10 +192,9 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
                                     out["replacement_time"], q)
     median_cost = cost_q[QUANTILES.index(0.5)]
     weights = np.asarray(suite.weights, float)
-    w = weights[:, None, None, None] / weights.sum()
-    contact = np.einsum("rlbg,rlbg->lbg", np.broadcast_to(w, fell.shape),
-                        (peaks["n_impacts"] > 0).astype(float))
-    crushed = np.einsum("rlbg,rlbg->lbg", np.broadcast_to(w, fell.shape),
+    share = weights / weights.sum()  # each pair's share of the weight, per earthquake
+    contact = np.einsum("r,rlbg->lbg", share, (peaks["n_impacts"] > 0).astype(float))
+    crushed = np.einsum("r,rlbg->lbg", share,
                         derived.crushed(peaks["max_indentation"], DELTA_U).astype(float))
     crushed[:, :2] = np.nan  # no bumpers
     sa = levels * s_mt

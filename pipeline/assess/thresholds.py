@@ -31,6 +31,11 @@ class Threshold:
     damage_state: int
     description: str
 
+    @property
+    def event(self) -> str:
+        """The event's name in a study: floor_accel_NAME or drift_NAME."""
+        return f"{'floor_accel' if self.demand == 'floor_accel' else 'drift'}_{self.name}"
+
 
 ACCELERATION = (
     Threshold("lights", "floor_accel", 0.6 * G, "C.30.34.001", 1,

@@ -126,7 +126,7 @@ def chosen_thresholds(args) -> tuple[Threshold, ...]:
 def event_text(name: str, thresholds) -> str:
     """What event `name` is (EVENTS, a threshold's event naming its component)."""
     for t in thresholds:
-        if name == f"{'floor_accel' if t.demand == 'floor_accel' else 'drift'}_{t.name}":
+        if name == t.event:
             what = (f"{t.value / G:g} g" if t.demand == "floor_accel" else f"{t.value:g}")
             if t.component:
                 what += (f", the median capacity of FEMA P-58 {t.component} damage state "
@@ -277,7 +277,7 @@ def _dataset(suite, levels, fractions, gaps, peaks, args):
     counts = {name: int(by_config(value).sum()) for name, value in flagged.items()}
     attrs.update({
         "moat": args.moat, "thresholds": json.dumps(
-            {f"{'floor_accel' if t.demand == 'floor_accel' else 'drift'}_{t.name}":
+            {t.event:
              {"value": t.value, "units": "m s-2" if t.demand == "floor_accel" else "1",
               "component": t.component, "damage_state": t.damage_state,
               "what": t.description} for t in args.thresholds}),
@@ -330,10 +330,8 @@ def _events(peaks, building, args, capacity, wall_force, by_config) -> dict:
     else:
         beyond = (drift_all * np.asarray(building.story_stiffness)).max(axis=-1) > capacity
     out = {"contact": peaks["n_impacts"] > 0, "bumpers_crushed": crushed,
-           **{f"floor_accel_{t.name}": accel > t.value for t in args.thresholds
-              if t.demand == "floor_accel"},
-           **{f"drift_{t.name}": ratio > t.value for t in args.thresholds
-              if t.demand == "drift_ratio"},
+           **{t.event: (accel if t.demand == "floor_accel" else ratio) > t.value
+              for t in args.thresholds},
            "story_capacity": beyond}
     if wall_force is not None:
         out["wall_force"] = peaks["max_impact_force"] > wall_force
