@@ -4,7 +4,8 @@ Arrays in, arrays out; SI units (units.py converts the paper's cm, g, kN); a lea
 axis B on every state array. Where things live:
 
     building.py   the shear building: any number of stories on a story law, P-Delta,
-                  collapse, damping
+                  collapse, damping; torsion.py: a building that twists in plan (its plan,
+                  eccentric masses, bearings where they stand, the moat's contact points)
     stories/      the story laws, one module each in stories/laws/ (linear, bilinear, imk),
                   and the Stories a building's stories follow
     isolators/    the isolator laws, one module each in isolators/laws/ (bilinear, friction
@@ -28,11 +29,11 @@ from .building import Building
 from .errors import EngineError, UnstableTimeStep
 from .impact import Contact
 from .isolators import Isolator
-from .results import History, PlanResult, Result, TwoBodyResult
+from .results import History, PlanResult, Result, TorsionResult, TwoBodyResult
 from .scheme import DEFAULT_DT
 from .simulate import simulate, stable_dt, two_body
 from .stories import Stories
 
 __all__ = ["Building", "Contact", "DEFAULT_DT", "EngineError", "History", "Isolator",
-           "PlanResult", "Result", "Stories", "TwoBodyResult", "UnstableTimeStep", "simulate",
-           "stable_dt", "two_body", "units"]
+           "PlanResult", "Result", "Stories", "TorsionResult", "TwoBodyResult",
+           "UnstableTimeStep", "simulate", "stable_dt", "two_body", "units"]

@@ -15,6 +15,7 @@ from .errors import EngineError
 BACKENDS = ("numba", "numpy")
 _LOOPS = {"numba": "numba_loop", "numpy": "numpy_loop"}
 _PLAN_LOOPS = {"numba": "numba_plan", "numpy": "numpy_plan"}
+_TORSION_LOOPS = {"numba": "numba_torsion", "numpy": "numpy_torsion"}
 
 
 class BackendNotice(RuntimeWarning):
@@ -33,6 +34,12 @@ def time_loop(backend: str) -> ModuleType:
 def plan_loop(backend: str) -> ModuleType:
     """The loop module of a run in plan (engine/loops/numba_plan.py or numpy_plan.py)."""
     return importlib.import_module(f"{__package__}.loops.{_PLAN_LOOPS[backend]}")
+
+
+def torsion_loop(backend: str) -> ModuleType:
+    """The loop module of buildings that twist (engine/loops/numba_torsion.py or
+    numpy_torsion.py)."""
+    return importlib.import_module(f"{__package__}.loops.{_TORSION_LOOPS[backend]}")
 
 
 def resolve_backend(backend: str | None) -> str:

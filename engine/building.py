@@ -15,6 +15,8 @@ from functools import lru_cache
 
 import numpy as np
 
+from . import torsion
+from .chain import chain_matrix
 from .errors import EngineError
 from .isolators import Isolator
 from .stories import Stories
@@ -28,11 +30,16 @@ FIELD_UNITS = {"masses": "kg", "story_stiffness": "N m-1", "k1": "N m-1", "k2": 
                "fy_ratio": "1", "zeta_iso": "1", "zeta_sup": "1", "damping": None, "g": "m s-2",
                "isolator": None, "story_yield_force": "N", "story_post_yield_ratio": "1",
                "story_stiffness_y": "N m-1", "stories": None, "story_height": "m",
-               "p_delta": None, "collapse_drift_ratio": "1"}
+               "p_delta": None, "collapse_drift_ratio": "1", "plan_size": "m",
+               "eccentricity": "m", "mass_inertia": "kg m2", "isolator_positions": "m",
+               "story_torsional_stiffness": "N m rad-1"}
 """Every Building field and its SI unit (None: text or an Isolator), for files and archives."""
-PER_LEVEL = ("masses",)
+PER_LEVEL = ("masses", "mass_inertia")
 """Fields with one value per level, the isolation slab first."""
-PER_STORY = ("story_stiffness", "story_yield_force", "story_stiffness_y", "story_height")
+PER_STORY = ("story_stiffness", "story_yield_force", "story_stiffness_y", "story_height",
+             "story_torsional_stiffness")
+IN_PLAN = ("plan_size", "eccentricity", "isolator_positions")
+"""Fields of coordinates in plan, (x, y) pairs: one pair, or one per level or per bearing."""
 """Fields with one value per story, the first story first."""
 
 
@@ -72,7 +79,17 @@ class Building:
         their law is their test's). Default False: the paper's building;
     collapse_drift_ratio : None, or the drift ratio |drift_i| / h_i past which a member's run
         ends as collapsed (e.g. COLLAPSE_DRIFT_RATIO); a non-finite state (a numerical
-        instability) ends a run as collapsed whatever this is.
+        instability) ends a run as collapsed whatever this is;
+    plan_size : None (a run in plan moves the levels without rotating them) or (b_x, b_y) m,
+        the rectangular plan of every level: the building then twists in plan (three degrees
+        of freedom per level, engine/torsion.py: the model, its limits);
+    eccentricity : (e_x, e_y) m, or one pair per level: the mass centre from the plan's centre;
+    mass_inertia : None (uniform slabs, m (b_x^2 + b_y^2) / 12) or per level the polar moment
+        (kg m^2) about the level's own mass centre;
+    isolator_positions : None (a 4 x 4 grid under the slab, the outer bearings at its edges)
+        or (n, 2) m, the bearings' positions from the plan's centre, each 1/n of the isolator;
+    story_torsional_stiffness : None (a perimeter frame's, k_y (b_x/2)^2 + k (b_y/2)^2) or N
+        values in N m/rad.
     """
 
     masses: tuple[float, ...] = PAPER_MASSES
@@ -92,6 +109,11 @@ class Building:
     story_height: tuple[float, ...] | None = None
     p_delta: bool = False
     collapse_drift_ratio: float | None = None
+    plan_size: tuple[float, float] | None = None
+    eccentricity: tuple = (0.0, 0.0)
+    mass_inertia: tuple[float, ...] | None = None
+    isolator_positions: tuple | None = None
+    story_torsional_stiffness: tuple[float, ...] | None = None
 
     def __post_init__(self):
         masses = np.asarray(self.masses, dtype=float)
@@ -145,6 +167,19 @@ class Building:
                 raise EngineError("story_stiffness_y applies to linear stories: yielding "
                                   "stories have a circular yield surface, the same stiffness "
                                   "both ways")
+        self._check_plan()
+
+    def _check_plan(self) -> None:
+        """The fields of a building that twists: given only with plan_size, checked there."""
+        if self.plan_size is not None:
+            for name, value in torsion.checked_layout(self).items():
+                object.__setattr__(self, name, value)
+            return
+        given = [name for name in ("mass_inertia", "isolator_positions",
+                                   "story_torsional_stiffness") if getattr(self, name) is not None]
+        if given or np.any(np.asarray(self.eccentricity, float) != 0):
+            raise EngineError(f"{', '.join(given) or 'eccentricity'}: a building that twists "
+                              "needs its plan_size (b_x, b_y) m")
 
     def _check_stories(self, stiff: np.ndarray) -> None:
         """The story law (the shorthand or `stories`), heights, P-Delta and collapse."""
@@ -298,7 +333,7 @@ class Building:
         initial stiffness unless given)."""
         k_iso = self.isolator_stiffness if isolator_stiffness is None else isolator_stiffness
         springs = np.concatenate([[k_iso], np.asarray(self.story_stiffness, dtype=float)])
-        return _chain_matrix(springs)
+        return chain_matrix(springs)
 
     def fixed_base_omega1(self) -> float:
         """First circular frequency (rad/s) of the superstructure with level 0 held fixed."""
@@ -306,13 +341,18 @@ class Building:
         m = np.asarray(self.masses[1:], dtype=float)
         return float(np.sqrt(_generalized_eigvals(k, m)[0]))
 
+    def dashpots(self) -> tuple[float, np.ndarray]:
+        """damping="paper"'s dashpots: the isolation's 2 zeta_iso sqrt(k_0 M) and the stories'
+        (N,) stiffness-proportional 2 zeta_sup k_i / omega_1 (N s/m), omega_1 the fixed-base
+        superstructure's first circular frequency."""
+        c_story = 2 * self.zeta_sup * np.asarray(self.story_stiffness) / self.fixed_base_omega1()
+        return self.isolation_dashpot, c_story
+
     def damping_matrix(self) -> np.ndarray:
         """(L, L) viscous damping matrix, N*s/m, per the `damping` choice."""
         if self.damping == "paper":
-            c_iso = self.isolation_dashpot
-            omega_1 = self.fixed_base_omega1()
-            c_story = 2 * self.zeta_sup * np.asarray(self.story_stiffness) / omega_1
-            return _chain_matrix(np.concatenate([[c_iso], c_story]))
+            c_iso, c_story = self.dashpots()
+            return chain_matrix(np.concatenate([[c_iso], c_story]))
         m = np.asarray(self.masses, dtype=float)
         omega2, phi = _generalized_eig(self.stiffness_matrix(), m)
         zeta = np.full(self.n_levels, self.zeta_sup)
@@ -325,20 +365,6 @@ class Building:
         unless given."""
         omega2 = _generalized_eigvals(self.stiffness_matrix(isolator_stiffness), self.masses)
         return 2 * np.pi / np.sqrt(omega2)
-
-
-def _chain_matrix(springs: np.ndarray) -> np.ndarray:
-    """Assemble a chain of springs (or dashpots): element 0 joins ground to level 0,
-    element i joins level i-1 to level i."""
-    n = len(springs)
-    mat = np.zeros((n, n))
-    for i, s in enumerate(springs):
-        mat[i, i] += s
-        if i > 0:
-            mat[i - 1, i - 1] += s
-            mat[i - 1, i] -= s
-            mat[i, i - 1] -= s
-    return mat
 
 
 def _generalized_eig(k: np.ndarray, m) -> tuple[np.ndarray, np.ndarray]:

@@ -35,11 +35,13 @@ class Quantity:
     wall: bool = False
     direction: bool = False
 
-    def trailing_shape(self, n_levels: int, n_walls: int = 1) -> tuple[int, ...]:
+    def trailing_shape(self, n_levels: int, n_walls: int = 1,
+                       n_points: int = 1) -> tuple[int, ...]:
         """The member's shape of this quantity for a building of n_levels levels (and a moat
-        of n_walls walls, for a quantity along "wall"); a per-direction quantity adds a last
-        axis of 2 (x, y)."""
-        lengths = {None: (), "floor": (n_levels,), "story": (n_levels - 1,), "wall": (n_walls,)}
+        of n_walls walls, for a quantity along "wall"; of n_points contact points, along
+        "point"); a per-direction quantity adds a last axis of 2 (x, y)."""
+        lengths = {None: (), "floor": (n_levels,), "story": (n_levels - 1,), "wall": (n_walls,),
+                   "point": (n_points,)}
         return lengths[self.along] + ((len(DIRECTIONS),) if self.direction else ())
 
 
@@ -109,14 +111,37 @@ PLAN_HISTORIES: tuple[Quantity, ...] = (
 quantity has one."""
 
 
+TORSION_PEAKS: tuple[Quantity, ...] = (
+    Quantity("peak_corner_disp", "m", "peak isolator displacement at the slab's worst corner "
+             "(resultant)"),
+    Quantity("peak_rotation", "rad", "peak rotation of the isolation slab about the vertical"),
+    Quantity("max_point_force", "N", "maximum force on each contact point of the moat (a "
+             "corner against a bare wall, a bumper)", "point", wall=True),
+    Quantity("max_point_indentation", "m", "maximum indentation at each contact point of the "
+             "moat", "point", wall=True),
+)
+"""What a run of a building that twists returns besides PEAKS (at the plan's centre) and
+PLAN_PEAKS (max_impact_force_wall: the peak of the sum of a wall's points' forces;
+max_impact_force the largest of them)."""
+
+TORSION_HISTORIES: tuple[Quantity, ...] = (
+    *PLAN_HISTORIES,
+    Quantity("floor_disp", "m", "displacement of each level's plan centre in each direction",
+             "floor", direction=True),
+    Quantity("floor_rotation", "rad", "rotation of each level about the vertical", "floor"),
+)
+"""The time histories of a building that twists: the plan's (at the plan's centre) and every
+level's displacement and rotation (the corners' orbits follow: engine.torsion.corner_orbits)."""
+
+
 def empty_plan_history(rows: int, n_steps: int, every: int, dt: float,
-                       n_levels: int) -> dict[str, np.ndarray]:
-    """Zeroed histories in plan for `rows` members, every `every`-th of n_steps steps, with
-    their time (T,) s."""
+                       n_levels: int, torsion: bool = False) -> dict[str, np.ndarray]:
+    """Zeroed histories in plan (of a building that twists: `torsion`) for `rows` members,
+    every `every`-th of n_steps steps, with their time (T,) s."""
     n_out = (n_steps - 1) // every + 1
     return {"time": np.arange(n_out) * every * dt,
             **{q.name: np.zeros((rows, n_out, *q.trailing_shape(n_levels)))
-               for q in PLAN_HISTORIES}}
+               for q in (TORSION_HISTORIES if torsion else PLAN_HISTORIES)}}
 
 
 PEAK_NAMES = tuple(q.name for q in PEAKS)
@@ -141,12 +166,14 @@ def level_axes(n_levels: int) -> dict[str, tuple[np.ndarray, str, str]]:
                       "story (story i joins level i-1 to level i)")}
 
 
-def run_quantities(moat: str | None = None, collapse: bool = False) -> tuple[Quantity, ...]:
+def run_quantities(moat: str | None = None, collapse: bool = False,
+                   torsion: bool = False) -> tuple[Quantity, ...]:
     """What a run returns and an archive keeps of it: PEAKS, then PLAN_PEAKS for a run in
-    plan (`moat`), then COLLAPSE for a building with a collapse criterion (so that a building
-    without one, the paper's, keeps the archive it had)."""
+    plan (`moat`), then TORSION_PEAKS for a building that twists, then COLLAPSE for a
+    building with a collapse criterion (so that a building without one, the paper's, keeps
+    the archive it had)."""
     return (*PEAKS, *(PLAN_PEAKS if moat is not None else ()),
-            *(COLLAPSE if collapse else ()))
+            *(TORSION_PEAKS if torsion else ()), *(COLLAPSE if collapse else ()))
 
 
 def empty_collapse(size: int) -> dict[str, np.ndarray]:
@@ -155,12 +182,14 @@ def empty_collapse(size: int) -> dict[str, np.ndarray]:
 
 
 def empty_peaks(size: int, n_levels: int, moat: str | None = None,
-                collapse: bool = False) -> dict[str, np.ndarray]:
-    """(size, ...) arrays of every quantity of run_quantities(moat, collapse), zeroed (no
-    member collapsed, collapse_time NaN), for a building of n_levels levels."""
+                collapse: bool = False, n_points: int | None = None) -> dict[str, np.ndarray]:
+    """(size, ...) arrays of every quantity of run_quantities(moat, collapse, torsion), zeroed
+    (no member collapsed, collapse_time NaN), for a building of n_levels levels; n_points:
+    None, or the contact points of a building that twists (TORSION_PEAKS)."""
     walls = 1 if moat is None else len(WALLS[moat])
-    out = {q.name: np.zeros((size, *q.trailing_shape(n_levels, walls)), dtype=q.dtype)
-           for q in run_quantities(moat, collapse)}
+    out = {q.name: np.zeros((size, *q.trailing_shape(n_levels, walls, n_points or 1)),
+                            dtype=q.dtype)
+           for q in run_quantities(moat, collapse, n_points is not None)}
     if collapse:
         out["collapse_time"][:] = np.nan
     return out
@@ -218,6 +247,24 @@ class PlanResult(Result):
     def plan_peaks(self) -> dict[str, np.ndarray]:
         """PLAN_PEAKS name -> array."""
         return {q.name: getattr(self, q.name) for q in PLAN_PEAKS}
+
+
+@dataclass
+class TorsionResult(PlanResult):
+    """A run of buildings that twist: PlanResult's peaks at the plan's centre, then
+    TORSION_PEAKS: peak_corner_disp (B,) m, peak_rotation (B,) rad, max_point_force and
+    max_point_indentation (B, P) N and m per contact point; points: the moat's contact points
+    (engine.torsion.ContactPoints: each point's wall, position along it, share of its law)."""
+
+    peak_corner_disp: np.ndarray = None
+    peak_rotation: np.ndarray = None
+    max_point_force: np.ndarray = None
+    max_point_indentation: np.ndarray = None
+    points: object = None
+
+    def torsion_peaks(self) -> dict[str, np.ndarray]:
+        """TORSION_PEAKS name -> array."""
+        return {q.name: getattr(self, q.name) for q in TORSION_PEAKS}
 
 
 @dataclass

@@ -54,14 +54,19 @@ def step_operators(b: BuildingArrays, dt: float):
     [p - f(u_n), v_{n-1/2}] to v_{n+1/2} (L levels); the (B, L) wall response, the velocity
     change of every level per newton pushing level 0 back; and its level-0 entry, the (B,)
     compliance (m/s/N)."""
-    mass = b.masses
-    identity = np.eye(mass.shape[1])
-    lhs = mass[:, :, None] * identity / dt**2 + b.damping / (2 * dt)
-    lhs_inv = np.linalg.inv(lhs)
-    carry = mass[:, :, None] * identity / dt - b.damping / 2
-    step_op = np.concatenate([lhs_inv / dt, lhs_inv @ carry / dt], axis=2)
+    step_op = full_step_operator(b.masses[:, :, None] * np.eye(b.masses.shape[1]), b.damping,
+                                 dt)
     wall_response = step_op[:, :, 0].copy()
     return step_op, wall_response, wall_response[:, 0].copy()
+
+
+def full_step_operator(mass: np.ndarray, damping: np.ndarray, dt: float) -> np.ndarray:
+    """(B, n, 2n) the step operator of mass and damping matrices (B, n, n): v_{n+1/2} =
+    [(M/dt^2 + C/(2dt))^-1 / dt, (M/dt^2 + C/(2dt))^-1 (M/dt - C/2) / dt] [p - f(u_n),
+    v_{n-1/2}]."""
+    lhs_inv = np.linalg.inv(mass / dt**2 + damping / (2 * dt))
+    carry = mass / dt - damping / 2
+    return np.concatenate([lhs_inv / dt, lhs_inv @ carry / dt], axis=2)
 
 
 DENSE_LEVELS = 12

@@ -12,12 +12,13 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from .backends import plan_loop, resolve_backend, time_loop
+from . import torsion
+from .backends import plan_loop, resolve_backend, time_loop, torsion_loop
 from .building import Building, building_arrays
 from .errors import EngineError, UnstableTimeStep
 from .impact import NONE, Contact
 from .plan import ANGLE, MOATS, MU_WALL
-from .results import History, PlanResult, Result, TwoBodyResult
+from .results import History, PlanResult, Result, TorsionResult, TwoBodyResult
 from .scheme import (
     DEFAULT_DT,
     INDENTATION_BOUND,
@@ -25,6 +26,7 @@ from .scheme import (
     checked_scale,
     stability_limit,
 )
+from .torsion import contact_points, torsion_arrays
 
 DEFAULT_STEPS_PER_CONTACT = 4000
 
@@ -41,7 +43,8 @@ def simulate(accel, accel_dt: float, contact: Contact,
              history: History | None = None,
              progress: Callable[[int, int], None] | None = None,
              backend: str | None = None, scale=None, *, moat: str | None = None,
-             contact_y: Contact | None = None, angle=None, mu_wall=None) -> Result:
+             contact_y: Contact | None = None, angle=None, mu_wall=None,
+             bumper_positions=None) -> Result:
     """Integrate B isolated buildings under one ground motion, pounding on their moat walls.
 
     accel: (N,) ground acceleration in m/s^2 every accel_dt s, linearly interpolated onto dt;
@@ -70,6 +73,11 @@ def simulate(accel, accel_dt: float, contact: Contact,
     many angles). mu_wall: None (0) or (B,) Coulomb friction coefficients between slab and
     wall (-): a slab pressing on a wall with normal force N slides along it against mu_wall N
     or sticks. The building's story_stiffness_y (if any) sets its stories along y.
+    A building with a plan_size twists (engine/torsion.py; rectangular moat only): it returns
+    a TorsionResult, the peaks at the plan's centre with the corners', the rotation and each
+    contact point's (results.TORSION_PEAKS); bumper_positions: None (the slab's corners meet
+    bare walls) or (along the x walls, along the y walls), the bumpers' positions in metres
+    from the plan's centre, each carrying its share of the wall's law.
     Returns a PlanResult: the PEAKS as resultants (vector magnitudes), the
     per-direction peaks and the largest force on each wall (loops/numba_plan.py compiled, or
     loops/numpy_plan.py); its history (results.PLAN_HISTORIES) has the isolator's orbit
@@ -78,10 +86,13 @@ def simulate(accel, accel_dt: float, contact: Contact,
     """
     if np.ndim(accel) == 2:
         return _simulate_plan(accel, accel_dt, contact, building, dt, history, progress,
-                              backend, scale, moat, contact_y, angle, mu_wall)
-    if moat is not None or contact_y is not None or angle is not None or mu_wall is not None:
-        raise EngineError("moat, contact_y, angle and mu_wall apply to a run in plan: give "
-                          "accel as (N, 2), the record pair's x and y components")
+                              backend, scale, moat, contact_y, angle, mu_wall,
+                              bumper_positions)
+    if moat is not None or contact_y is not None or angle is not None or mu_wall is not None \
+            or bumper_positions is not None or _twisting(building):
+        raise EngineError("moat, contact_y, angle, mu_wall, bumper_positions and a building's "
+                          "plan_size apply to a run in plan: give accel as (N, 2), the record "
+                          "pair's x and y components")
     if not isinstance(contact, Contact):
         raise EngineError("contact must be an engine.Contact")
     size = len(contact)
@@ -107,12 +118,28 @@ def simulate(accel, accel_dt: float, contact: Contact,
     return Result(**peaks, dt=dt, history=hist)
 
 
+def _twisting(building) -> bool:
+    """Whether the members twist (plan_size given); EngineError when only some do."""
+    members = [building] if isinstance(building, Building) else list(building)
+    twists = {getattr(b, "plan_size", None) is not None for b in members}
+    if len(twists) > 1:
+        raise EngineError("building: the members of one batch either all twist (plan_size "
+                          "given) or none does")
+    return twists == {True}
+
+
 def _simulate_plan(accel, accel_dt, contact, building, dt, history, progress, backend, scale,
-                   moat, contact_y, angle, mu_wall) -> PlanResult:
+                   moat, contact_y, angle, mu_wall, bumper_positions) -> PlanResult:
     """simulate for a record pair (N, 2): the plan loop (see simulate)."""
     moat = "rectangular" if moat is None else moat
     if moat not in MOATS:
         raise EngineError(f"moat must be one of {MOATS}, got {moat!r}")
+    twisting = _twisting(building)
+    if bumper_positions is not None and not twisting:
+        raise EngineError("bumper_positions place bumpers along the walls of a building that "
+                          "twists: give the building its plan_size")
+    if twisting and moat != "rectangular":
+        raise EngineError("a building that twists (plan_size) needs the rectangular moat")
     if not isinstance(contact, Contact) or (contact_y is not None
                                             and not isinstance(contact_y, Contact)):
         raise EngineError("contact (and contact_y) must be an engine.Contact")
@@ -135,7 +162,13 @@ def _simulate_plan(accel, accel_dt, contact, building, dt, history, progress, ba
     contacts = (contact, contact if contact_y is None else contact_y) \
         if moat == "rectangular" else (contact,)
     directions = (arrays,) if arrays_y is None else (arrays, arrays_y)
-    limit = np.min([stability_limit(a, c) for c in contacts for a in directions], axis=0)
+    if twisting:
+        twist = torsion_arrays([building] if isinstance(building, Building) else building, size)
+        points = contact_points(twist.plan, bumper_positions)
+        limit = torsion.stability_limit(twist, points, [c.max_tangent_stiffness(
+            INDENTATION_BOUND) for c in contacts])
+    else:
+        limit = np.min([stability_limit(a, c) for c in contacts for a in directions], axis=0)
     worst = int(np.argmin(limit))
     if dt >= limit[worst]:
         raise UnstableTimeStep(f"dt = {dt:g} s is unstable: the central-difference limit is "
@@ -150,8 +183,13 @@ def _simulate_plan(accel, accel_dt, contact, building, dt, history, progress, ba
         friction = None  # frictionless walls: the loops skip the tangential solve
     from .loops import numpy_plan
 
-    loop = plan_loop(resolve_backend(backend))
     ag = numpy_plan.ground_motion(accel, float(accel_dt), float(dt), n_steps)
+    if twisting:
+        loop = torsion_loop(resolve_backend(backend))
+        peaks, hist = loop.run_torsion(ag, dt, arrays, twist, contacts, points, progress, scale,
+                                       np.radians(angle), history, friction)
+        return TorsionResult(**peaks, dt=dt, history=hist, moat=moat, points=points)
+    loop = plan_loop(resolve_backend(backend))
     peaks, hist = loop.run_plan(ag, dt, arrays, contacts, moat, progress, scale,
                                 np.radians(angle), history, arrays_y, friction)
     return PlanResult(**peaks, dt=dt, history=hist, moat=moat)

@@ -37,7 +37,8 @@ def _sweep(records, *, impact: str = "bumper", dt: float | None = None, workers:
            scheduler=None, out=None, baseline: bool = False, unconstrained: bool = False,
            building=None, m_eff: float | None = None, batch_size: int | None = None,
            records_dir=None, quiet: bool = False, work_dir=None, force: bool = False,
-           moat: str | None = None, factors=None, members=None, **parameters):
+           moat: str | None = None, factors=None, members=None, bumper_positions=None,
+           **parameters):
     """Simulate every combination of the parameters under every record; label the peaks.
 
     records: paper keys ("kobe", "sylmar_converter", "olive_view", "pacoima"), library names,
@@ -97,6 +98,10 @@ def _sweep(records, *, impact: str = "bumper", dt: float | None = None, workers:
         multiplying each record's acceleration on top of the level (a code suite's MCE_R
         factors): a member runs at factor x level (level 1 when not given). The archive then
         has a `level` coordinate and `record_factor` along record.
+    bumper_positions: for a building that twists (its plan_size; moat "rectangular"): None,
+        its corners against bare walls, or (along the x walls, along the y walls), the
+        bumpers' positions (m) from the plan's centre (engine.simulate's); the archive then
+        has each contact point's peaks (dimension `point`) and the corners' and rotation's.
     members: instead of a grid, a table of members listed one by one (pipeline.listed: column
         "law" and parameters by name, (K,) for every record or (R, K) per record); the
         archive's dims are then (record, member). No other sweep parameter is given then.
@@ -146,7 +151,7 @@ def _sweep(records, *, impact: str = "bumper", dt: float | None = None, workers:
     return _execute(grid, records, arguments, dt=dt, workers=workers, scheduler=scheduler,
                     out=out, building=building, batch_size=batch_size,
                     records_dir=records_dir, quiet=quiet, work_dir=work_dir, force=force,
-                    moat=moat, factors=factors)
+                    moat=moat, factors=factors, bumper_positions=bumper_positions)
 
 
 def _completed_sweep():
@@ -188,7 +193,8 @@ def unconstrained_peaks(records, dt: float | None = None, building=None, workers
 
 def _execute(grid, records, arguments: dict, *, dt=None, workers: int = 1, scheduler=None,
              out=None, building=None, batch_size=None, records_dir=None, quiet: bool = False,
-             work_dir=None, force: bool = False, moat: str | None = None, factors=None):
+             work_dir=None, force: bool = False, moat: str | None = None, factors=None,
+             bumper_positions=None):
     """Check the rest of the input, open the store (.zarr: Zarr; else NetCDF), run, finish.
     arguments: the call's, stored in the archive; the rest as `sweep` takes them."""
     import engine
@@ -225,7 +231,16 @@ def _execute(grid, records, arguments: dict, *, dt=None, workers: int = 1, sched
     out = check_out(out)
     arguments = plain({**arguments, "records": names, "dt": dt,
                        **({} if factors is None else {"factors": factors})})
-    run = Run(recs, names, dt, building, moat, factors, arguments)
+    if bumper_positions is not None:
+        import numpy as np
+
+        if building.plan_size is None or moat != "rectangular":
+            raise SweepError("bumper_positions place bumpers along the rectangular moat's "
+                             "walls of a building that twists (its plan_size)")
+        bumper_positions = tuple(tuple(float(x) for x in np.ravel(side))
+                                 for side in bumper_positions)
+        arguments["bumper_positions"] = [list(side) for side in bumper_positions]
+    run = Run(recs, names, dt, building, moat, factors, arguments, bumper_positions)
     new_store = None
     if out is not None and out.suffix == ".zarr":
         from .execute.zarr_store import ZarrStore

@@ -136,6 +136,23 @@ def plan_coords(moat: str) -> dict:
     }
 
 
+def point_coords(building: engine.Building, bumper_positions) -> dict:
+    """The contact points of a building that twists: their wall and position along it."""
+    from engine.torsion import contact_points
+
+    points = contact_points(np.array([building.plan_size]), bumper_positions)
+    return {
+        "point": variable("point", np.arange(points.wall.size), "1",
+                          "contact point of the moat: a corner of the slab against a bare "
+                          "wall, or a bumper (engine.torsion.contact_points)"),
+        "point_wall": variable("point", np.array(WALLS["rectangular"])[points.wall], "1",
+                               "the contact point's wall, named by its outward normal"),
+        "point_along": variable("point", points.along[0], "m",
+                                "the contact point's position along its wall from the plan's "
+                                "centre (y for the x walls, x for the y walls)"),
+    }
+
+
 def level_coords(n_levels: int) -> dict:
     """The floor and story coordinates of a building of n_levels levels."""
     return {axis: variable(axis, values, units, long_name)
@@ -336,7 +353,8 @@ def build_dataset(grid: Grid, run, results: list[dict[str, np.ndarray]] | None,
     """
     records, building, moat = run.records, run.building, run.moat
     names = record_labels(records, run.names)
-    quantities = run_quantities(moat, building.can_collapse)
+    n_points = run.n_points
+    quantities = run_quantities(moat, building.can_collapse, n_points is not None)
     data_vars = {}
     start = 0
     for block in grid.blocks:
@@ -348,7 +366,8 @@ def build_dataset(grid: Grid, run, results: list[dict[str, np.ndarray]] | None,
                 import dask.array as da
 
                 tail = q.trailing_shape(building.n_levels,
-                                        len(WALLS[moat]) if moat is not None else 1)
+                                        len(WALLS[moat]) if moat is not None else 1,
+                                        n_points or 1)
                 kind = np.dtype(q.dtype).kind
                 fill = np.nan if kind == "f" else False if kind == "b" else -1
                 peaks[q.name] = da.full((len(records), *block.shape, *tail), fill,
@@ -360,7 +379,8 @@ def build_dataset(grid: Grid, run, results: list[dict[str, np.ndarray]] | None,
                                         quantities))
     coords = {**record_coords(records, names), **level_coords(building.n_levels),
               **parameter_coords(grid), **listed_coords(grid),
-              **({} if moat is None else plan_coords(moat))}
+              **({} if moat is None else plan_coords(moat)),
+              **({} if n_points is None else point_coords(building, run.bumper_positions))}
     if run.factors is not None:
         coords["record_factor"] = variable(
             "record", np.asarray(run.factors, dtype=float), "1", "the record's intensity "

@@ -37,7 +37,14 @@ from pathlib import Path
 import numpy as np
 
 import engine
-from engine.building import FIELD_UNITS, MAX_STORIES, PAPER_MASSES, PER_LEVEL, PER_STORY
+from engine.building import (
+    FIELD_UNITS,
+    IN_PLAN,
+    MAX_STORIES,
+    PAPER_MASSES,
+    PER_LEVEL,
+    PER_STORY,
+)
 from engine.isolators import LAWS as ISOLATOR_LAWS
 from engine.parameters import REQUIRED, Parameter
 from engine.stories import LAWS as STORY_LAWS
@@ -148,9 +155,13 @@ def building_from(specs: Sequence[str] = ()) -> engine.Building:
             settable = ", ".join(n for n in FIELD_UNITS if n not in tables)
             raise BuildingError(f"--building {setting!r}: NAME must be one of {settable} (an "
                                 "isolator or story law is given in a building file)")
+        if name in IN_PLAN:  # x,y pairs, one after the other: "30,20" or "-15,-10;15,10"
+            text = [pair.split(",") for pair in text.split(";")]
+            text = text[0] if len(text) == 1 and name != "isolator_positions" else text
+        elif name in PER_LEVEL + PER_STORY:
+            text = text.split(",")
         fields[name] = text if FIELD_UNITS[name] is None else \
-            _numbers(name, text.split(",") if name in PER_LEVEL + PER_STORY else text,
-                     f"--building {setting!r}")
+            _numbers(name, text, f"--building {setting!r}")
     result = building(fields, where=where)
     notice = defaults_notice(fields, where, described=bool(files))
     if notice:
@@ -319,6 +330,8 @@ def _numbers(name: str, value, where: str):
     """A float, or a tuple of floats for per-level and per-story fields, named in errors with
     the unit the field expects."""
     units = FIELD_UNITS[name]
+    if name in IN_PLAN:
+        return _coordinates(name, value, where)
     many = name in PER_LEVEL + PER_STORY
     what = ("a list of numbers, one per level from the isolation slab up" if name in PER_LEVEL
             else "a list of numbers, one per story from the first up" if many else "a number")
@@ -336,3 +349,20 @@ def _numbers(name: str, value, where: str):
     except ValueError:
         raise BuildingError(f"{where}: {name} must be {what}{unit}: {value!r} is not a "
                             "number") from None
+
+
+def _coordinates(name: str, value, where: str):
+    """An (x, y) pair or a list of them (m), as nested tuples of floats: plan_size,
+    eccentricity (one pair, or one per level), isolator_positions (one per bearing)."""
+    try:
+        array = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        array = None
+    if array is None or array.ndim not in (1, 2) or array.shape[-1] != 2:
+        raise BuildingError(f"{where}: {name} must be an (x, y) pair in m"
+                            f"{' or a list of them' if name != 'plan_size' else ''}, e.g. "
+                            f"[30, 20], got {value!r}")
+    if array.ndim == 1:
+        return tuple(array.tolist())
+    return tuple(map(tuple, array.tolist()))
+

@@ -253,6 +253,10 @@ def two_body_attributes(title: str, arguments: dict | None = None) -> dict:
 
 
 OPTIONAL_FIELDS = ("stories", "story_height", "p_delta", "collapse_drift_ratio")
+PLAN_FIELDS = ("plan_size", "eccentricity", "mass_inertia", "isolator_positions",
+               "story_torsional_stiffness")
+"""The fields of a building that twists: attributes only when it does (plan_size given);
+pairs and lists of pairs as JSON text (NetCDF has no 2-D attribute)."""
 """Building fields left out of the attributes when unused (None or False)."""
 
 
@@ -268,6 +272,10 @@ def building_attributes(building: engine.Building) -> dict:
             continue
         if name in OPTIONAL_FIELDS and getattr(building, name) in (None, False):
             continue  # unused: a building without them (the paper's) keeps its attributes
+        if name in PLAN_FIELDS:
+            if building.plan_size is not None and getattr(building, name) is not None:
+                attrs[f"building_{name}"] = json.dumps(getattr(building, name))
+            continue
         value = building.isolation_zeta if name == "zeta_iso" else getattr(building, name)
         if value is None:
             continue  # absent (e.g. story_yield_force of linear stories): no attribute

@@ -8,6 +8,7 @@ LAW_ARGUMENTS, the same for every law, so that one call signature serves every l
 """
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, fields
 
 import numpy as np
@@ -19,6 +20,11 @@ from .registry import LAW_CODES, LAW_MODULES, LAW_NAMES, LAWS, NONE
 LAW_ARGUMENTS = ("k", "n", "m_eff", "delta_u", "k_w", "dashpot", "damping_ratio", "chi",
                  "c_imp_coef", "c_imp_exponent")
 """The Contact fields every law's force_terms takes after (delta, delta_dot, v_imp), in order."""
+
+SHARED_ARGUMENTS = ("k", "m_eff", "k_w", "dashpot")
+"""The Contact fields scaled by the part of a wall a contact point carries (Contact.part):
+every law's force is proportional to them jointly (tests/engine/test_torsion.py checks each
+registered law)."""
 
 # Contact fields a law leaves unset, and their neutral values.
 _UNSET = {"delta_u": np.inf, "k_w": 0.0, "dashpot": 0.0, "damping_ratio": 0.0, "chi": 0.0,
@@ -65,6 +71,13 @@ class Contact:
         if isinstance(index, (int, np.integer)):
             index = [index]
         return Contact(*(getattr(self, f.name)[index] for f in fields(self)))
+
+    def part(self, share) -> Contact:
+        """This wall carried by a part of it, share (B,) or a number in (0, 1]: its law with
+        SHARED_ARGUMENTS times share, so that its force at any indentation and rate is
+        share times the wall's (one of a wall's contact points, engine/torsion.py)."""
+        return dataclasses.replace(self, **{name: getattr(self, name) * share
+                                            for name in SHARED_ARGUMENTS})
 
     @property
     def law_names(self) -> list[str]:

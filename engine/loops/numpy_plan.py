@@ -205,9 +205,9 @@ def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, an
             hist["total_accel"][:, k] = total_accel[rows]
             hist["impact_force"][:, k] = np.hypot(wall_force[rows, 0], wall_force[rows, 1])
             hist["indentation"][:, k] = np.maximum(step_delta[rows], 0.0)
-        _peak(peaks, "peak_total_accel", total_accel)
-        _peak(peaks, "peak_interstory_drift", drift)
-        _peak(peaks, "peak_isolator_disp", u0)
+        raise_peak(peaks, "peak_total_accel", total_accel)
+        raise_peak(peaks, "peak_interstory_drift", drift)
+        raise_peak(peaks, "peak_isolator_disp", u0)
 
         # Advance: the slip elements see this step's increments, the isolator's limit at this
         # step's sliding speed |v|.
@@ -248,7 +248,7 @@ def _friction(v_next, respond, comp_xy, limit, normal):
     return force
 
 
-def _peak(peaks, name, vectors):
+def raise_peak(peaks, name, vectors):
     """Raise the resultant peak `name` and its per-direction peak `name`_xy."""
     np.maximum(peaks[name], np.sqrt(np.sum(vectors * vectors, axis=-1)), out=peaks[name])
     np.maximum(peaks[name + "_xy"], np.abs(vectors), out=peaks[name + "_xy"])

@@ -32,7 +32,7 @@ class Batch:
 
 def simulate_batch(accel: np.ndarray, accel_dt: float, members: np.ndarray,
                    building: engine.Building, dt: float, moat: str | None = None,
-                   factor: float | None = None, progress=None,
+                   factor: float | None = None, bumper_positions=None, progress=None,
                    report: tuple[str, str] | None = None) -> dict[str, np.ndarray]:
     """Peaks of (b,) members (grid.MEMBER_DTYPE) under one record (m/s^2 every accel_dt s):
     peak name -> (b, ...) array (engine.results.run_quantities: PEAKS, with collapsed and
@@ -41,7 +41,8 @@ def simulate_batch(accel: np.ndarray, accel_dt: float, members: np.ndarray,
     (accel (N,)), else the moat of a run in plan under a record pair (accel (N, 2), each
     member at its angle): PEAKS as resultants, then PLAN_PEAKS. factor: the record's
     intensity factor (None: 1); members carrying a level run at factor x level (engine's
-    scale), those without (NaN) at the record as it is.
+    scale), those without (NaN) at the record as it is. A building that twists (its
+    plan_size) adds TORSION_PEAKS, its bumpers at bumper_positions (engine.simulate's).
 
     progress(step, n_steps) is called as the engine goes; on a dask worker, report =
     (topic, tag) sends [tag, step / n_steps] to the client's event topic instead.
@@ -56,6 +57,9 @@ def simulate_batch(accel: np.ndarray, accel_dt: float, members: np.ndarray,
 
     plan = {} if moat is None else {"moat": moat, "angle": members["angle"],
                                     "mu_wall": members["mu_wall"]}
+    twists = building.plan_size is not None
+    if twists:
+        plan["bumper_positions"] = bumper_positions
     result = engine.simulate(accel, accel_dt, contact_for(members),
                              building=buildings_for(members, building), dt=dt,
                              progress=progress, scale=member_scale(members, factor), **plan)
@@ -68,7 +72,7 @@ def simulate_batch(accel: np.ndarray, accel_dt: float, members: np.ndarray,
             f"(its state was no longer finite); give the building a collapse_drift_ratio to "
             f"count such runs as collapses")
     return {q.name: np.asarray(getattr(result, q.name), dtype=q.dtype)
-            for q in run_quantities(moat, building.can_collapse)}
+            for q in run_quantities(moat, building.can_collapse, twists)}
 
 
 def member_scale(members: np.ndarray, factor: float | None) -> np.ndarray | None:

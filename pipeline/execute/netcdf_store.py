@@ -147,7 +147,7 @@ class NetCDFStore:
         self.total = len(run.records) * grid.n_members
         self.copies: dict = {}  # see pending
         self.results = [empty_peaks(grid.n_members, run.building.n_levels, run.moat,
-                                    run.building.can_collapse)
+                                    run.building.can_collapse, run.n_points)
                         for _ in run.records]
 
     def pending(self, sizes: list[int]) -> list[batches.Batch]:
@@ -183,7 +183,8 @@ class NetCDFStore:
         return batches.simulate_batch, (self.records[batch.record].dt,
                                         self.grid.members_of(batch.record)[batch.members],
                                         run.building, run.dt,
-                                        run.moat, run.factor(batch.record))
+                                        run.moat, run.factor(batch.record),
+                                        run.bumper_positions)
 
     def accept(self, batch: batches.Batch, peaks: dict[str, np.ndarray]) -> None:
         """Keep the batch in the work folder, and its peaks here."""

@@ -16,7 +16,9 @@ class Run:
     archive; dt: integration step, s; building: the sweep's engine.Building; moat: None for a
     planar run, else the moat of a run in plan; factors: None, or (R,) intensity factors (-)
     multiplying each record's ground acceleration, times each member's level (a code suite's
-    MCE_R factors); arguments: the call's arguments, stored in the archive."""
+    MCE_R factors); arguments: the call's arguments, stored in the archive;
+    bumper_positions: None, or the bumpers' positions along the walls of a building that
+    twists (engine.simulate's)."""
 
     records: list
     names: list
@@ -25,6 +27,7 @@ class Run:
     moat: str | None = None
     factors: np.ndarray | None = None
     arguments: dict = field(default_factory=dict)
+    bumper_positions: tuple | None = None
 
     def factor(self, r: int) -> float | None:
         """Record r's intensity factor (None: the record as it is)."""
@@ -33,5 +36,16 @@ class Run:
     def contexts(self) -> list[str]:
         """Each record's context key (keys.context_key): what decides a member's result
         besides its member record."""
-        return [context_key(rec, self.dt, self.building, self.moat, self.factor(r))
+        return [context_key(rec, self.dt, self.building, self.moat, self.factor(r),
+                            self.bumper_positions)
                 for r, rec in enumerate(self.records)]
+
+    @property
+    def n_points(self) -> int | None:
+        """The moat's contact points of a building that twists (None: it does not)."""
+        if self.building.plan_size is None:
+            return None
+        from engine.torsion import contact_points
+
+        return contact_points(np.array([self.building.plan_size]),
+                              self.bumper_positions).wall.size

@@ -118,14 +118,15 @@ def write_template(path: Path, grid, run, key, n_batches: int, target: int) -> N
 
 def write_batch(accel, accel_dt, members, building, dt, path: str, prefix: str, region,
                 index: int, moat: str | None = None, factor: float | None = None,
-                progress=None, report=None) -> int:
+                bumper_positions=None, progress=None, report=None) -> int:
     """A worker's task: simulate one batch (batches.simulate_batch; in plan under a record
     pair when `moat` is given, at the record's intensity factor) and write its peaks into its
     chunk region, then mark it done; returns its size."""
     import zarr
 
     peaks = batches.simulate_batch(accel, accel_dt, members, building, dt, moat=moat,
-                                   factor=factor, progress=progress, report=report)
+                                   factor=factor, progress=progress, report=report,
+                                   bumper_positions=bumper_positions)
     group = zarr.open_group(path, mode="r+")
     for name, values in peaks.items():
         target = group[prefix + name]
@@ -189,7 +190,8 @@ class ZarrStore:
         return write_batch, (self.records[batch.record].dt,
                              self.grid.members_of(batch.record)[batch.members],
                              run.building, run.dt, str(self.out), r.prefix, r.region,
-                             r.index, run.moat, run.factor(batch.record))
+                             r.index, run.moat, run.factor(batch.record),
+                             run.bumper_positions)
 
     def accept(self, batch: batches.Batch, size: int) -> None:
         """Nothing to do: the worker wrote the region."""

@@ -16,13 +16,16 @@ dimension perpendicular to the loading; b and d the shortest and longest plan di
 identical bearings), P_T the ratio of the translational to the torsional period of the
 isolation system, which the code lets be taken as 1.0 where smaller.
 
-Units: m. Plan dimensions (b_x, b_y) along x and y; positions (n, 2) from the plan's centre.
+Units: m. Plan dimensions (b_x, b_y) along x and y; positions (n, 2) from the plan's centre
+(grid_positions: engine.torsion's default layout, the engine's bearings).
 """
 from __future__ import annotations
 
 import math
 
 import numpy as np
+
+from engine.torsion import grid_positions, plan_dimensions
 
 from .target import TORSION_FACTOR
 
@@ -31,21 +34,10 @@ ACCIDENTAL = 0.05
 (ASCE 7-22 section 17.5.3.3; also section 12.8.4.2's 5%)."""
 
 
-def grid_positions(plan_size, per_side: tuple[int, int] = (4, 4)) -> np.ndarray:
-    """(n, 2) m: a regular grid of bearings under a rectangular slab of plan_size (b_x, b_y),
-    per_side bearings along x and y, the outer ones at the slab's edges, centred on it."""
-    b_x, b_y = _plan(plan_size)
-    n_x, n_y = (int(n) for n in per_side)
-    if n_x < 2 or n_y < 2:
-        raise ValueError(f"per_side: at least 2 bearings along each side, got {per_side}")
-    x, y = np.meshgrid(np.linspace(-b_x / 2, b_x / 2, n_x), np.linspace(-b_y / 2, b_y / 2, n_y))
-    return np.column_stack([x.ravel(), y.ravel()])
-
-
 def period_ratio(plan_size, positions) -> float:
     """P_T of Eq. 17.5-4 for identical bearings at `positions` (n, 2) m under a rectangular
     plan (the radius of gyration of its area), before the code's floor of 1.0."""
-    b_x, b_y = _plan(plan_size)
+    b_x, b_y = plan_dimensions(plan_size)
     xy = np.asarray(positions, float)
     if xy.ndim != 2 or xy.shape[1] != 2 or xy.shape[0] < 1 or not np.all(np.isfinite(xy)):
         raise ValueError(f"positions must be (n, 2) finite metres, got shape {xy.shape}")
@@ -64,7 +56,7 @@ def total_maximum_displacement(d_m: float, plan_size, eccentricity=(0.0, 0.0),
     Returns d_tm (the larger over loading along x and along y, at least 1.15 D_M), its ratio
     to D_M, the formula's value for each loading direction (`along_x`, `along_y`, before the
     floor), p_t (after the code's floor of 1.0) and whether the floor governs."""
-    b_x, b_y = _plan(plan_size)
+    b_x, b_y = plan_dimensions(plan_size)
     if not (math.isfinite(d_m) and d_m > 0):
         raise ValueError(f"d_m must be a positive length (m), got {d_m!r}")
     e = np.asarray(eccentricity, float)
@@ -89,9 +81,3 @@ def total_maximum_displacement(d_m: float, plan_size, eccentricity=(0.0, 0.0),
             **{k: v * d_m for k, v in factors.items()}, "p_t": p_t,
             "floor_governs": ratio < TORSION_FACTOR}
 
-
-def _plan(plan_size) -> tuple[float, float]:
-    size = np.asarray(plan_size, float)
-    if size.shape != (2,) or not np.all(np.isfinite(size) & (size > 0)):
-        raise ValueError(f"plan_size must be (b_x, b_y), positive metres, got {plan_size!r}")
-    return float(size[0]), float(size[1])

@@ -1,0 +1,493 @@
+"""The compiled time loop of buildings that twist (numba): numpy_torsion.py's step, member by
+member (engine/torsion.py: the model).
+
+The structure is numba_plan.py's: a per-member kernel whose state lives on the stack while it
+runs, members on threads of this process (the kernel releases the GIL;
+numba_support.run_members), the cache keyed on the physics it compiles. What differs:
+- the state is the 3L degrees of freedom (x, y, theta per level), padded to an even count and
+  held as pairs, so that the dense step operator (3L x 6L, the columns of the transposed
+  operator side by side) runs two rows per instruction (numba_support.add2 and kin);
+- the isolation is n bearings, each the isolator law's coupled slip element at its own
+  displacement and speed (compiled.radial_return, slip_limit), with its moment;
+- the moat is P contact points (torsion.ContactPoints), each its wall's law times its share
+  (the same Contact.part arguments the NumPy loop builds, through compiled.law_terms): the
+  points touching at a step are solved together, (I + D G / 2) F = E + D r on the points that
+  push (Gaussian elimination with partial pivoting on the member's small dense system), a
+  point that would pull dropped and the rest solved again, exactly as
+  numpy_torsion.solve_contacts; friction along the walls point by point in order.
+Peaks of displacements and accelerations are kept squared while running and rooted at the
+end (sqrt is monotone: the same numbers). Agrees with the NumPy loop to round-off.
+"""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+from numba import carray, njit
+
+from ..results import (
+    PEAKS,
+    PLAN_PEAKS,
+    TORSION_HISTORIES,
+    TORSION_PEAKS,
+    WALLS,
+    empty_plan_history,
+)
+from ..scheme import full_step_operator
+from ..torsion import CORNERS
+from . import compiled, numba_contacts
+from .compiled import (
+    JIT,
+    PHYSICS_FILES,
+    law_terms,
+    onset_weight,
+    radial_return,
+    slip_limit,
+)
+from .numba_contacts import GAP, LAW_ARGS, point_arrays, solve_contacts
+from .numba_support import (
+    add2,
+    data_pointer,
+    install_cache_locator,
+    load_pair,
+    mul2,
+    run_members,
+    stack_doubles,
+    store_pair,
+)
+
+install_cache_locator(Path(__file__), [compiled.__file__, numba_contacts.__file__,
+                                       *PHYSICS_FILES])
+
+# Per-member scalars.
+(_COS, _SIN, _K_ELASTIC, _K_SLIP, _F_LIMIT, _SLOW_DROP, _RATE, _MU_WALL, _N_PAR) = range(9)
+# Per member and point, the contact state: impact velocity, previous indentation, in contact.
+_V_IMP, _DELTA_PREV, _IN_CONTACT = range(3)
+# Per member, the state beside it: collapsed, collapse time, each axis' walls touched.
+_COLLAPSED, _COLLAPSE_TIME, _TOUCH_X, _TOUCH_Y = range(4)
+# Scalar float peaks (displacements squared while running).
+(_P_ISO, _P_ISO_X, _P_ISO_Y, _P_INDENT, _P_FORCE, _P_ENERGY, _P_CORNER, _P_ROTATION,
+ _N_SCALAR) = range(9)
+
+
+@njit(**JIT)
+def _member(levels, padded, slots, b, s0, s1, ag, dt, op, respond, load, story_k, collapse_square,
+            par, bearings, f_plastic, u_all, v_all, state, point_wall, point_axis, codes,
+            point_par, direction, tangent, coupling, tangent_compliance, point_state, corners,
+            peak_level, peak_level_xy, peak_story, peak_story_xy, scalar, n_impacts,
+            peak_wall, peak_point_force, peak_point_indent, hist_row, every, h_u, h_acc, h_f,
+            h_d, h_floor, h_floor_rot):
+    """Steps s0 <= step < s1 of member b (the module docstring). The state's 3L degrees of
+    freedom sit on the stack as Q pairs (Q = len(padded) / 2, the last lane of an odd 3L
+    unused, its operator rows 0): op (B, 6L, Q, 2) the transposed step operator, respond
+    (B, 3, Q, 2) its first three columns transposed; the P contact points' state and this
+    step's values too (P = len(slots): the kernel compiles once per number of levels and of
+    points). A member that has collapsed stops."""
+    st = state[b]
+    if st[_COLLAPSED] != 0.0:
+        return
+    n_levels = len(levels)
+    n_dofs = 3 * n_levels
+    n_pad = len(padded)
+    n_pairs = n_pad // 2
+    n_st = n_levels - 1
+    ot = carray(data_pointer(op[b]), (2 * n_dofs, n_pairs, 2))
+    wr = carray(data_pointer(respond[b]), (3, n_pairs, 2))
+    ld = carray(data_pointer(load[b]), (n_dofs, 2))
+    ks = carray(data_pointer(story_k[b]), (n_st, 3))
+    cq = collapse_square[b]
+    p = par[b]
+    cs, sn = p[_COS], p[_SIN]
+    k_el, k_slip, f_limit = p[_K_ELASTIC], p[_K_SLIP], p[_F_LIMIT]
+    slow_drop, rate = p[_SLOW_DROP], p[_RATE]
+    mu_wall = p[_MU_WALL]
+    bear = bearings[b]
+    fp = f_plastic[b]
+    n_bearings = bear.shape[0]
+    code = codes[b]
+    pp = point_par[b]
+    g = direction[b]
+    tg = tangent[b]
+    cg = coupling[b]
+    tc = tangent_compliance[b]
+    ps = point_state[b]
+    n_points = len(slots)
+    cn = corners[b]
+    pk = scalar[b]
+    pw = peak_wall[b]
+    ppf = peak_point_force[b]
+    ppi = peak_point_indent[b]
+    hrow = hist_row[b]
+    half_dt = 0.5 * dt
+
+    # The member's state: displacements, half-step velocities, the next ones, the right-hand
+    # side, each 3L degrees of freedom as pairs (flat views beside them).
+    pu = stack_doubles(padded)
+    pv = stack_doubles(padded)
+    pn = stack_doubles(padded)
+    pr = stack_doubles(padded)
+    u = carray(pu, (n_pad,))
+    v = carray(pv, (n_pad,))
+    nx = carray(pn, (n_pad,))
+    r = carray(pr, (n_pad,))
+    u2 = carray(pu, (n_pairs, 2))
+    v2 = carray(pv, (n_pairs, 2))
+    nx2 = carray(pn, (n_pairs, 2))
+    dr = carray(stack_doubles(padded), (n_pad,))  # the stories' drifts (3 per story)
+    pa2 = carray(stack_doubles(levels), (n_levels,))
+    pa = carray(stack_doubles(padded), (n_pad,))  # per level x and y, squared
+    pd2 = carray(stack_doubles(levels), (n_levels,))
+    pd = carray(stack_doubles(padded), (n_pad,))
+    for i in range(n_pad):
+        u[i], v[i], r[i] = 0.0, 0.0, 0.0
+    for i in range(n_levels):
+        for d in range(3):
+            u[3 * i + d], v[i * 3 + d] = u_all[b, i, d], v_all[b, i, d]
+        for e in range(2):
+            pa[2 * i + e] = peak_level_xy[b, i, e]
+        pa2[i] = peak_level[b, i]
+    for i in range(n_st):
+        for e in range(2):
+            pd[2 * i + e] = peak_story_xy[b, i, e]
+        pd2[i] = peak_story[b, i]
+    p_iso2, p_iso_x, p_iso_y = pk[_P_ISO], pk[_P_ISO_X], pk[_P_ISO_Y]
+    p_indent, p_force, energy = pk[_P_INDENT], pk[_P_FORCE], pk[_P_ENERGY]
+    p_corner, p_rot = pk[_P_CORNER], pk[_P_ROTATION]
+    n_imp = n_impacts[b]
+    touch_x, touch_y = st[_TOUCH_X] != 0.0, st[_TOUCH_Y] != 0.0
+
+    # The contact points on the stack (P known when the kernel compiles): their directions,
+    # gaps and state, and this step's indentations, law terms and forces.
+    gx_ = carray(stack_doubles(slots), (n_points,))
+    gy_ = carray(stack_doubles(slots), (n_points,))
+    gt_ = carray(stack_doubles(slots), (n_points,))
+    gap = carray(stack_doubles(slots), (n_points,))
+    v_imp = carray(stack_doubles(slots), (n_points,))
+    delta_prev = carray(stack_doubles(slots), (n_points,))
+    inside = carray(stack_doubles(slots), (n_points,))
+    p_point = carray(stack_doubles(slots), (n_points,))  # max_point_indentation
+    delta = carray(stack_doubles(slots), (n_points,))
+    elastic = carray(stack_doubles(slots), (n_points,))
+    dashpot = carray(stack_doubles(slots), (n_points,))
+    rate_free = carray(stack_doubles(slots), (n_points,))
+    touching = carray(stack_doubles(slots), (n_points,))
+    force = carray(stack_doubles(slots), (n_points,))
+    active = carray(stack_doubles(slots), (n_points,))
+    for q in range(n_points):
+        gx_[q], gy_[q], gt_[q] = g[q, 0], g[q, 1], g[q, 2]
+        gap[q] = pp[q, GAP]
+        v_imp[q], delta_prev[q], inside[q] = ps[q, _V_IMP], ps[q, _DELTA_PREV], ps[q, _IN_CONTACT]
+        p_point[q] = ppi[q]
+    index = np.empty(n_points, dtype=np.int64)
+    a = np.empty((n_points, n_points))
+    rhs = np.empty(n_points)
+    x = np.empty(n_points)
+    per_wall = np.empty(4)
+
+    for step in range(s0, s1):
+        # numpy_torsion's collapse rule, on the drift of the plan's centre.
+        fallen = False
+        for i in range(n_st):
+            for d in range(3):
+                dr[3 * i + d] = u[3 * i + 3 + d] - u[3 * i + d]
+            dx, dy = dr[3 * i], dr[3 * i + 1]
+            if not dx * dx + dy * dy <= cq[i]:
+                fallen = True
+        if fallen:
+            st[_COLLAPSED] = 1.0
+            st[_COLLAPSE_TIME] = step * dt
+            break
+        a0 = cs * ag[step, 0] - sn * ag[step, 1]
+        a1 = sn * ag[step, 0] + cs * ag[step, 1]
+        u0x, u0y, th = u[0], u[1], u[2]
+        # The bearings at their own displacements, their forces and moments on the slab.
+        sx, sy, sm = 0.0, 0.0, 0.0
+        for k in range(n_bearings):
+            bx, by = bear[k, 0], bear[k, 1]
+            fbx = k_el * (u0x - th * by) + fp[k, 0]
+            fby = k_el * (u0y + th * bx) + fp[k, 1]
+            sx += fbx
+            sy += fby
+            sm += bx * fby - by * fbx
+        # The right-hand side: the chain of forces, less the ground's load.
+        prev_x, prev_y, prev_t = sx, sy, sm
+        for i in range(n_levels):
+            if i < n_st:
+                cx = ks[i, 0] * dr[3 * i]
+                cy = ks[i, 1] * dr[3 * i + 1]
+                ct = ks[i, 2] * dr[3 * i + 2]
+            else:
+                cx, cy, ct = 0.0, 0.0, 0.0
+            j = 3 * i
+            r[j] = (cx - prev_x) - (ld[j, 0] * a0 + ld[j, 1] * a1)
+            r[j + 1] = (cy - prev_y) - (ld[j + 1, 0] * a0 + ld[j + 1, 1] * a1)
+            r[j + 2] = (ct - prev_t) - (ld[j + 2, 0] * a0 + ld[j + 2, 1] * a1)
+            prev_x, prev_y, prev_t = cx, cy, ct
+        # v_{n+1/2} = op [rhs, v_{n-1/2}], two rows at a time.
+        rj = r[0]
+        for i in range(n_pairs):
+            store_pair(nx2, i, mul2(load_pair(ot[0], i), (rj, rj)))
+        for j in range(1, n_dofs):
+            rj = r[j]
+            for i in range(n_pairs):
+                store_pair(nx2, i, add2(load_pair(nx2, i), mul2(load_pair(ot[j], i), (rj, rj))))
+        for j in range(n_dofs):
+            vj = v[j]
+            for i in range(n_pairs):
+                store_pair(nx2, i, add2(load_pair(nx2, i),
+                                        mul2(load_pair(ot[n_dofs + j], i), (vj, vj))))
+
+        # The moat: every point's indentation, the touching ones solved together.
+        v0x, v0y, v0t = v[0], v[1], v[2]
+        mx, my, mt = 0.5 * (v0x + nx[0]), 0.5 * (v0y + nx[1]), 0.5 * (v0t + nx[2])
+        any_on = False
+        on_x, on_y = False, False
+        deepest = -1.0
+        for q in range(n_points):
+            gx, gy, gt = gx_[q], gy_[q], gt_[q]
+            dq = max(gx * u0x + gy * u0y + gt * th - gap[q], -1.0)
+            delta[q] = dq
+            deepest = max(deepest, dq)
+            p_point[q] = max(p_point[q], dq)
+            on = dq > 0.0
+            touching[q] = 1.0 if on else 0.0
+            if on:
+                any_on = True
+                if point_axis[q] == 0:
+                    on_x = True
+                else:
+                    on_y = True
+                fresh = inside[q] == 0.0
+                if fresh:
+                    v_imp[q] = gx * v0x + gy * v0y + gt * v0t
+                rf = gx * mx + gy * my + gt * mt
+                rate_free[q] = rf
+                w = pp[q]
+                el, dp = law_terms(code[q], dq, rf, v_imp[q], w[LAW_ARGS],
+                                   w[LAW_ARGS + 1], w[LAW_ARGS + 2], w[LAW_ARGS + 3],
+                                   w[LAW_ARGS + 4], w[LAW_ARGS + 5], w[LAW_ARGS + 6],
+                                   w[LAW_ARGS + 7], w[LAW_ARGS + 8], w[LAW_ARGS + 9])
+                if fresh:
+                    dp = dp * onset_weight(dq, delta_prev[q])
+                elastic[q], dashpot[q] = el, dp
+            inside[q] = touching[q]
+            delta_prev[q] = dq
+        if on_x and not touch_x:
+            n_imp += 1
+        if on_y and not touch_y:
+            n_imp += 1
+        touch_x, touch_y = on_x, on_y
+        p_indent = max(p_indent, deepest)
+        px, py, pm = 0.0, 0.0, 0.0
+        if any_on:
+            solve_contacts(n_points, touching, elastic, dashpot, rate_free, cg, force, active,
+                            index, a, rhs, x)
+            for q in range(n_points):
+                fq = force[q]
+                px += fq * gx_[q]
+                py += fq * gy_[q]
+                pm += fq * gt_[q]
+            px, py, pm = -px, -py, -pm
+            for i in range(n_pairs):
+                store_pair(nx2, i, add2(load_pair(nx2, i), add2(add2(
+                    mul2(load_pair(wr[0], i), (px, px)), mul2(load_pair(wr[1], i), (py, py))),
+                    mul2(load_pair(wr[2], i), (pm, pm)))))
+            if mu_wall > 0.0:
+                for q in range(n_points):
+                    limit = mu_wall * force[q]
+                    if limit > 0.0:
+                        tx, ty, tt = tg[q, 0], tg[q, 1], tg[q, 2]
+                        slip = tx * nx[0] + ty * nx[1] + tt * nx[2]
+                        fr = min(max(-slip / tc[q], -limit), limit)
+                        fx, fy, ft = fr * tx, fr * ty, fr * tt
+                        for i in range(n_pairs):
+                            store_pair(nx2, i, add2(load_pair(nx2, i), add2(add2(
+                                mul2(load_pair(wr[0], i), (fx, fx)),
+                                mul2(load_pair(wr[1], i), (fy, fy))),
+                                mul2(load_pair(wr[2], i), (ft, ft)))))
+                        px += fx
+                        py += fy
+                        pm += ft
+            energy -= (px * (v0x + nx[0]) + py * (v0y + nx[1]) + pm * (v0t + nx[2])) * half_dt
+            for w_ in range(4):
+                per_wall[w_] = 0.0
+            for q in range(n_points):
+                fq = force[q]
+                ppf[q] = max(ppf[q], fq)
+                per_wall[point_wall[q]] += fq
+            for w_ in range(4):
+                pw[w_] = max(pw[w_], per_wall[w_])
+                p_force = max(p_force, per_wall[w_])
+
+        keep = hrow >= 0 and step % every == 0  # this step goes into the histories
+        t = step // every if keep else 0
+        if keep:
+            h_u[hrow, t, 0], h_u[hrow, t, 1] = u0x, u0y
+            h_f[hrow, t] = math.hypot(px, py)
+            h_d[hrow, t] = max(deepest, 0.0)
+            for i in range(n_levels):
+                h_floor[hrow, t, i, 0] = u[3 * i]
+                h_floor[hrow, t, i, 1] = u[3 * i + 1]
+                h_floor_rot[hrow, t, i] = u[3 * i + 2]
+        for i in range(n_levels):
+            tx_ = (nx[3 * i] - v[3 * i]) / dt + a0
+            ty_ = (nx[3 * i + 1] - v[3 * i + 1]) / dt + a1
+            if keep:
+                h_acc[hrow, t, i, 0], h_acc[hrow, t, i, 1] = tx_, ty_
+            sqx, sqy = tx_ * tx_, ty_ * ty_
+            pa[2 * i] = max(pa[2 * i], sqx)
+            pa[2 * i + 1] = max(pa[2 * i + 1], sqy)
+            pa2[i] = max(pa2[i], sqx + sqy)
+        for i in range(n_st):
+            sqx, sqy = dr[3 * i] * dr[3 * i], dr[3 * i + 1] * dr[3 * i + 1]
+            pd[2 * i] = max(pd[2 * i], sqx)
+            pd[2 * i + 1] = max(pd[2 * i + 1], sqy)
+            pd2[i] = max(pd2[i], sqx + sqy)
+        sqx, sqy = u0x * u0x, u0y * u0y
+        p_iso2 = max(p_iso2, sqx + sqy)
+        p_iso_x = max(p_iso_x, sqx)
+        p_iso_y = max(p_iso_y, sqy)
+        for c in range(4):
+            cx = u0x + th * (-cn[c, 1])
+            cy = u0y + th * cn[c, 0]
+            p_corner = max(p_corner, cx * cx + cy * cy)
+        p_rot = max(p_rot, abs(th))
+
+        # Advance: each bearing's slip element with its own increment (and speed).
+        w0x, w0y, w0t = nx[0], nx[1], nx[2]
+        for k in range(n_bearings):
+            bx, by = bear[k, 0], bear[k, 1]
+            vbx = w0x - w0t * by
+            vby = w0y + w0t * bx
+            limit = f_limit if slow_drop == 0.0 else slip_limit(
+                f_limit, slow_drop, rate, math.hypot(vbx, vby))
+            fp[k, 0], fp[k, 1] = radial_return(fp[k, 0], fp[k, 1], dt * vbx, dt * vby,
+                                               k_slip, limit)
+        for i in range(n_pairs):
+            w_pair = load_pair(nx2, i)
+            store_pair(v2, i, w_pair)
+            store_pair(u2, i, add2(load_pair(u2, i), mul2((dt, dt), w_pair)))
+
+    for i in range(n_levels):
+        for d in range(3):
+            u_all[b, i, d], v_all[b, i, d] = u[3 * i + d], v[3 * i + d]
+        for e in range(2):
+            peak_level_xy[b, i, e] = pa[2 * i + e]
+        peak_level[b, i] = pa2[i]
+    for i in range(n_st):
+        for e in range(2):
+            peak_story_xy[b, i, e] = pd[2 * i + e]
+        peak_story[b, i] = pd2[i]
+    pk[_P_ISO], pk[_P_ISO_X], pk[_P_ISO_Y] = p_iso2, p_iso_x, p_iso_y
+    pk[_P_INDENT], pk[_P_FORCE], pk[_P_ENERGY] = p_indent, p_force, energy
+    pk[_P_CORNER], pk[_P_ROTATION] = p_corner, p_rot
+    n_impacts[b] = n_imp
+    for q in range(n_points):
+        ps[q, _V_IMP], ps[q, _DELTA_PREV], ps[q, _IN_CONTACT] = v_imp[q], delta_prev[q], inside[q]
+        ppi[q] = p_point[q]
+    st[_TOUCH_X] = 1.0 if touch_x else 0.0
+    st[_TOUCH_Y] = 1.0 if touch_y else 0.0
+
+
+@njit(**JIT)
+def _run(levels, padded, slots, members, s0, s1, ag, dt, op, respond, load, story_k,
+         collapse_square, par, bearings, f_plastic, u, v, state, point_wall, point_axis,
+         codes, point_par, direction, tangent, coupling, tangent_compliance, point_state,
+         corners, peak_level, peak_level_xy, peak_story, peak_story_xy, scalar, n_impacts,
+         peak_wall, peak_point_force, peak_point_indent, hist_row, every, h_u, h_acc, h_f,
+         h_d, h_floor, h_floor_rot):
+    """Steps s0 <= step < s1 of the members in `members` (indices), one after the other; it
+    releases the GIL (nogil), so that run_torsion's threads run batches of members at once."""
+    for b in members:
+        _member(levels, padded, slots, b, s0, s1, ag, dt, op, respond, load, story_k,
+                collapse_square, par, bearings, f_plastic, u, v, state, point_wall, point_axis,
+                codes, point_par, direction, tangent, coupling, tangent_compliance, point_state,
+                corners, peak_level, peak_level_xy, peak_story, peak_story_xy, scalar,
+                n_impacts, peak_wall, peak_point_force, peak_point_indent, hist_row, every,
+                h_u, h_acc, h_f, h_d, h_floor, h_floor_rot)
+
+
+def run_torsion(ag, dt, b, t, contacts, points, progress, scale, angle, history=None,
+                mu_wall=None):
+    """numpy_torsion.run_torsion on the kernel: the same arguments, the same (peaks,
+    history)."""
+    size, n_levels = b.masses.shape
+    n_dofs = 3 * n_levels
+    n_pad = n_dofs + n_dofs % 2
+    n_points = points.wall.size
+    levels, padded, slots = (0,) * n_levels, (0,) * n_pad, (0,) * n_points
+    step_op = full_step_operator(t.mass, t.damping, dt)  # (B, 3L, 6L), numpy_torsion's
+    op = np.zeros((size, 2 * n_dofs, n_pad))
+    op[:, :, :n_dofs] = step_op.transpose(0, 2, 1)
+    respond = np.zeros((size, 3, n_pad))
+    respond[:, :, :n_dofs] = step_op[:, :, :3].transpose(0, 2, 1)
+    g, tangent = points.direction, points.tangent
+    r0 = step_op[:, :3, :3]
+    coupling = np.ascontiguousarray(np.einsum("bpi,bij,bqj->bpq", g, r0, g))
+    tangent_compliance = np.ascontiguousarray(np.einsum("bpi,bij,bpj->bp", tangent, r0,
+                                                        tangent))
+    codes, point_par = point_arrays(contacts, points, size)
+    n_bearings = t.bearings.shape[1]
+    par = np.empty((size, _N_PAR))
+    # cos and sin times the scale, as the NumPy loop forms them (the same bits)
+    par[:, _COS], par[:, _SIN] = np.cos(angle) * scale, np.sin(angle) * scale
+    par[:, _K_ELASTIC] = b.k_elastic / n_bearings
+    par[:, _K_SLIP] = b.k_slip / n_bearings
+    par[:, _F_LIMIT] = b.f_limit / n_bearings
+    par[:, _SLOW_DROP], par[:, _RATE] = b.slow_drop, b.rate
+    par[:, _MU_WALL] = 0.0 if mu_wall is None else mu_wall
+    corners = np.ascontiguousarray(np.array(CORNERS) * t.plan[:, None, :] / 2)
+    u, v = np.zeros((size, n_levels, 3)), np.zeros((size, n_levels, 3))
+    f_plastic = np.zeros((size, n_bearings, 2))
+    state = np.zeros((size, 4))
+    point_state = np.zeros((size, n_points, 3))
+    point_state[:, :, _V_IMP] = 1.0  # impact velocities before any impact
+    n_walls = len(WALLS["rectangular"])
+    peaks = {q.name: np.zeros((size, *q.trailing_shape(n_levels, n_walls, n_points)),
+                              dtype=q.dtype) for q in (*PEAKS, *PLAN_PEAKS, *TORSION_PEAKS)}
+    scalar = np.zeros((size, _N_SCALAR))
+    n_steps = ag.shape[0]
+    hist_row = np.full(size, -1, dtype=np.int64)
+    every, rows, inverse = 1, 0, None
+    if history is not None:
+        unique, inverse = np.unique(np.asarray(history.members, dtype=np.int64) % size,
+                                    return_inverse=True)
+        rows = unique.size
+        hist_row[unique] = np.arange(rows)
+        every = int(history.every)
+    hist = empty_plan_history(rows, n_steps, every, dt, n_levels, torsion=True)
+    args = (np.ascontiguousarray(ag, dtype=np.float64), float(dt), op, respond,
+            np.ascontiguousarray(t.load, dtype=np.float64),
+            np.ascontiguousarray(t.story_k, dtype=np.float64),
+            np.ascontiguousarray(b.collapse_drift**2, dtype=np.float64), par,
+            np.ascontiguousarray(t.bearings, dtype=np.float64), f_plastic, u, v, state,
+            np.ascontiguousarray(points.wall, dtype=np.int64),
+            np.ascontiguousarray(points.axis, dtype=np.int64), codes, point_par,
+            np.ascontiguousarray(g, dtype=np.float64),
+            np.ascontiguousarray(tangent, dtype=np.float64), coupling, tangent_compliance,
+            point_state, corners,
+            peaks["peak_total_accel"], peaks["peak_total_accel_xy"],
+            peaks["peak_interstory_drift"], peaks["peak_interstory_drift_xy"], scalar,
+            peaks["n_impacts"], peaks["max_impact_force_wall"], peaks["max_point_force"],
+            peaks["max_point_indentation"], hist_row, every, hist["isolator_disp"],
+            hist["total_accel"], hist["impact_force"], hist["indentation"],
+            hist["floor_disp"], hist["floor_rotation"])
+    run_members(size, n_steps, progress,
+                lambda members, s0, s1: _run(levels, padded, slots, members, s0, s1, *args))
+    for name, column in (("max_indentation", _P_INDENT), ("max_impact_force", _P_FORCE),
+                         ("impact_energy", _P_ENERGY), ("peak_rotation", _P_ROTATION)):
+        peaks[name] = scalar[:, column].copy()
+    peaks["peak_isolator_disp"] = np.sqrt(scalar[:, _P_ISO])
+    peaks["peak_isolator_disp_xy"] = np.sqrt(scalar[:, [_P_ISO_X, _P_ISO_Y]])
+    peaks["peak_corner_disp"] = np.sqrt(scalar[:, _P_CORNER])
+    for name in ("peak_total_accel", "peak_interstory_drift", "peak_total_accel_xy",
+                 "peak_interstory_drift_xy"):
+        peaks[name] = np.sqrt(peaks[name])  # kept squared by the kernel
+    peaks["collapsed"] = state[:, _COLLAPSED] != 0.0
+    peaks["collapse_time"] = np.where(peaks["collapsed"], state[:, _COLLAPSE_TIME], np.nan)
+    if history is None:
+        return peaks, None
+    hist = {"time": hist["time"], **{q.name: hist[q.name][inverse] for q in TORSION_HISTORIES},
+            "members": np.asarray(history.members, dtype=int)}
+    return peaks, hist

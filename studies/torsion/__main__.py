@@ -1,0 +1,4 @@
+"""`python -m studies.torsion`: the recipe's command line."""
+from . import main
+
+raise SystemExit(main())

@@ -1,0 +1,85 @@
+"""Sweeps of a building that twists: every member is the engine's run (its pair, angle, wall
+and bumpers where they stand), the contact points labelled along `point` (their wall and
+position), NetCDF and Zarr alike; bumper positions belong to a run's key."""
+import dataclasses
+import functools
+
+import numpy as np
+import pytest
+
+import engine
+import pipeline
+from pipeline.errors import SweepError
+from pipeline.records import RecordPair, load_pair
+from tests.helpers import assert_udunits
+
+SECONDS = 6.0
+BUILDING = engine.Building(plan_size=(30.0, 20.0), eccentricity=(2.0, -1.0),
+                           isolator_positions=((-15.0, -10.0), (15.0, -10.0), (15.0, 10.0),
+                                               (-15.0, 10.0)))
+PADS = ((-5.0, 5.0), (-8.0, 0.0, 8.0))  # m along the x walls, the y walls
+
+
+@functools.cache
+def short_pair() -> RecordPair:
+    """RSN953's first SECONDS: the slab reaches the walls within them."""
+    x, y = load_pair("RSN953")
+    n = int(SECONDS / x.dt) + 1
+    cut = [dataclasses.replace(r, accel=r.accel[:n]) for r in (x, y)]
+    return RecordPair("RSN953-6s", *cut)
+
+
+@pytest.fixture(scope="module", params=["nc", "zarr"])
+def twisting(request, tmp_path_factory):
+    out = tmp_path_factory.mktemp("torsion") / f"torsion.{request.param}"
+    ds = pipeline.sweep([short_pair()], gap=[0.03, 0.05], impact="linear", angle=[0.0, 60.0],
+                        moat="rectangular", building=BUILDING, quiet=True, out=out)
+    return ds.load()
+
+
+def test_every_member_is_the_engine_run(twisting):
+    pair = short_pair()
+    gaps, angles = np.repeat([0.03, 0.05], 2), np.tile([0.0, 60.0], 2)
+    alone = engine.simulate(pair.accel, pair.dt, engine.Contact.linear(gaps), BUILDING,
+                            moat="rectangular", angle=angles)
+    peaks = {**alone.peaks(), **alone.plan_peaks(), **alone.torsion_peaks()}
+    for name, value in peaks.items():
+        got = twisting[name].isel(record=0).transpose("gap", "angle", ...)
+        np.testing.assert_array_equal(got.values.reshape(value.shape), value, err_msg=name)
+    assert (twisting.n_impacts.sel(gap=0.03) > 0).all() and (twisting.peak_rotation > 0).all()
+
+
+def test_the_points_are_labelled(twisting):
+    ds = twisting
+    assert ds.max_point_force.dims[-1] == "point"
+    assert list(ds.point_wall.values) == ["+x", "+x", "-x", "-x", "+y", "+y", "-y", "-y"]
+    np.testing.assert_array_equal(ds.point_along.values, [-10, 10, -10, 10, -15, 15, -15, 15])
+    assert ds.point_along.attrs["units"] == "m"
+    assert ds.peak_rotation.attrs["units"] == "rad"
+    assert_udunits(ds)
+
+
+def test_bumpers_where_they_stand(tmp_path):
+    pair = short_pair()
+    ds = pipeline.sweep([pair], gap=0.08, thickness=0.05, n_bumpers=[2, 3], moat="rectangular",
+                        building=BUILDING, bumper_positions=PADS, quiet=True)
+    np.testing.assert_array_equal(ds.point_along.values, [-5, 5, -5, 5, -8, 0, 8, -8, 0, 8])
+    alone = engine.simulate(pair.accel, pair.dt, engine.Contact.bumper(0.08, n_bumpers=[2, 3]),
+                            BUILDING, moat="rectangular", bumper_positions=PADS)
+    np.testing.assert_array_equal(ds.max_point_force.isel(record=0).values,
+                                  alone.max_point_force)
+    assert (alone.max_point_force > 0).any()
+    with pytest.raises(SweepError, match="plan_size"):
+        pipeline.sweep([pair], gap=0.10, moat="rectangular", bumper_positions=PADS, quiet=True)
+
+
+def test_bumper_positions_are_part_of_the_key():
+    from pipeline.execute.keys import context_key
+
+    pair = short_pair()
+    keys = {context_key(pair, 5e-4, BUILDING, "rectangular", None, positions)
+            for positions in (None, PADS, ((-5.0, 5.0), (-8.0, 8.0)))}
+    assert len(keys) == 3
+    # a run without bumper positions keeps the key it had before they existed
+    assert context_key(pair, 5e-4, BUILDING, "rectangular") == \
+        context_key(pair, 5e-4, BUILDING, "rectangular", None, None)
