@@ -1,15 +1,15 @@
 """Every command a user runs: one recipe per figure of the paper, `python -m studies.NAME
-[--quick] [--replot]`, studies beyond the paper (suite, design, plan, fragility) and
+[--quick] [--replot]`, studies beyond the paper (suite, design, plan, torsion, fragility) and
 `studies.sweep`, the general command line of pipeline.sweep. They share one set of
 command-line conventions (common/recipe.py), which is why the general sweep lives here beside
 the recipes.
 
-Recipes, one module each or a package for a family of modules (suite/, design/, plan/, each
-still `python -m studies.NAME`), none importing another:
+Recipes, one module each or a package for a family of modules (suite/, design/, plan/,
+torsion/, each still `python -m studies.NAME`), none importing another:
     impact_validation (Fig. 6), damping_calibration (Eq. 9), practical_example (Figs. 9-13),
     gap_size (Figs. 14-15), thickness (Fig. 16), strain (Fig. 18), n_bumpers (Figs. 19-20),
-    wall_stiffness (Fig. 21), restitution (Fig. 22); suite, design, plan, fragility, collapse
-    and loss (beyond the paper).
+    wall_stiffness (Fig. 21), restitution (Fig. 22); suite, design, plan, torsion, fragility,
+    collapse and loss (beyond the paper).
 common/ (imported by the recipes, never run):
     paper.py          the paper's fixed choices, each with where the paper states it: the
                       practical bumper (thickness, count, strain, area, wall k_w), the 0.9 gap
