@@ -32,13 +32,17 @@ FIELD_UNITS = {"masses": "kg", "story_stiffness": "N m-1", "k1": "N m-1", "k2": 
                "story_stiffness_y": "N m-1", "stories": None, "story_height": "m",
                "p_delta": None, "collapse_drift_ratio": "1", "plan_size": "m",
                "eccentricity": "m", "mass_inertia": "kg m2", "isolator_positions": "m",
-               "story_torsional_stiffness": "N m rad-1"}
+               "story_torsional_stiffness": "N m rad-1", "story_stiffness_centre": "m"}
 """Every Building field and its SI unit (None: text or an Isolator), for files and archives."""
 PER_LEVEL = ("masses", "mass_inertia")
 """Fields with one value per level, the isolation slab first."""
 PER_STORY = ("story_stiffness", "story_yield_force", "story_stiffness_y", "story_height",
              "story_torsional_stiffness")
-IN_PLAN = ("plan_size", "eccentricity", "isolator_positions")
+IN_PLAN = ("plan_size", "eccentricity", "isolator_positions", "story_stiffness_centre")
+TORSION_FIELDS = ("plan_size", "eccentricity", "mass_inertia", "isolator_positions",
+                  "story_torsional_stiffness", "story_stiffness_centre")
+"""The fields of a building that twists (engine/torsion.py), plan_size first: the others are
+given only with it."""
 """Fields of coordinates in plan, (x, y) pairs: one pair, or one per level or per bearing."""
 """Fields with one value per story, the first story first."""
 
@@ -89,7 +93,9 @@ class Building:
     isolator_positions : None (a 4 x 4 grid under the slab, the outer bearings at its edges)
         or (n, 2) m, the bearings' positions from the plan's centre, each 1/n of the isolator;
     story_torsional_stiffness : None (a perimeter frame's, k_y (b_x/2)^2 + k (b_y/2)^2) or N
-        values in N m/rad.
+        values in N m/rad, about the stories' centre of stiffness;
+    story_stiffness_centre : None (the plan's centre) or (x, y) m, or one pair per story: where
+        the stories' stiffness acts (a frame stiffer on one side moves it).
     """
 
     masses: tuple[float, ...] = PAPER_MASSES
@@ -114,6 +120,7 @@ class Building:
     mass_inertia: tuple[float, ...] | None = None
     isolator_positions: tuple | None = None
     story_torsional_stiffness: tuple[float, ...] | None = None
+    story_stiffness_centre: tuple | None = None
 
     def __post_init__(self):
         masses = np.asarray(self.masses, dtype=float)
@@ -175,8 +182,7 @@ class Building:
             for name, value in torsion.checked_layout(self).items():
                 object.__setattr__(self, name, value)
             return
-        given = [name for name in ("mass_inertia", "isolator_positions",
-                                   "story_torsional_stiffness") if getattr(self, name) is not None]
+        given = [name for name in TORSION_FIELDS[2:] if getattr(self, name) is not None]
         if given or np.any(np.asarray(self.eccentricity, float) != 0):
             raise EngineError(f"{', '.join(given) or 'eccentricity'}: a building that twists "
                               "needs its plan_size (b_x, b_y) m")

@@ -34,8 +34,15 @@ DEFAULT_STEPS_PER_CONTACT = 4000
 def stable_dt(contact: Contact, building: Building | Sequence[Building] = Building(),
               indentation_bound: float = INDENTATION_BOUND) -> np.ndarray:
     """(B,) central-difference stability limit (s) at the stiffest state each member can reach
-    (scheme.stability_limit): isolator at k1, the contact's largest tangent stiffness."""
-    return stability_limit(building_arrays(building, len(contact)), contact, indentation_bound)
+    (scheme.stability_limit): isolator at k1, the contact's largest tangent stiffness. For
+    buildings that twist, their torsional limit with `contact` as every wall and the slab's
+    corners as its points (bumpers stand within the sides: their limit is no lower)."""
+    size = len(contact)
+    if _twisting(building):
+        twist = torsion_arrays([building] if isinstance(building, Building) else building, size)
+        tangent = contact.max_tangent_stiffness(indentation_bound)
+        return torsion.stability_limit(twist, contact_points(twist.plan), [tangent, tangent])
+    return stability_limit(building_arrays(building, size), contact, indentation_bound)
 
 
 def simulate(accel, accel_dt: float, contact: Contact,
@@ -166,7 +173,7 @@ def _simulate_plan(accel, accel_dt, contact, building, dt, history, progress, ba
         twist = torsion_arrays([building] if isinstance(building, Building) else building, size)
         points = contact_points(twist.plan, bumper_positions)
         limit = torsion.stability_limit(twist, points, [c.max_tangent_stiffness(
-            INDENTATION_BOUND) for c in contacts])
+            INDENTATION_BOUND) for c in contacts])  # bumpers' points: a limit of their own
     else:
         limit = np.min([stability_limit(a, c) for c in contacts for a in directions], axis=0)
     worst = int(np.argmin(limit))

@@ -16,12 +16,14 @@ and the ground's (a_x, a_y) loads it by -M (a_x, a_y, 0): a torque where e != 0.
   coupled slip element at the bearing's own displacement and speed), so that the torsional
   stiffness and strength follow from the layout; the isolation dashpot is shared the same way
   (c_iso / n at each bearing along x and y).
-- A story joins two levels at the plan's centre (its centre of stiffness): k along x, k_y
-  along y and k_theta in torsion (N m/rad; default a perimeter frame's, k_y (b_x / 2)^2 +
-  k (b_y / 2)^2: a frame on each face, the two faces along x carrying k); its dashpots are the
-  building's (damping="paper") along x and y and c k_theta / k in torsion, stiffness-
-  proportional like them. Linear stories only: the stories' laws in plan have no torsional
-  counterpart yet.
+- A story joins two levels at its centre of stiffness (x_s, y_s) (the plan's centre unless
+  given): k along x, k_y along y and k_theta in torsion about that centre (N m/rad; default a
+  perimeter frame's, k_y (b_x / 2)^2 + k (b_y / 2)^2: a frame on each face, the two faces
+  along x carrying k), so that its drift there is (d_x - d_theta y_s, d_y + d_theta x_s,
+  d_theta) and its moment about the plan's centre adds x_s f_y - y_s f_x; its dashpots are
+  the building's (damping="paper") along x and y and c k_theta / k in torsion, stiffness-
+  proportional like them, at the same centre. Linear stories only: the stories' laws in plan
+  have no torsional counterpart yet.
 - The rectangular moat's walls stand at +-(b_x / 2 + g_x) and +-(b_y / 2 + g_y), g the clear
   gaps from the slab's edges; the slab meets a wall at contact points along it: against a
   bare wall its two corners on that side, against bumpers the bumpers' positions (the same on
@@ -43,6 +45,7 @@ import numpy as np
 
 from .chain import chain_matrix
 from .errors import EngineError
+from .parameters import Parameter
 
 DEFAULT_GRID = (4, 4)
 """Bearings along x and along y of the default layout: a regular grid under the slab."""
@@ -50,6 +53,32 @@ DOFS = ("x", "y", "theta")
 """A level's degrees of freedom, in the state's last axis."""
 CORNERS = ((1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0))
 """The slab's corners as signs of (b_x / 2, b_y / 2), counterclockwise from (+, +)."""
+
+
+ACCIDENTAL_ECCENTRICITY = Parameter(
+    "eccentricity", "1", "accidental eccentricity: every level's mass centre moved by this "
+    "fraction of each plan dimension (e_x + e b_x, e_y + e b_y) from the building's own", 0.0,
+    "[0, 0.5)", equation="ASCE 7-22 17.5.3.3 (5%)", sweep="eccentricity", plausible="[0, 0.2]")
+"""A member's accidental eccentricity (pipeline.sweep's eccentricity; `shifted`): the mass
+moved along the plan's diagonal, which loads both directions' torsion at once."""
+
+
+def shifted(building, fraction: float):
+    """The building that twists with every level's mass centre moved by fraction (b_x, b_y)
+    (ACCIDENTAL_ECCENTRICITY), the building itself at 0."""
+    import dataclasses
+
+    if building.plan_size is None:
+        raise EngineError("an accidental eccentricity moves the mass of a building that twists: "
+                          "give the building its plan_size")
+    fraction = float(ACCIDENTAL_ECCENTRICITY.check(np.asarray(fraction, float)))
+    if fraction == 0:
+        return building
+    offset = fraction * np.asarray(building.plan_size)
+    own = np.asarray(building.eccentricity, float)
+    moved = own + offset  # one pair, or one per level
+    return dataclasses.replace(building, eccentricity=tuple(map(tuple, moved.tolist()))
+                               if moved.ndim == 2 else tuple(moved.tolist()))
 
 
 def grid_positions(plan_size, per_side: tuple[int, int] = DEFAULT_GRID) -> np.ndarray:
@@ -116,6 +145,17 @@ def checked_layout(building) -> dict:
             raise EngineError("isolator_positions: the bearings stand at one point, the slab "
                               "would have no torsional stiffness")
         out["isolator_positions"] = tuple(map(tuple, xy.tolist()))
+    if building.story_stiffness_centre is not None:
+        centre = np.asarray(building.story_stiffness_centre, float)
+        if centre.shape == (2,):
+            centre = np.broadcast_to(centre, (n_stories, 2))
+        if centre.shape != (n_stories, 2) or not np.all(np.isfinite(centre)) \
+                or np.any(np.abs(centre) > np.array([b_x, b_y]) / 2):
+            raise EngineError(f"story_stiffness_centre must be (x, y) in metres, or one pair "
+                              f"per story ({n_stories}), within the plan, got "
+                              f"{building.story_stiffness_centre!r}")
+        out["story_stiffness_centre"] = tuple(map(tuple, centre.tolist())) \
+            if np.ndim(building.story_stiffness_centre) == 2 else tuple(centre[0].tolist())
     if building.story_torsional_stiffness is not None:
         k_t = np.asarray(building.story_torsional_stiffness, float)
         if k_t.shape != (n_stories,) or not np.all(np.isfinite(k_t) & (k_t > 0)):
@@ -156,13 +196,15 @@ class TorsionArrays:
     freedom level by level (x, y, theta) (kg and kg m^2; N s/m and N m s; N/m and N m, the
     isolators at their initial stiffness, for stability limits); load (B, 3L, 2): M times the
     ground's influence along x and along y (the step's load is -load @ (a_x, a_y)); story_k
-    (B, L - 1, 3): the stories' k, k_y, k_theta; bearings (B, n, 2) m; plan (B, 2) m."""
+    (B, L - 1, 3): the stories' k, k_y, k_theta; story_centre (B, L - 1, 2) m: their centres
+    of stiffness; bearings (B, n, 2) m; plan (B, 2) m."""
 
     mass: np.ndarray
     damping: np.ndarray
     stiffness: np.ndarray
     load: np.ndarray
     story_k: np.ndarray
+    story_centre: np.ndarray
     bearings: np.ndarray
     plan: np.ndarray
 
@@ -174,11 +216,11 @@ def torsion_arrays(members: Sequence, size: int) -> TorsionArrays:
     if len(members) == 1:
         members = members * size
     rows = {b: _row(b) for b in dict.fromkeys(members)}
-    counts = {row[5].shape[0] for row in rows.values()}
+    counts = {row[6].shape[0] for row in rows.values()}
     if len(counts) > 1:
         raise EngineError(f"building: the members of one batch must stand on as many bearings, "
                           f"got {sorted(counts)}")
-    return TorsionArrays(*(np.stack([rows[b][i] for b in members]) for i in range(7)))
+    return TorsionArrays(*(np.stack([rows[b][i] for b in members]) for i in range(8)))
 
 
 def _row(b) -> tuple:
@@ -205,17 +247,38 @@ def _row(b) -> tuple:
     c_iso, c_story = b.dashpots()
     c_story_y = b.along_y().dashpots()[1]
     c_theta = c_story * k_theta / np.asarray(b.story_stiffness, float)
-    damping, stiffness = np.zeros_like(mass), np.zeros_like(mass)
-    for d, (c, k) in enumerate(((c_story, story_k[:, 0]), (c_story_y, k_y),
-                                (c_theta, k_theta))):
-        damping[d::3, d::3] = chain_matrix(np.concatenate([[0.0], c]))
-        stiffness[d::3, d::3] = chain_matrix(np.concatenate([[0.0], k]))
+    centre = np.zeros((b.n_stories, 2)) if b.story_stiffness_centre is None else \
+        np.broadcast_to(np.asarray(b.story_stiffness_centre, float), (b.n_stories, 2))
+    damping = _story_chain(np.column_stack([c_story, c_story_y, c_theta]), centre)
+    stiffness = _story_chain(story_k, centre)
     damping[:3, :3] += c_iso * layout
     stiffness[:3, :3] += b.isolator_stiffness * layout
     influence = np.zeros((3 * n_levels, 2))
     influence[0::3, 0] = influence[1::3, 1] = 1.0
-    return (mass, damping, stiffness, mass @ influence, story_k, xy,
+    return (mass, damping, stiffness, mass @ influence, story_k, np.array(centre), xy,
             np.asarray(b.plan_size, float))
+
+
+def _story_chain(springs: np.ndarray, centre: np.ndarray) -> np.ndarray:
+    """(3L, 3L) the stories' springs (or dashpots) (N, 3) along x, y and in torsion at their
+    centres (N, 2) m, about the plans' centres: T' diag(springs) T per story, T the drift at
+    the centre from the plan centre's, [[1, 0, -y_s], [0, 1, x_s], [0, 0, 1]]; chained level
+    to level (chain_matrix's rule, the first element, the isolation, left out)."""
+    n = springs.shape[0] + 1
+    out = np.zeros((3 * n, 3 * n))
+    for d in range(3):  # centres at the plan's: each direction its own chain, exactly
+        out[d::3, d::3] = chain_matrix(np.concatenate([[0.0], springs[:, d]]))
+    for i, (x_s, y_s) in enumerate(centre):
+        if x_s == 0 and y_s == 0:
+            continue
+        t = np.array([[1.0, 0.0, -y_s], [0.0, 1.0, x_s], [0.0, 0.0, 1.0]])
+        block = t.T @ np.diag(springs[i]) @ t - np.diag(springs[i])
+        lo, hi = slice(3 * i, 3 * i + 3), slice(3 * i + 3, 3 * i + 6)
+        out[lo, lo] += block
+        out[hi, hi] += block
+        out[lo, hi] -= block
+        out[hi, lo] -= block
+    return out
 
 
 @dataclass(frozen=True)

@@ -39,6 +39,7 @@ from engine.impact import LAWS, M_EFF, NO_WALL
 from engine.isolators import LAWS as ISOLATOR_LAWS
 from engine.parameters import Parameter
 from engine.plan import PLAN_PARAMETERS
+from engine.torsion import ACCIDENTAL_ECCENTRICITY, shifted
 
 from .checks import checked_values, plausible
 from .errors import PlausibilityWarning, SweepError
@@ -69,9 +70,15 @@ LEVEL = Parameter("level", "1", "intensity level: the factor multiplying every r
 """A member's intensity (engine.simulate's scale, divided by its record's factor): swept like
 the angle, the baseline and unconstrained blocks repeated per level. Members carry it only
 when the sweep is given levels or record factors (NaN otherwise: the record as it is)."""
-EXCITATION_PARAMETERS = {"level": LEVEL, **PLAN_PARAMETERS}
+TORSION_PARAMETERS = {ACCIDENTAL_ECCENTRICITY.sweep: ACCIDENTAL_ECCENTRICITY}
+"""The parameters of a building that twists (its plan_size; runs in plan): its accidental
+eccentricity, a fraction of the plan (engine.torsion.shifted). Members carry it only when a
+sweep gives it (NaN otherwise: the building's own eccentricity)."""
+TORSION_PARAMS = tuple(TORSION_PARAMETERS)
+EXCITATION_PARAMETERS = {"level": LEVEL, **PLAN_PARAMETERS, **TORSION_PARAMETERS}
 """What excites a member beside its record, by sweep name: the intensity level (any run), the
-incidence angle and the wall friction (runs in plan)."""
+incidence angle and the wall friction (runs in plan), the accidental eccentricity (a building
+that twists)."""
 EXCITATION_PARAMS = tuple(EXCITATION_PARAMETERS)
 DIMENSIONS = (*EXCITATION_PARAMS, *PARAMS, *ISOLATOR_PARAMS)
 """Every sweep parameter, in the archive's dimension order (after record): the excitation's,
@@ -101,11 +108,13 @@ own area, say, in a design search)."""
 
 MEMBER_DTYPE = np.dtype([("law", "U16"),
                          *((name, "f8") for name in (*PARAMS, "m_eff", *ISOLATOR_PARAMS,
-                                                     *PLAN_PARAMS, "level", *LISTED_PARAMS))])
+                                                     *PLAN_PARAMS, "level", *LISTED_PARAMS,
+                                                     *TORSION_PARAMS))])
 """One member: its wall law's name, the wall's sweep parameters (SI; NaN: unused by the law),
 m_eff kg, the isolator parameters that replace the building's (SI; NaN: the building's own),
 the parameters of a run in plan (angle degrees, mu_wall; NaN: a planar run), its intensity
-level (NaN: the record as it is), the wall law's LISTED_PARAMS (NaN: the law's defaults)."""
+level (NaN: the record as it is), the wall law's LISTED_PARAMS (NaN: the law's defaults), the
+accidental eccentricity of a building that twists (NaN: the building's own)."""
 
 # The paper's bare wall, the reference of the amplification ratios (SPEC section 2 decision).
 BASELINE_LAW = "linear"
@@ -216,12 +225,13 @@ def make_grid(gap=None, *, impact: str = "bumper", isolator: str = "bilinear",
     # records carry factors), the angle and friction in plan.
     excitation, excitation_swept = {}, []
     for name, param in EXCITATION_PARAMETERS.items():
-        if name in PLAN_PARAMS and not plan:
+        if name in (*PLAN_PARAMS, *TORSION_PARAMS) and not plan:
             if given[name] is not None:
                 raise SweepError(f"{name} applies to runs in plan, under record pairs (moat="
                                  "'rectangular' or 'circular')")
             continue
-        if name == "level" and given[name] is None and not intensity:
+        if (name == "level" and not intensity or name in TORSION_PARAMS) \
+                and given[name] is None:
             continue
         array, is_swept = _values(name, param.default if given[name] is None
                                   else given[name])
@@ -395,18 +405,24 @@ def contact_for(members: np.ndarray) -> engine.Contact:
 
 def buildings_for(members: np.ndarray, building: engine.Building):
     """The engine building of (B,) MEMBER_DTYPE members: `building` itself when none of them
-    replaces an isolator parameter, else a list of B Buildings (one object per distinct
-    isolator, so that the engine builds each one's operators once). EngineError for values
-    the isolator law refuses together (e.g. k2 >= k1)."""
+    replaces an isolator parameter or moves its mass (an accidental eccentricity), else a list
+    of B Buildings (one object per distinct variant, so that the engine builds each one's
+    operators once). EngineError for values the isolator law refuses together (e.g. k2 >= k1)
+    and for an eccentricity given a building that does not twist."""
     names = [name for name in ISOLATOR_PARAMS if not np.all(np.isnan(members[name]))]
-    if not names:
+    moved = [name for name in TORSION_PARAMS if not np.all(np.isnan(members[name]))]
+    if not names and not moved:
         return building
     own = building.isolation.values
     rows = np.stack([np.where(np.isnan(members[n]), own.get(n, np.nan), members[n])
-                     for n in names], axis=1)
+                     for n in names] + [np.nan_to_num(members[n]) for n in moved], axis=1)
     distinct, which = np.unique(rows, axis=0, return_inverse=True)
-    variants = [building.with_isolator(**dict(zip(names, map(float, row), strict=True)))
-                for row in distinct]
+    variants = []
+    for row in distinct:
+        # the row: the isolator's values, then the eccentricity (zip stops at the names)
+        variant = building.with_isolator(**dict(zip(names, map(float, row), strict=False))) \
+            if names else building
+        variants.append(shifted(variant, row[-1]) if moved else variant)
     return [variants[i] for i in which.ravel()]
 
 

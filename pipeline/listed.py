@@ -38,6 +38,7 @@ from .grid import (
     MEMBER_DTYPE,
     PARAMS,
     PLAN_PARAMS,
+    TORSION_PARAMS,
     Block,
     Grid,
 )
@@ -152,12 +153,13 @@ def _excitation(rows: np.ndarray, plan: bool, intensity: bool) -> None:
     for name, param in EXCITATION_PARAMETERS.items():
         values = rows[name]
         given = ~np.isnan(values)
-        if name in PLAN_PARAMS and not plan:
+        if name in (*PLAN_PARAMS, *TORSION_PARAMS) and not plan:
             if np.any(given):
                 raise SweepError(f"members: {name} applies to runs in plan, under record "
                                  "pairs (moat='rectangular' or 'circular')")
             continue
-        if name == "level" and not (intensity or np.any(given)):
+        if (name == "level" and not intensity or name in TORSION_PARAMS) \
+                and not np.any(given):
             continue
         values = np.where(given, values, param.default)
         plausible(name, param, checked_values(param, values, name))

@@ -27,6 +27,7 @@ from pathlib import Path
 import numpy as np
 
 import engine
+from engine.building import TORSION_FIELDS
 from engine.impact import LAWS
 
 from .grid import BASELINE, BASELINE_LAW, ISOLATOR_PARAMS, Grid, baseline_text
@@ -253,10 +254,7 @@ def two_body_attributes(title: str, arguments: dict | None = None) -> dict:
 
 
 OPTIONAL_FIELDS = ("stories", "story_height", "p_delta", "collapse_drift_ratio")
-PLAN_FIELDS = ("plan_size", "eccentricity", "mass_inertia", "isolator_positions",
-               "story_torsional_stiffness")
-"""The fields of a building that twists: attributes only when it does (plan_size given);
-pairs and lists of pairs as JSON text (NetCDF has no 2-D attribute)."""
+
 """Building fields left out of the attributes when unused (None or False)."""
 
 
@@ -272,7 +270,7 @@ def building_attributes(building: engine.Building) -> dict:
             continue
         if name in OPTIONAL_FIELDS and getattr(building, name) in (None, False):
             continue  # unused: a building without them (the paper's) keeps its attributes
-        if name in PLAN_FIELDS:
+        if name in TORSION_FIELDS:  # only for a building that twists; pairs as JSON text
             if building.plan_size is not None and getattr(building, name) is not None:
                 attrs[f"building_{name}"] = json.dumps(getattr(building, name))
             continue

@@ -72,12 +72,12 @@ _COLLAPSED, _COLLAPSE_TIME, _TOUCH_X, _TOUCH_Y = range(4)
 
 
 @njit(**JIT)
-def _member(levels, padded, slots, b, s0, s1, ag, dt, op, respond, load, story_k, collapse_square,
-            par, bearings, f_plastic, u_all, v_all, state, point_wall, point_axis, codes,
-            point_par, direction, tangent, coupling, tangent_compliance, point_state, corners,
-            peak_level, peak_level_xy, peak_story, peak_story_xy, scalar, n_impacts,
-            peak_wall, peak_point_force, peak_point_indent, hist_row, every, h_u, h_acc, h_f,
-            h_d, h_floor, h_floor_rot):
+def _member(levels, padded, slots, b, s0, s1, ag, dt, op, respond, load, story_k, story_centre,
+            collapse_square, par, bearings, f_plastic, u_all, v_all, state, point_wall, point_axis,
+            codes, point_par, direction, tangent, coupling, tangent_compliance, point_state,
+            corners, peak_level, peak_level_xy, peak_story, peak_story_xy, scalar, n_impacts,
+            peak_wall, peak_point_force, peak_point_indent, hist_row, every, h_u, h_acc, h_f, h_d,
+            h_floor, h_floor_rot):
     """Steps s0 <= step < s1 of member b (the module docstring). The state's 3L degrees of
     freedom sit on the stack as Q pairs (Q = len(padded) / 2, the last lane of an odd 3L
     unused, its operator rows 0): op (B, 6L, Q, 2) the transposed step operator, respond
@@ -96,6 +96,7 @@ def _member(levels, padded, slots, b, s0, s1, ag, dt, op, respond, load, story_k
     wr = carray(data_pointer(respond[b]), (3, n_pairs, 2))
     ld = carray(data_pointer(load[b]), (n_dofs, 2))
     ks = carray(data_pointer(story_k[b]), (n_st, 3))
+    sc = carray(data_pointer(story_centre[b]), (n_st, 2))
     cq = collapse_square[b]
     p = par[b]
     cs, sn = p[_COS], p[_SIN]
@@ -213,10 +214,10 @@ def _member(levels, padded, slots, b, s0, s1, ag, dt, op, respond, load, story_k
         # The right-hand side: the chain of forces, less the ground's load.
         prev_x, prev_y, prev_t = sx, sy, sm
         for i in range(n_levels):
-            if i < n_st:
-                cx = ks[i, 0] * dr[3 * i]
-                cy = ks[i, 1] * dr[3 * i + 1]
-                ct = ks[i, 2] * dr[3 * i + 2]
+            if i < n_st:  # numpy_torsion.story_forces: the springs at their centres
+                cx = ks[i, 0] * (dr[3 * i] - dr[3 * i + 2] * sc[i, 1])
+                cy = ks[i, 1] * (dr[3 * i + 1] + dr[3 * i + 2] * sc[i, 0])
+                ct = ks[i, 2] * dr[3 * i + 2] + sc[i, 0] * cy - sc[i, 1] * cx
             else:
                 cx, cy, ct = 0.0, 0.0, 0.0
             j = 3 * i
@@ -391,21 +392,21 @@ def _member(levels, padded, slots, b, s0, s1, ag, dt, op, respond, load, story_k
 
 
 @njit(**JIT)
-def _run(levels, padded, slots, members, s0, s1, ag, dt, op, respond, load, story_k,
-         collapse_square, par, bearings, f_plastic, u, v, state, point_wall, point_axis,
-         codes, point_par, direction, tangent, coupling, tangent_compliance, point_state,
-         corners, peak_level, peak_level_xy, peak_story, peak_story_xy, scalar, n_impacts,
-         peak_wall, peak_point_force, peak_point_indent, hist_row, every, h_u, h_acc, h_f,
-         h_d, h_floor, h_floor_rot):
+def _run(levels, padded, slots, members, s0, s1, ag, dt, op, respond, load, story_k, story_centre,
+         collapse_square, par, bearings, f_plastic, u, v, state, point_wall, point_axis, codes,
+         point_par, direction, tangent, coupling, tangent_compliance, point_state, corners,
+         peak_level, peak_level_xy, peak_story, peak_story_xy, scalar, n_impacts, peak_wall,
+         peak_point_force, peak_point_indent, hist_row, every, h_u, h_acc, h_f, h_d, h_floor,
+         h_floor_rot):
     """Steps s0 <= step < s1 of the members in `members` (indices), one after the other; it
     releases the GIL (nogil), so that run_torsion's threads run batches of members at once."""
     for b in members:
-        _member(levels, padded, slots, b, s0, s1, ag, dt, op, respond, load, story_k,
+        _member(levels, padded, slots, b, s0, s1, ag, dt, op, respond, load, story_k, story_centre,
                 collapse_square, par, bearings, f_plastic, u, v, state, point_wall, point_axis,
                 codes, point_par, direction, tangent, coupling, tangent_compliance, point_state,
-                corners, peak_level, peak_level_xy, peak_story, peak_story_xy, scalar,
-                n_impacts, peak_wall, peak_point_force, peak_point_indent, hist_row, every,
-                h_u, h_acc, h_f, h_d, h_floor, h_floor_rot)
+                corners, peak_level, peak_level_xy, peak_story, peak_story_xy, scalar, n_impacts,
+                peak_wall, peak_point_force, peak_point_indent, hist_row, every, h_u, h_acc, h_f,
+                h_d, h_floor, h_floor_rot)
 
 
 def run_torsion(ag, dt, b, t, contacts, points, progress, scale, angle, history=None,
@@ -460,6 +461,7 @@ def run_torsion(ag, dt, b, t, contacts, points, progress, scale, angle, history=
     args = (np.ascontiguousarray(ag, dtype=np.float64), float(dt), op, respond,
             np.ascontiguousarray(t.load, dtype=np.float64),
             np.ascontiguousarray(t.story_k, dtype=np.float64),
+            np.ascontiguousarray(t.story_centre, dtype=np.float64),
             np.ascontiguousarray(b.collapse_drift**2, dtype=np.float64), par,
             np.ascontiguousarray(t.bearings, dtype=np.float64), f_plastic, u, v, state,
             np.ascontiguousarray(points.wall, dtype=np.int64),

@@ -147,7 +147,7 @@ def run_torsion(ag, dt, b: BuildingArrays, t: TorsionArrays, contacts, points: C
         f_by = k_el * (u0[:, 1:2] + u0[:, 2:] * bearing_x) + f_plastic[..., 1]
         chain[:, 0] = np.column_stack([f_bx.sum(axis=1), f_by.sum(axis=1),
                                        (bearing_x * f_by - bearing_y * f_bx).sum(axis=1)])
-        chain[:, 1:n_levels] = t.story_k * drift
+        chain[:, 1:n_levels] = story_forces(t.story_k, t.story_centre, drift)
         rhs = (chain[:, 1:] - chain[:, :-1]).reshape(size, -1) - np.einsum("bid,bd->bi",
                                                                            t.load, a)
         v_next = np.einsum("bij,bj->bi", step_op,
@@ -229,6 +229,17 @@ def run_torsion(ag, dt, b: BuildingArrays, t: TorsionArrays, contacts, points: C
     if hist is not None:
         hist["members"] = np.asarray(history.members, dtype=int)
     return {**peaks, **collapse}, hist
+
+
+def story_forces(story_k, centre, drift):
+    """(B, L - 1, 3) the stories' forces and moments about the plans' centres (N, N m) at
+    drifts (B, L - 1, 3) (m, m, rad): the springs at their centres of stiffness (B, L - 1, 2)
+    m (engine/torsion.py); a centre at the plan's adds exact zeros (the same bits)."""
+    x_s, y_s = centre[..., 0], centre[..., 1]
+    f_x = story_k[..., 0] * (drift[..., 0] - drift[..., 2] * y_s)
+    f_y = story_k[..., 1] * (drift[..., 1] + drift[..., 2] * x_s)
+    moment = story_k[..., 2] * drift[..., 2] + x_s * f_y - y_s * f_x
+    return np.stack([f_x, f_y, moment], axis=-1)
 
 
 def _contact_peaks(peaks, points: ContactPoints, force, delta):

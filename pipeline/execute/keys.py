@@ -19,7 +19,7 @@ import numpy as np
 
 from ..provenance import engine_fingerprint, record_hash
 
-CACHE_FORMAT = 7  # bump when the work-folder layout, the member record or the peak set change
+CACHE_FORMAT = 8  # bump when the work-folder layout, the member record or the peak set change
 
 
 def context_key(record, dt: float, building, moat: str | None = None,

@@ -112,21 +112,20 @@ def compute(args):
     eccs = np.array(QUICK_ECCENTRICITIES if args.quick else ECCENTRICITIES)
     fractions = QUICK_GAP_FRACTIONS if args.quick else GAP_FRACTIONS
     positions = pad_positions(plan, args.pads)
-    options = {**run_options(args), "building": None}
-    peaks, code, swept = [], [], None
-    for e in eccs:
-        building = dataclasses.replace(suite.building, plan_size=plan,
-                                       eccentricity=(e * plan[0], e * plan[1]))
-        d_tm = total_maximum_displacement(d_m, plan, (e * plan[0], e * plan[1]))
-        code.append(d_tm)
-        table = members([*(f * d_m for f in fractions), d_tm["d_tm"]], thetas)
-        table["n_bumpers"] = np.where(table["law"] == "bumper", float(args.pads), np.nan)
-        swept = sweep(suite.pairs, moat="rectangular", factors=suite.factors, members=table,
-                      bumper_positions=positions, **{**options, "building": building})
-        peaks.append(swept)
+    building = dataclasses.replace(suite.building, plan_size=plan)
+    # one sweep: per eccentricity (the members' accidental eccentricity, engine.torsion.shifted)
+    # and angle, no wall, then the bare wall and the bumpers at each gap, D_TM the code's for
+    # that eccentricity
+    code = [total_maximum_displacement(d_m, plan, (e * plan[0], e * plan[1])) for e in eccs]
+    tables = [members([*(f * d_m for f in fractions), d_tm["d_tm"]], thetas) for d_tm in code]
+    table = {name: np.concatenate([t[name] for t in tables]) for name in tables[0]}
+    table["eccentricity"] = np.repeat(eccs, tables[0]["law"].size)
+    table["n_bumpers"] = np.where(table["law"] == "bumper", float(args.pads), np.nan)
+    swept = sweep(suite.pairs, moat="rectangular", factors=suite.factors, members=table,
+                  bumper_positions=positions, **{**run_options(args), "building": building})
     gaps = [*(f"{f:g} D_M" if f != 1 else "D_M" for f in fractions), "D_TM"]
-    ds = dataset(peaks, code, suite, thetas, eccs, positions, gaps, fractions, args)
-    ds = ds.assign(orbit_variables(suite, plan, eccs[-1], positions, args, engine))
+    ds = dataset(swept, code, suite, thetas, eccs, positions, gaps, fractions, args)
+    ds = ds.assign(orbit_variables(suite, building, eccs[-1], args, engine))
     return ds.assign_attrs({**provenance(swept), **ds.attrs})
 
 
@@ -134,7 +133,7 @@ PER_RUN = ("peak_isolator_disp", "peak_corner_disp", "peak_rotation", "max_impac
            "n_impacts", "peak_total_accel")
 
 
-def dataset(sweeps, code, suite, thetas, eccs, positions, gaps, fractions, args):
+def dataset(swept, code, suite, thetas, eccs, positions, gaps, fractions, args):
     """The study's archive: dims record, eccentricity, angle, gap, barrier (and point for the
     pads' and corners' forces), the code's D_M and D_TM per eccentricity, the suite."""
     from engine.results import TORSION_PEAKS, quantity
@@ -146,10 +145,10 @@ def dataset(sweeps, code, suite, thetas, eccs, positions, gaps, fractions, args)
     n_r, n_e, n_a, n_g = len(suite.pairs), eccs.size, thetas.size, len(gaps)
     per_angle = 1 + 2 * n_g
 
-    def blocks(ds, name):
-        """(record, angle, member of the angle) values of one eccentricity's sweep."""
-        values = ds[name].values
-        return values.reshape(n_r, n_a, per_angle, *values.shape[2:])
+    def blocks(name):
+        """(record, eccentricity, angle, member of the angle) values of the sweep."""
+        values = swept[name].values
+        return values.reshape(n_r, n_e, n_a, per_angle, *values.shape[2:])
 
     dims_free = ("record", "eccentricity", "angle")
     dims_wall = ("record", "eccentricity", "angle", "gap", "barrier")
@@ -157,7 +156,7 @@ def dataset(sweeps, code, suite, thetas, eccs, positions, gaps, fractions, args)
     declared = {q.name: q for q in TORSION_PEAKS}
     for name in PER_RUN:
         q = declared.get(name) or quantity(name)
-        stack = np.stack([blocks(ds, name) for ds in sweeps], axis=1)
+        stack = blocks(name)
         if name == "peak_total_accel":  # the largest over the floors
             stack = stack.max(axis=-1)
         free = stack[:, :, :, 0]
@@ -168,7 +167,7 @@ def dataset(sweeps, code, suite, thetas, eccs, positions, gaps, fractions, args)
         data[name] = variable(dims_wall, walls, q.units, f"{q.long_name} {what}".strip())
     for name in ("max_point_force", "max_point_indentation", "max_impact_force_wall"):
         q = declared.get(name) or next(q for q in _plan_peaks() if q.name == name)
-        stack = np.stack([blocks(ds, name) for ds in sweeps], axis=1)[:, :, :, 1:]
+        stack = blocks(name)[:, :, :, 1:]
         stack = stack.reshape(n_r, n_e, n_a, n_g, 2, stack.shape[-1])
         along = "point" if "point" in name else "wall"
         data[name] = variable((*dims_wall, along), stack, q.units, q.long_name)
@@ -184,7 +183,7 @@ def dataset(sweeps, code, suite, thetas, eccs, positions, gaps, fractions, args)
         .astype(np.int8), "1", "1 where a pad's stress passes the rubber tests' largest, "
         f"{RUBBER_STRESS_LIMIT / 1e6:.3g} MPa (pipeline.assess.validity): outside the law's "
         "range, counted apart in every summary")
-    first = sweeps[0]
+    first = swept
     coords = {
         "eccentricity": variable("eccentricity", eccs, "1", "the mass centre's offset from "
                                  "the plan's centre as a fraction of each plan dimension "
@@ -221,16 +220,15 @@ def _plan_peaks():
     return PLAN_PEAKS
 
 
-def orbit_variables(suite, plan, ecc, positions, args, engine) -> dict:
+def orbit_variables(suite, building, ecc, args, engine) -> dict:
     """The orbits the figure draws: the first pair at angle 0 and the largest eccentricity,
     without wall: the centre's and the corners' (engine.torsion.corner_orbits)."""
-    from engine.torsion import CORNERS, corner_orbits
+    from engine.torsion import CORNERS, corner_orbits, shifted
     from pipeline.archive import variable
 
     pair = suite.pairs[0]
-    building = dataclasses.replace(suite.building, plan_size=plan,
-                                   eccentricity=(ecc * plan[0], ecc * plan[1]))
-    run = engine.simulate(pair.accel, pair.dt, engine.Contact.none(1), building,
+    plan = building.plan_size
+    run = engine.simulate(pair.accel, pair.dt, engine.Contact.none(1), shifted(building, ecc),
                           engine.DEFAULT_DT if args.dt is None else args.dt,
                           history=engine.History([0], every=ORBIT_EVERY),
                           scale=[suite.factors[0]])

@@ -7,7 +7,8 @@ invariants that tie the model to the run in plan and to mechanics, on both loops
   mirrors the response: the same peaks, each wall's force on the opposite wall;
 - without damping, on bearings that stay elastic, the slab's coupled torsional and
   translational free vibration keeps the energy the central-difference scheme conserves
-  (1/2 v' M v at the half step plus 1/2 u_n' K u_{n+1}), to round-off;
+  (1/2 v' M v at the half step plus 1/2 u_n' K u_{n+1}), to round-off: the loops' forces are
+  the stiffness matrix's, stories off centre included;
 - every impact law carries its share: Contact.part(s) is s times the law's force.
 First 4 s of Pacoima Dam 164 in x with its 254 component in y (the pulse hits every wall).
 """
@@ -130,7 +131,9 @@ def test_undamped_torsional_vibration_keeps_its_energy(backend):
     building = Building(plan_size=PLAN, eccentricity=(3.0, 2.0), zeta_iso=0.0, zeta_sup=0.0,
                         isolator=Isolator.bilinear(k1=40e6, k2=20e6, fy_ratio=50.0),
                         isolator_positions=((-15.0, -10.0), (15.0, -6.0), (9.0, 10.0),
-                                            (-15.0, 10.0)))
+                                            (-15.0, 10.0)),
+                        story_stiffness_centre=((2.0, -1.0), (0.0, 0.0), (-3.0, 4.0),
+                                                (1.0, 1.0)))
     result = engine.simulate(accel, 0.01, Contact.none(1), building, dt=dt,
                              history=History([0]), backend=backend)
     hist = result.history
@@ -160,6 +163,18 @@ def test_every_law_carries_its_share(law):
         for f, g in zip(full, got, strict=True):
             np.testing.assert_allclose(g, share * np.asarray(f), rtol=1e-12)
     assert np.any(full[1] > 0)
+
+
+def test_a_story_off_centre_is_its_springs_moved_there():
+    """One story's stiffness about the plan's centre: T' diag(k, k_y, k_theta) T, T the drift
+    at its centre (x_s, y_s) = (2, -1) m, written out."""
+    k, k_t = 600e6, 3e10
+    building = Building(masses=(320e3, 250e3), story_stiffness=(k,), plan_size=PLAN,
+                        story_torsional_stiffness=(k_t,), story_stiffness_centre=(2.0, -1.0))
+    got = torsion_arrays([building], 1).stiffness[0, 3:, 3:]
+    story = np.array([[k, 0.0, k * 1.0], [0.0, k, k * 2.0],
+                      [k * 1.0, k * 2.0, k_t + k * (2.0**2 + 1.0**2)]])
+    np.testing.assert_allclose(got, story, rtol=1e-15)
 
 
 def test_the_points_are_the_corners_and_the_bumpers():
@@ -218,7 +233,8 @@ def test_the_compiled_loop_gives_the_numpy_loops_numbers():
     contact = Contact.concat([walls(), Contact.bumper([0.12], n_bumpers=3)])
     size = len(contact)
     buildings = [Building(plan_size=PLAN, eccentricity=(3.0, -1.0),
-                          isolator_positions=CORNER_BEARINGS),
+                          isolator_positions=CORNER_BEARINGS,
+                          story_stiffness_centre=(-2.0, 1.5)),
                  Building(plan_size=PLAN, eccentricity=(3.0, -1.0),
                           isolator_positions=CORNER_BEARINGS,
                           isolator=Isolator.friction_pendulum(radius=2.0, mu_slow=0.05,

@@ -83,3 +83,26 @@ def test_bumper_positions_are_part_of_the_key():
     # a run without bumper positions keeps the key it had before they existed
     assert context_key(pair, 5e-4, BUILDING, "rectangular") == \
         context_key(pair, 5e-4, BUILDING, "rectangular", None, None)
+
+
+def test_the_accidental_eccentricity_is_a_sweep_dimension():
+    """eccentricity (a fraction of the plan, engine.torsion.shifted) moves the mass of each
+    member: the engine's run of the building so moved; a building that does not twist, or a
+    planar run, refuses it before any compute."""
+    pair = short_pair()
+    ds = pipeline.sweep([pair], gap=0.03, impact="linear", moat="rectangular",
+                        building=BUILDING, eccentricity=[0.0, 0.05], quiet=True)
+    assert ds.peak_rotation.dims == ("record", "eccentricity") \
+        and ds.eccentricity.attrs["units"] == "1"
+    moved = engine.Building(**{**{f: getattr(BUILDING, f) for f in
+                                  BUILDING.__dataclass_fields__},
+                               "eccentricity": (2.0 + 1.5, -1.0 + 1.0)})
+    alone = engine.simulate(pair.accel, pair.dt, engine.Contact.linear(0.03), moved,
+                            moat="rectangular")
+    np.testing.assert_array_equal(ds.peak_corner_disp.sel(eccentricity=0.05).values,
+                                  alone.peak_corner_disp)
+    for kwargs in ({"building": engine.Building(), "moat": "rectangular"},
+                   {"building": BUILDING}):
+        with pytest.raises(SweepError, match="plan_size|in plan"):
+            pipeline.sweep([pair] if "moat" in kwargs else ["RSN953"], gap=0.03,
+                           impact="linear", eccentricity=[0.05], quiet=True, **kwargs)
