@@ -59,28 +59,53 @@ def backend(request) -> str:
 
 
 
-# The longest files first (their measured share of the suite, warm, in s): pytest-xdist hands
-# whole files to whichever worker is free in collection order (--dist loadfile), so the many
-# short files then fill the gaps. The files that run commands in subprocesses go last: by then
-# the compiled kernels are in the disk cache, and a subprocess loads instead of compiling.
-LONG_FIRST = ("tests/reference/test_references.py",        # 35
-              "tests/engine/test_opensees.py",             # 34
-              "tests/engine/test_plan_references.py",      # 34
-              "tests/reference/test_opensees_pdelta.py",   # 21
-              "tests/reference/test_opensees_imk.py",      # 18
-              "tests/engine/test_stories.py",              # 23
-              "tests/engine/test_plan.py",                 # 21
-              "tests/studies/test_sweeps.py",              # 20
-              "tests/studies/test_paper_conclusions.py",   # 19
-              "tests/engine/test_model_edges.py")          # 18
-SUBPROCESSES_LAST = ("tests/pipeline/test_cluster.py", "tests/pipeline/test_tls.py",
-                     "tests/pipeline/test_interrupt.py", "tests/studies/test_cli.py",
-                     "tests/studies/test_bumpers_command.py", "tests/test_readme.py")
+# The longest files first (their wall time in the suite, 3 workers on 2 cores, cold caches, in
+# s): pytest-xdist hands whole files to whichever worker is free in collection order
+# (--dist loadfile), so the many short files then fill the gaps and no worker is left alone
+# with a long file at the end. Files that run commands in subprocesses are ordered like the
+# rest: put last, the longest of them (the documentation's examples, the interrupted recipe,
+# the dask clusters) ran on one worker while the others had finished.
+LONG_FIRST = ("tests/engine/test_plan_references.py",        # 79
+              "tests/test_readme.py",                        # 77
+              "tests/engine/test_torsion.py",                # 40 (warm: 28)
+              "tests/engine/test_plan.py",                   # 68
+              "tests/engine/test_stories.py",                # 65
+              "tests/reference/test_opensees_pdelta.py",     # 51
+              "tests/reference/test_references.py",          # 50
+              "tests/engine/test_opensees.py",               # 45
+              "tests/studies/test_collapse_study.py",        # 44
+              "tests/engine/test_model_edges.py",            # 39
+              "tests/reference/test_opensees_imk.py",        # 37
+              "tests/reference/test_opensees_torsion.py",    # 30 (warm: 14)
+              "tests/pipeline/test_interrupt.py",            # 37
+              "tests/studies/test_sweeps.py",                # 36
+              "tests/pipeline/test_cluster.py",              # 34
+              "tests/engine/test_isolators.py",              # 32
+              "tests/studies/test_paper_conclusions.py",     # 29
+              "tests/pipeline/test_zarr.py",                 # 24
+              "tests/pipeline/test_loss.py",                 # 23
+              "tests/engine/test_kernel.py",                 # 23
+              "tests/pipeline/test_sweep.py",                # 22
+              "tests/engine/test_plan_friction.py",          # 21
+              "tests/studies/test_cli.py",                   # 20
+              "tests/engine/test_collapse.py",               # 19
+              "tests/studies/test_design.py",                # 19
+              "tests/engine/test_batch.py",                  # 18
+              "tests/engine/test_torsion_references.py",     # 18 (warm: 8)
+              "tests/studies/test_torsion_study.py",         # 16 (warm: 12)
+              "tests/studies/test_suite.py",                 # 15
+              "tests/engine/test_impact_laws.py")            # 14
+
+
+def pytest_configure(config):
+    """Keep the order below: pytest-xdist (3.6 on) would otherwise hand out the files with the
+    most tests first, whatever their length (its --no-loadscope-reorder)."""
+    if hasattr(config.option, "loadscopereorder"):
+        config.option.loadscopereorder = False
 
 
 def pytest_collection_modifyitems(config, items):
     rank = {name: i for i, name in enumerate(LONG_FIRST)}
-    rank.update({name: len(LONG_FIRST) + 2 + i for i, name in enumerate(SUBPROCESSES_LAST)})
     root = Path(str(config.rootpath))
 
     def key(item):

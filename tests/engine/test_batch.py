@@ -93,6 +93,9 @@ def test_history_matches_peaks(short_record, backend):
     np.testing.assert_array_equal(sparse.history["isolator_disp"][0], h["isolator_disp"][1, ::10])
 
 
+# The compiled loop: the NumPy loop gives its impact energies to 1e-9 with linear walls of
+# COR 0.3 to 1 (tests/engine/test_kernel.py::test_backends_agree_on_every_peak).
+@pytest.mark.parametrize("backend", ["numba"])
 def test_energy_balance_of_an_elastic_wall(short_record, backend):
     """With COR = 1 the wall dissipates nothing: the work done on it over the record is zero
     to within the discretisation (contacts that are closed at the end excepted)."""

@@ -115,7 +115,9 @@ def test_against_solve_ivp(name, tolerance):
     assert max(worst.values()) < tolerance, worst
 
 
-@pytest.mark.parametrize("name", ["N8-yielding", "friction"])
+# Not N8-yielding: the two loops on 8 yielding stories (with a friction pendulum and walls,
+# the stronger case) are tests/engine/test_isolators.py::test_both_loops_agree_on_any_height[8].
+@pytest.mark.parametrize("name", ["friction"])
 def test_numpy_loop_gives_the_kernel_numbers(name):
     fast, ref = run(name, "numba"), run(name, "numpy")
     for peak in PEAKS:
