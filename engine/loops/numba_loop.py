@@ -37,7 +37,13 @@ from .compiled import (
     slip_limit,
     story_force,
 )
-from .numba_support import data_pointer, install_cache_locator, run_members, stack_doubles
+from .numba_support import (
+    data_pointer,
+    history_rows,
+    install_cache_locator,
+    run_members,
+    stack_doubles,
+)
 
 # Cached kernels go stale when any physics source they compile changes, not only this file.
 install_cache_locator(Path(__file__), [compiled.__file__, *PHYSICS_FILES])
@@ -334,15 +340,8 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
     n_impacts = np.zeros(size, dtype=np.int64)
     ag = np.ascontiguousarray(ag, dtype=np.float64)
 
-    hist_row = np.full(size, -1, dtype=np.int64)
-    every, n_out, rows, inverse = 1, 0, 0, None
-    if history is not None:
-        wanted = np.asarray(history.members, dtype=np.int64) % size
-        unique, inverse = np.unique(wanted, return_inverse=True)
-        rows = unique.size
-        hist_row[unique] = np.arange(rows)
-        every = int(history.every)
-        n_out = (n_steps - 1) // every + 1
+    hist_row, every, rows, inverse = history_rows(history, size)
+    n_out = 0 if history is None else (n_steps - 1) // every + 1
     h_u, h_f, h_d = (np.zeros((rows, n_out)) for _ in range(3))
     h_acc = np.zeros((rows, n_out, n_levels))
 

@@ -49,6 +49,7 @@ from .numba_support import (
     add2,
     data_pointer,
     div2,
+    history_rows,
     install_cache_locator,
     load_pair,
     max2,
@@ -421,14 +422,7 @@ def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, histor
                               dtype=q.dtype) for q in (*PEAKS, *PLAN_PEAKS)}
     scalar = np.zeros((size, 4))
     n_steps = ag.shape[0]
-    hist_row = np.full(size, -1, dtype=np.int64)
-    every, rows, inverse = 1, 0, None
-    if history is not None:
-        unique, inverse = np.unique(np.asarray(history.members, dtype=np.int64) % size,
-                                    return_inverse=True)
-        rows = unique.size
-        hist_row[unique] = np.arange(rows)
-        every = int(history.every)
+    hist_row, every, rows, inverse = history_rows(history, size)
     hist = empty_plan_history(rows, n_steps, every, dt, n_levels)
     args = (np.ascontiguousarray(ag, dtype=np.float64), float(dt), op_xy, wall_xy, story_xy,
             np.ascontiguousarray(arrays.masses), story, law, par, wall_par, u, v, f_story,

@@ -8,6 +8,7 @@ import hashlib
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
+import numpy as np
 from llvmlite import ir
 from numba.core import cgutils, types
 from numba.extending import intrinsic
@@ -47,6 +48,19 @@ def install_cache_locator(kernel_file: Path, physics_files: list[str]) -> None:
 
     if not any(c.__name__ == "_PhysicsCacheLocator" for c in CacheImpl._locator_classes):
         CacheImpl._locator_classes.insert(0, _PhysicsCacheLocator)
+
+
+def history_rows(history, size: int):
+    """Where a kernel writes each member's histories: (hist_row (size,) int64, the row of each
+    member or -1, every, rows: how many, inverse: the asked members' rows, None without
+    histories), for an engine.History whose members may repeat or count from the end."""
+    hist_row = np.full(size, -1, dtype=np.int64)
+    if history is None:
+        return hist_row, 1, 0, None
+    unique, inverse = np.unique(np.asarray(history.members, dtype=np.int64) % size,
+                                return_inverse=True)
+    hist_row[unique] = np.arange(unique.size)
+    return hist_row, int(history.every), unique.size, inverse
 
 
 @intrinsic

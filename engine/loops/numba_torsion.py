@@ -49,6 +49,7 @@ from .numba_contacts import GAP, LAW_ARGS, point_arrays, solve_contacts
 from .numba_support import (
     add2,
     data_pointer,
+    history_rows,
     install_cache_locator,
     load_pair,
     mul2,
@@ -449,14 +450,7 @@ def run_torsion(ag, dt, b, t, contacts, points, progress, scale, angle, history=
                               dtype=q.dtype) for q in (*PEAKS, *PLAN_PEAKS, *TORSION_PEAKS)}
     scalar = np.zeros((size, _N_SCALAR))
     n_steps = ag.shape[0]
-    hist_row = np.full(size, -1, dtype=np.int64)
-    every, rows, inverse = 1, 0, None
-    if history is not None:
-        unique, inverse = np.unique(np.asarray(history.members, dtype=np.int64) % size,
-                                    return_inverse=True)
-        rows = unique.size
-        hist_row[unique] = np.arange(rows)
-        every = int(history.every)
+    hist_row, every, rows, inverse = history_rows(history, size)
     hist = empty_plan_history(rows, n_steps, every, dt, n_levels, torsion=True)
     args = (np.ascontiguousarray(ag, dtype=np.float64), float(dt), op, respond,
             np.ascontiguousarray(t.load, dtype=np.float64),

@@ -72,7 +72,7 @@ def test_a_slab_that_does_not_turn_is_the_plan_run(layout, backend):
     angle = np.linspace(0.0, 75.0, len(contact))
     plan = engine.simulate(accel, dt, contact, Building(), angle=angle, backend=backend)
     bearings = None if layout == "grid" else CORNER_BEARINGS
-    bumpers = ((-7.0, 0.0, 7.0), (-12.0, 0.0, 12.0)) if layout == "bumpers" else None
+    bumpers = ((-8.0, 0.0, 8.0), (-12.0, 12.0)) if layout == "bumpers" else None  # 10 points
     twist = engine.simulate(accel, dt, contact, Building(plan_size=PLAN,
                                                          isolator_positions=bearings),
                             angle=angle, bumper_positions=bumpers, backend=backend)

@@ -25,6 +25,7 @@ from engine import Building, Contact
 
 pytest.importorskip("openseespy.opensees")
 
+from tests.engine.test_plan_references import deviations  # noqa: E402
 from tests.reference import opensees_torsion as ot  # noqa: E402
 from tests.reference.test_opensees_torsion import (  # noqa: E402
     CORNER_BEARINGS,
@@ -69,26 +70,11 @@ def opensees(name: str) -> dict:
                             **({"gap": SHORT_GAP, "k": WALL_K} if walls else {}))
 
 
-def deviations(peaks: dict, reference: dict) -> dict[str, float]:
-    """The largest relative deviation of each peak, entry by entry; an entry the reference
-    has at 0 (no wall) must be 0 in the engine too."""
-    out = {}
-    for name in PEAKS:
-        ref = np.atleast_1d(np.asarray(reference[name], float))
-        got = np.atleast_1d(np.asarray(peaks[name], float))
-        assert got.shape == ref.shape, name
-        zero = ref == 0
-        np.testing.assert_array_equal(got[zero], 0.0, err_msg=name)
-        if not zero.all():
-            out[name] = float(np.max(np.abs(got[~zero] - ref[~zero]) / np.abs(ref[~zero])))
-    return out
-
-
 @pytest.mark.parametrize("case", list(CASES))
 def test_engine_matches_opensees_when_the_slab_twists(case):
     got, want = engine_runs("numba")[case], opensees(case)
     assert want["peak_rotation"] > 1e-4  # rad: it twists
     if CASES[case][1]:
         assert np.all(want["max_point_force"] > 0)  # every corner hits both its walls
-    worst = deviations(got, want)
+    worst = deviations(got, want, PEAKS)
     assert max(worst.values()) < TOLERANCE, worst

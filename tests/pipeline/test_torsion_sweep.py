@@ -71,6 +71,10 @@ def test_bumpers_where_they_stand(tmp_path):
     assert (alone.max_point_force > 0).any()
     with pytest.raises(SweepError, match="plan_size"):
         pipeline.sweep([pair], gap=0.10, moat="rectangular", bumper_positions=PADS, quiet=True)
+    for moat in (None, "circular"):  # refused before any compute
+        with pytest.raises(SweepError, match="rectangular moat"):
+            pipeline.sweep(["RSN953"] if moat is None else [pair], gap=0.10, moat=moat,
+                           building=BUILDING, quiet=True)
 
 
 def test_bumper_positions_are_part_of_the_key():

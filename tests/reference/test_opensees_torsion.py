@@ -132,8 +132,9 @@ def short_pair() -> tuple[np.ndarray, float]:
     return np.column_stack([x.accel[i0:i1 + 1], y.accel[i0:i1 + 1]]), x.dt
 
 
-@pytest.mark.parametrize("walls", [{}, {"gap": SHORT_GAP, "k": WALL_K}],
-                         ids=["no-wall", "elastic-walls"])
+# With the walls only: its centre peaks are those without walls until the first contact, and
+# the no-wall case measured 6e-14 against the planar reference (the docstring).
+@pytest.mark.parametrize("walls", [{"gap": SHORT_GAP, "k": WALL_K}], ids=["elastic-walls"])
 def test_a_symmetric_building_does_not_twist_and_is_the_planar_reference(walls):
     pair, pair_dt = short_pair()
     got = ot.torsion_peaks(pair, pair_dt, plan_size=PLAN, positions=CORNER_BEARINGS, **walls)
