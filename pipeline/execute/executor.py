@@ -27,8 +27,11 @@ memory manager drops extra replicas within seconds), and every batch of the reco
 """
 from __future__ import annotations
 
+import signal
+import threading
 import uuid
 from collections import Counter
+from contextlib import contextmanager
 from typing import Protocol
 
 import numpy as np
@@ -94,8 +97,26 @@ def _run_here(store: Store, batches: list[Batch], progress: Progress) -> None:
         output = function(store.records[batch.record].accel, *args,
                           progress=lambda step, steps, b=batch:
                           progress.running(b.key, b.size * step / steps))
-        store.accept(batch, output)
-        progress.advance(batch.size, batch.key)
+        with _uninterrupted():  # a batch kept is a batch counted: Interrupted says so
+            store.accept(batch, output)
+            progress.advance(batch.size, batch.key)
+
+
+@contextmanager
+def _uninterrupted():
+    """Ctrl-C held back for the block (POSIX, main thread): it lands right after it, so that a
+    batch written to the work folder is always counted among those kept (the interrupt's
+    message would otherwise under-count by one batch). Elsewhere (Windows) the block runs as it
+    is."""
+    block = getattr(signal, "pthread_sigmask", None)
+    if block is None or threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = block(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        yield
+    finally:
+        block(signal.SIG_SETMASK, previous)
 
 
 def _run_on_dask(store: Store, batches: list[Batch], workers: int, scheduler,
@@ -128,14 +149,16 @@ def _run_on_dask(store: Store, batches: list[Batch], workers: int, scheduler,
                 futures[future] = batch
             for future in as_completed(list(futures), loop=dask.loop):
                 batch = futures.pop(future)
-                store.accept(batch, future.result())
+                output = future.result()
+                with _uninterrupted():
+                    store.accept(batch, output)
+                    progress.advance(batch.size, batch.key)
                 # Forgotten by the scheduler once accepted: a result held by a worker that dies
                 # later is not computed again, nor a record all of whose batches are in.
                 future.release()
                 left[batch.record] -= 1
                 if not left[batch.record]:
                     accel.pop(batch.record).release()
-                progress.advance(batch.size, batch.key)
         except KeyboardInterrupt:
             # Stop quietly: cancel what is queued; shutting down then makes dask log closed
             # comms and cancelled tasks, which say nothing to the user.
