@@ -210,6 +210,10 @@ def _execute(grid, records, arguments: dict, *, dt=None, workers: int = 1, sched
     from .writing import check_out, guard
 
     building = check_building(building)
+    if building.plan_size is not None and moat != "rectangular":
+        raise SweepError("a building that twists (its plan_size) runs in plan against the "
+                         f"rectangular moat, under record pairs: give moat='rectangular', not "
+                         f"{moat!r}")
     dt = check_dt(grid, engine.DEFAULT_DT if dt is None else dt, building)
     workers = check_count("workers", workers, minimum=0)
     if scheduler is not None and not isinstance(scheduler, str) \
@@ -231,10 +235,6 @@ def _execute(grid, records, arguments: dict, *, dt=None, workers: int = 1, sched
     out = check_out(out)
     arguments = plain({**arguments, "records": names, "dt": dt,
                        **({} if factors is None else {"factors": factors})})
-    if building.plan_size is not None and moat != "rectangular":
-        raise SweepError("a building that twists (its plan_size) runs in plan against the "
-                         f"rectangular moat, under record pairs: give moat='rectangular', not "
-                         f"{moat!r}")
     if bumper_positions is not None:
         import numpy as np
 
