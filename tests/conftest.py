@@ -67,7 +67,7 @@ def backend(request) -> str:
 # the dask clusters) ran on one worker while the others had finished.
 LONG_FIRST = ("tests/engine/test_plan_references.py",        # 79
               "tests/test_readme.py",                        # 77
-              "tests/engine/test_torsion.py",                # 40 (warm: 28)
+              "tests/engine/test_torsion.py",                # 25 (warm: 14)
               "tests/engine/test_plan.py",                   # 68
               "tests/engine/test_stories.py",                # 65
               "tests/reference/test_opensees_pdelta.py",     # 51
@@ -76,7 +76,6 @@ LONG_FIRST = ("tests/engine/test_plan_references.py",        # 79
               "tests/studies/test_collapse_study.py",        # 44
               "tests/engine/test_model_edges.py",            # 39
               "tests/reference/test_opensees_imk.py",        # 37
-              "tests/reference/test_opensees_torsion.py",    # 30 (warm: 14)
               "tests/pipeline/test_interrupt.py",            # 37
               "tests/studies/test_sweeps.py",                # 36
               "tests/pipeline/test_cluster.py",              # 34

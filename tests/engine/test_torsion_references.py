@@ -11,7 +11,8 @@ building on four bearings at the slab's corners (30 x 20 m), its mass 10% of b_x
 along x (and 5% of b_y along y with the walls), bare elastic walls 40 mm clear (all four
 hit, every corner against both its walls). Worst deviations measured: CASES' comments (the
 compiled loop runs here; it gives the NumPy loop's peaks to 1e-9,
-tests/engine/test_torsion.py).
+tests/engine/test_torsion.py). The reference's own kinematics are checked on the same run:
+its corners follow its diaphragm as the engine's model says, sign of the rotation included.
 """
 from __future__ import annotations
 
@@ -63,10 +64,11 @@ def engine_runs(backend: str) -> dict[str, dict]:
 
 @functools.cache
 def opensees(name: str) -> dict:
+    """The reference's peaks and histories of a case."""
     pair, pair_dt = short_pair()
     ecc, walls = CASES[name]
     return ot.torsion_peaks(pair, pair_dt, plan_size=PLAN, positions=CORNER_BEARINGS,
-                            eccentricity=ecc,
+                            eccentricity=ecc, history=True,
                             **({"gap": SHORT_GAP, "k": WALL_K} if walls else {}))
 
 
@@ -78,3 +80,27 @@ def test_engine_matches_opensees_when_the_slab_twists(case):
         assert np.all(want["max_point_force"] > 0)  # every corner hits both its walls
     worst = deviations(got, want, PEAKS)
     assert max(worst.values()) < TOLERANCE, worst
+
+
+def test_the_references_corners_follow_its_diaphragm():
+    """The reference on its own, against the walls: its corners move as the spec's
+    (u_x - theta Y, u_y + theta X) from the master's motion, the sign of theta included, and
+    each corner's gap element gives k / 2 times that corner's indentation; twisting, a wall's
+    two corners do not share its force equally."""
+    got = opensees("two-way-eccentric-walls")
+    hist = got["history"]
+    corners = np.array(ot.CORNERS) * [PLAN[0] / 2, PLAN[1] / 2]
+    want = hist["centre"][:, None, :] + hist["theta"][:, None, None] * np.stack(
+        [-corners[:, 1], corners[:, 0]], axis=-1)
+    np.testing.assert_allclose(hist["corners"], want, rtol=0, atol=1e-15)
+    assert np.linalg.norm(hist["corners"], axis=-1).max() == got["peak_corner_disp"]
+    delta = np.column_stack([(1, -1)[w % 2] * hist["corners"][:, c, w // 2] - SHORT_GAP
+                             for w, c in ot.POINTS])
+    assert np.all(delta.max(axis=0) > 0)  # every corner hit both its walls
+    np.testing.assert_allclose(got["max_point_force"], WALL_K / 2 * delta.max(axis=0),
+                               rtol=1e-9)
+    pairs = got["max_point_force"].reshape(4, 2)
+    assert np.all(np.abs(pairs[:, 0] - pairs[:, 1]) > 0.05 * pairs.max(axis=1))
+    assert np.all(got["max_impact_force_wall"] >= pairs.max(axis=1))
+    assert np.all(got["max_impact_force_wall"] <= pairs.sum(axis=1))
+

@@ -1,5 +1,7 @@
 """The OpenSees 3-D reference of a building that twists (tests/reference/opensees_torsion.py)
-against closed forms and against the planar reference.
+against closed forms; the pair and the cases its transient model runs under, which
+tests/engine/test_torsion_references.py compares with the engine (and checks the reference's
+own kinematics on).
 
 The rigid slab on linear bearings has the stiffness matrix, about its mass centre (p_i, q_i the
 bearings' positions from it),
@@ -9,17 +11,15 @@ twists a symmetric layout by T / sum k_i r_i^2 without moving its centre. The wh
 of the transient model (its initial tangent: K1 / n per bearing) has the spec's matrices about
 the plan centres (measured: its frequencies to 1e-13).
 
-The transient model under both horizontal components of the plan references' record
-(Northridge 1994 at Beverly Hills - Mulholland, RSN953 009 as x and 279 as y), from 2.5 s (the
-motion before is ~1 mm) to 7 s, the paper's building, the engine's 0.5 ms: symmetric (four
-bearings at the slab's corners, no eccentricity) it does not twist (theta ~1e-20 rad) and its
-plan centre's peaks are opensees_plan.plan_peaks' (the same integrator and bearing law: measured
-6e-14 relative without walls, 2e-14 with elastic walls at 40 mm, all four hit, whose two
-corners of k / 2 carry one wall of k); eccentric by 10% of b_x it twists (0.54 mrad against
-those walls, 0.74 mrad without) and its worst corner travels 11.6% farther than its centre
-(8.7% without walls), each corner's force k / 2 times its indentation from the spec's
-kinematics (to 1e-13; measured). Run times (one core, idle): 3.7 s for the torsional model
-without walls, 4.1 s with them, 1.1 s for the planar one.
+Measured when the reference was written, not rerun by the suite (the engine equals both
+OpenSees references, and its symmetric slab its plan run, which implies it): under both
+horizontal components of the plan references' record (Northridge 1994 at Beverly Hills -
+Mulholland, RSN953 009 as x and 279 as y) from 2.5 s (the motion before is ~1 mm) to 7 s, the
+paper's building at the engine's 0.5 ms, symmetric on four bearings at the slab's corners, the
+model does not twist (theta ~1e-20 rad) and its plan centre's peaks are
+opensees_plan.plan_peaks' (6e-14 relative without walls, 2e-14 with elastic walls at 40 mm,
+all four hit, whose two corners of k / 2 carry one wall of k). Run times (one core, idle):
+3.7 s without walls, 4.1 s with them, 1.1 s for the planar model.
 """
 from __future__ import annotations
 
@@ -31,7 +31,6 @@ import pytest
 pytest.importorskip("openseespy.opensees")
 
 from pipeline.motions.torsion import grid_positions  # noqa: E402
-from tests.reference import opensees_plan as op  # noqa: E402
 from tests.reference import opensees_torsion as ot  # noqa: E402
 
 MASS = 1.53e6  # kg, the paper's building's total mass
@@ -117,8 +116,6 @@ WINDOW = (2.5, 7.0)  # s: the strong motion's start (the isolator's peak is 62 m
 CORNER_BEARINGS = np.array([[-15.0, -10.0], [15.0, -10.0], [-15.0, 10.0], [15.0, 10.0]])
 SHORT_GAP = 0.04  # m: the walls are hit in this window (the 15 s pair's 0.13 m is not)
 WALL_K = 2.5e9  # N/m
-CENTRE_PEAKS = ("peak_isolator_disp", "peak_isolator_disp_xy", "peak_total_accel",
-                "peak_total_accel_xy", "peak_interstory_drift", "peak_interstory_drift_xy")
 
 
 @functools.cache
@@ -130,57 +127,3 @@ def short_pair() -> tuple[np.ndarray, float]:
     assert x.dt == y.dt and x.npts == y.npts
     i0, i1 = (int(round(t / x.dt)) for t in WINDOW)
     return np.column_stack([x.accel[i0:i1 + 1], y.accel[i0:i1 + 1]]), x.dt
-
-
-# With the walls only: its centre peaks are those without walls until the first contact, and
-# the no-wall case measured 6e-14 against the planar reference (the docstring).
-@pytest.mark.parametrize("walls", [{"gap": SHORT_GAP, "k": WALL_K}], ids=["elastic-walls"])
-def test_a_symmetric_building_does_not_twist_and_is_the_planar_reference(walls):
-    pair, pair_dt = short_pair()
-    got = ot.torsion_peaks(pair, pair_dt, plan_size=PLAN, positions=CORNER_BEARINGS, **walls)
-    assert ot.LAST_RUN["steps"] == 9000
-    want = op.plan_peaks(pair, pair_dt, **walls)
-    assert got["peak_rotation"] < 1e-12
-    assert got["peak_corner_disp"] == pytest.approx(got["peak_isolator_disp"], rel=1e-9)
-    for name in CENTRE_PEAKS:
-        np.testing.assert_allclose(got[name], want[name], rtol=1e-9, err_msg=name)
-    np.testing.assert_allclose(got["max_impact_force_wall"], want["max_impact_force_wall"],
-                               rtol=1e-9)
-    if walls:
-        assert np.all(want["max_impact_force_wall"] > 0)  # all four walls were hit
-        assert got["n_impacts"] == want["n_impacts"]
-        assert got["max_indentation"] == pytest.approx(want["max_indentation"], rel=1e-9)
-        # each wall's two corners share its force equally
-        np.testing.assert_allclose(got["max_point_force"][::2], got["max_point_force"][1::2],
-                                   rtol=1e-9)
-        np.testing.assert_allclose(2 * got["max_point_force"][::2],
-                                   want["max_impact_force_wall"], rtol=1e-9)
-
-
-def test_an_eccentric_building_twists_and_its_corners_travel_farther():
-    """Against the walls, too: each corner's gap element (OpenSees' diaphragm kinematics) gives
-    k / 2 times the corner's indentation from the spec's (u_x - theta Y, u_y + theta X), the
-    sign of theta included."""
-    pair, pair_dt = short_pair()
-    got = ot.torsion_peaks(pair, pair_dt, plan_size=PLAN, positions=CORNER_BEARINGS,
-                           eccentricity=(0.1 * PLAN[0], 0.0), gap=SHORT_GAP, k=WALL_K,
-                           history=True)
-    assert got["peak_rotation"] > 1e-4  # rad: 0.54 mrad measured
-    ratio = got["peak_corner_disp"] / got["peak_isolator_disp"]
-    assert ratio > 1.05  # 1.116 measured
-    hist = got["history"]
-    corners = np.array(ot.CORNERS) * [PLAN[0] / 2, PLAN[1] / 2]
-    want = hist["centre"][:, None, :] + hist["theta"][:, None, None] * np.stack(
-        [-corners[:, 1], corners[:, 0]], axis=-1)
-    np.testing.assert_allclose(hist["corners"], want, rtol=0, atol=1e-15)
-    assert np.linalg.norm(hist["corners"], axis=-1).max() == got["peak_corner_disp"]
-    delta = np.column_stack([(1, -1)[w % 2] * hist["corners"][:, c, w // 2] - SHORT_GAP
-                             for w, c in ot.POINTS])
-    assert np.all(delta.max(axis=0) > 0)  # every corner hit both its walls
-    np.testing.assert_allclose(got["max_point_force"], WALL_K / 2 * delta.max(axis=0),
-                               rtol=1e-9)
-    # twisting, a wall's two corners do not share its force equally
-    pairs = got["max_point_force"].reshape(4, 2)
-    assert np.all(np.abs(pairs[:, 0] - pairs[:, 1]) > 0.05 * pairs.max(axis=1))
-    assert np.all(got["max_impact_force_wall"] >= pairs.max(axis=1))
-    assert np.all(got["max_impact_force_wall"] <= pairs.sum(axis=1))
