@@ -38,6 +38,7 @@ and the ground's (a_x, a_y) loads it by -M (a_x, a_y, 0): a torque where e != 0.
 """
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -49,8 +50,6 @@ from .parameters import Parameter
 
 DEFAULT_GRID = (4, 4)
 """Bearings along x and along y of the default layout: a regular grid under the slab."""
-DOFS = ("x", "y", "theta")
-"""A level's degrees of freedom, in the state's last axis."""
 CORNERS = ((1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0))
 """The slab's corners as signs of (b_x / 2, b_y / 2), counterclockwise from (+, +)."""
 
@@ -66,8 +65,6 @@ moved along the plan's diagonal, which loads both directions' torsion at once.""
 def shifted(building, fraction: float):
     """The building that twists with every level's mass centre moved by fraction (b_x, b_y)
     (ACCIDENTAL_ECCENTRICITY), the building itself at 0."""
-    import dataclasses
-
     if building.plan_size is None:
         raise EngineError("an accidental eccentricity moves the mass of a building that twists: "
                           "give the building its plan_size")
@@ -216,15 +213,16 @@ def torsion_arrays(members: Sequence, size: int) -> TorsionArrays:
     if len(members) == 1:
         members = members * size
     rows = {b: _row(b) for b in dict.fromkeys(members)}
-    counts = {row[6].shape[0] for row in rows.values()}
+    names = [f.name for f in dataclasses.fields(TorsionArrays)]
+    counts = {row[names.index("bearings")].shape[0] for row in rows.values()}
     if len(counts) > 1:
         raise EngineError(f"building: the members of one batch must stand on as many bearings, "
                           f"got {sorted(counts)}")
-    return TorsionArrays(*(np.stack([rows[b][i] for b in members]) for i in range(8)))
+    return TorsionArrays(*(np.stack([rows[b][i] for b in members]) for i in range(len(names))))
 
 
 def _row(b) -> tuple:
-    """One building's TorsionArrays row."""
+    """One building's TorsionArrays row, in its fields' order."""
     n_levels = b.n_levels
     masses = np.asarray(b.masses, float)
     ecc = np.broadcast_to(np.asarray(b.eccentricity, float), (n_levels, 2))

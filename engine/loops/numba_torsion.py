@@ -63,6 +63,9 @@ install_cache_locator(Path(__file__), [compiled.__file__, numba_contacts.__file_
 
 # Per-member scalars.
 (_COS, _SIN, _K_ELASTIC, _K_SLIP, _F_LIMIT, _SLOW_DROP, _RATE, _MU_WALL, _N_PAR) = range(9)
+POINT_SLOTS = 8
+"""The contact points' stack arrays come in multiples of this many (the kernel compiles once per
+multiple): the slab's corners, or two pads a wall, are 8."""
 # Per member and point, the contact state: impact velocity, previous indentation, in contact.
 _V_IMP, _DELTA_PREV, _IN_CONTACT = range(3)
 # Per member, the state beside it: collapsed, collapse time, each axis' walls touched.
@@ -83,8 +86,9 @@ def _member(levels, padded, slots, b, s0, s1, ag, dt, op, respond, load, story_k
     freedom sit on the stack as Q pairs (Q = len(padded) / 2, the last lane of an odd 3L
     unused, its operator rows 0): op (B, 6L, Q, 2) the transposed step operator, respond
     (B, 3, Q, 2) its first three columns transposed; the P contact points' state and this
-    step's values too (P = len(slots): the kernel compiles once per number of levels and of
-    points). A member that has collapsed stops."""
+    step's values too, on POINT_SLOTS-sized stack arrays (len(slots) of them: the kernel
+    compiles once per number of levels and multiple of POINT_SLOTS, P = len(point_wall) at run
+    time). A member that has collapsed stops."""
     st = state[b]
     if st[_COLLAPSED] != 0.0:
         return
@@ -114,7 +118,7 @@ def _member(levels, padded, slots, b, s0, s1, ag, dt, op, respond, load, story_k
     cg = coupling[b]
     tc = tangent_compliance[b]
     ps = point_state[b]
-    n_points = len(slots)
+    n_points = point_wall.shape[0]
     cn = corners[b]
     pk = scalar[b]
     pw = peak_wall[b]
@@ -418,7 +422,10 @@ def run_torsion(ag, dt, b, t, contacts, points, progress, scale, angle, history=
     n_dofs = 3 * n_levels
     n_pad = n_dofs + n_dofs % 2
     n_points = points.wall.size
-    levels, padded, slots = (0,) * n_levels, (0,) * n_pad, (0,) * n_points
+    # the points' stack arrays in multiples of POINT_SLOTS: 2 to 8 points, the corners or two
+    # pads a wall, share one compiled kernel
+    slots = (0,) * (POINT_SLOTS * -(-n_points // POINT_SLOTS))
+    levels, padded = (0,) * n_levels, (0,) * n_pad
     step_op = full_step_operator(t.mass, t.damping, dt)  # (B, 3L, 6L), numpy_torsion's
     op = np.zeros((size, 2 * n_dofs, n_pad))
     op[:, :, :n_dofs] = step_op.transpose(0, 2, 1)
