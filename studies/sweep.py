@@ -30,6 +30,7 @@ from pipeline.grid import (
     ISOLATOR_PARAMS,
     PARAMS,
     PLAN_PARAMS,
+    TORSION_PARAMS,
     declarations,
 )
 
@@ -57,6 +58,9 @@ def declared(name: str) -> str:
             "required" if p.required else f"default {p.default:g}"
         if name in PLAN_PARAMS:
             default += "; runs in plan only (--moat)"
+        elif name in TORSION_PARAMS:
+            default += ("; a building that twists only (--building plan_size=BX,BY, --moat "
+                        "rectangular)")
         texts[law] = f"{p.help_text()}, in {p.valid}, {default}"
     if len(set(texts.values())) == 1:
         return next(iter(texts.values()))
