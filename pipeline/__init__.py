@@ -121,7 +121,7 @@ def _sweep(records, *, impact: str = "bumper", dt: float | None = None, workers:
     """
     from .building_file import check_building
     from .errors import SweepError
-    from .grid import make_grid, sweep_parameters
+    from .grid import TORSION_PARAMS, make_grid, sweep_parameters
 
     given = sweep_parameters(parameters)
     building = check_building(building)
@@ -145,8 +145,10 @@ def _sweep(records, *, impact: str = "bumper", dt: float | None = None, workers:
         grid = make_grid(impact=impact, isolator=building.isolation.law, m_eff=m_eff,
                          baseline=baseline, unconstrained=unconstrained,
                          plan=moat is not None, intensity=factors is not None, **given)
+    # a building that twists' parameters are recorded when given (other archives unchanged)
+    recorded = {k: v for k, v in given.items() if v is not None or k not in TORSION_PARAMS}
     arguments = {"members": members, "moat": moat} if members is not None else {
-        **given, "impact": impact, "baseline": baseline, "unconstrained": unconstrained,
+        **recorded, "impact": impact, "baseline": baseline, "unconstrained": unconstrained,
         "m_eff": grid.m_eff, "moat": moat}
     return _execute(grid, records, arguments, dt=dt, workers=workers, scheduler=scheduler,
                     out=out, building=building, batch_size=batch_size,
