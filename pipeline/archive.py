@@ -183,6 +183,18 @@ def derived_variables(ds: xr.Dataset, building: engine.Building, grid: Grid | No
     return derived
 
 
+def _pad_force(ds: xr.Dataset, prefix: str) -> xr.DataArray:
+    """The force the bumpers' stress is judged on, as if the wall's n_bumpers shared it: the
+    largest impact force; for a building that twists, the largest over the contact points of
+    a point's force times the points on its wall (a point carries n_bumpers / points of them),
+    which is no less where the slab turns and loads one pad more than its share."""
+    if prefix + "max_point_force" not in ds:
+        return ds[prefix + "max_impact_force"]
+    wall = ds["point_wall"].values
+    per_wall = xr.DataArray([np.sum(wall == w) for w in wall], dims="point")
+    return (ds[prefix + "max_point_force"] * per_wall).max("point")
+
+
 def validity_variables(ds: xr.Dataset, grid: Grid, building: engine.Building) -> dict:
     """Every block's `invalid_*` flags, name -> (int8 DataArray over the block's dims, 1 where
     the run left the model's range; the peak it follows), lazy when ds is
@@ -218,7 +230,7 @@ def validity_variables(ds: xr.Dataset, grid: Grid, building: engine.Building) ->
         if bumper.any():
             area = np.where(np.isnan(members["area"]), default_area, members["area"])
             carried = along(np.where(bumper, members["n_bumpers"] * area, np.inf))
-            flag("invalid_bumper_stress", force / carried > limits.bumper_stress,
+            flag("invalid_bumper_stress", _pad_force(ds, p) / carried > limits.bumper_stress,
                  p + "max_impact_force")
             thickness = along(np.where(bumper, members["thickness"], np.inf))
             flag("invalid_bumper_strain",

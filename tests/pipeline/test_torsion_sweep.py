@@ -110,3 +110,19 @@ def test_the_accidental_eccentricity_is_a_sweep_dimension():
         with pytest.raises(SweepError, match="plan_size|in plan"):
             pipeline.sweep([pair] if "moat" in kwargs else ["RSN953"], gap=0.03,
                            impact="linear", eccentricity=[0.05], quiet=True, **kwargs)
+
+
+def test_the_bumpers_stress_is_judged_on_the_pad_that_takes_most():
+    """A slab that turns loads one pad beyond its share of the wall: invalid_bumper_stress
+    follows each pad's own force (here each position one of the wall's two pads), not the
+    wall's total shared equally, which would let a run past the rubber's range through."""
+    from pipeline.assess.validity import RUBBER_STRESS_LIMIT
+
+    area = 0.150 * 0.150  # m^2: the declared pad
+    ds = pipeline.sweep([short_pair()], gap=[0.06, 0.08], thickness=0.05, n_bumpers=2,
+                        moat="rectangular", building=BUILDING, bumper_positions=PADS,
+                        quiet=True)
+    pad = ds.max_point_force.max("point") / area
+    shared = ds.max_impact_force / (2 * area)
+    np.testing.assert_array_equal(ds.invalid_bumper_stress, pad > RUBBER_STRESS_LIMIT)
+    assert ((pad > RUBBER_STRESS_LIMIT) & (shared <= RUBBER_STRESS_LIMIT)).any()
