@@ -129,6 +129,13 @@ def parser() -> argparse.ArgumentParser:
                         "in x and y against a square (rectangular) or circular moat with the "
                         "same walls on every side, --angle rotates the pairs (default: the "
                         "paper's planar model)")
+    p.add_argument("--bumpers-along-x", nargs="+", type=float, default=None, metavar="M",
+                   help="a building that twists (--building plan_size=BX,BY): the bumpers' "
+                        "positions (m, from the plan's centre, along y) on the two walls normal "
+                        "to x, each carrying its share of the wall's law (default: the slab's "
+                        "corners meet bare walls); with --bumpers-along-y")
+    p.add_argument("--bumpers-along-y", nargs="+", type=float, default=None, metavar="M",
+                   help="the bumpers' positions (m, along x) on the two walls normal to y")
     p.add_argument("--impact", default="bumper",
                    choices=IMPACT_LAWS,
                    help="impact law at the moat wall (default: bumper)")
@@ -270,8 +277,13 @@ def main(argv: list[str] | None = None) -> int:
             elif args.record_units is not None or args.record_dt is not None:
                 raise SweepError("--record-units and --record-dt: text records in plan are "
                                  "not supported yet; give AT2 pairs or library pairs")
+            along = (args.bumpers_along_x, args.bumpers_along_y)
+            if (along[0] is None) != (along[1] is None):
+                raise SweepError("--bumpers-along-x and --bumpers-along-y go together: the "
+                                 "bumpers' positions on the x walls and on the y walls")
             ds = pipeline.sweep(
                 records=records, moat=args.moat,
+                bumper_positions=None if along[0] is None else along,
                 **parameters(args),
                 impact=args.impact, dt=args.dt, workers=args.workers,
                 scheduler=args.scheduler, out=archive, baseline=args.baseline,

@@ -126,3 +126,24 @@ def test_the_bumpers_stress_is_judged_on_the_pad_that_takes_most():
     shared = ds.max_impact_force / (2 * area)
     np.testing.assert_array_equal(ds.invalid_bumper_stress, pad > RUBBER_STRESS_LIMIT)
     assert ((pad > RUBBER_STRESS_LIMIT) & (shared <= RUBBER_STRESS_LIMIT)).any()
+
+
+def test_the_command_line_sweeps_a_building_that_twists(tmp_path, capsys):
+    """`python -m studies.sweep`: the plan from --building, the accidental eccentricity a
+    dimension, the bumpers where --bumpers-along-x / -y put them; one of the two alone is a
+    one-line error."""
+    import xarray as xr
+
+    from studies import sweep
+
+    common = ["--records", "RSN953", "--moat", "rectangular", "--building", "plan_size=30,20",
+              "--gap-cm", "10", "--quiet"]
+    assert sweep.main([*common, "--eccentricity", "0", "0.05", "--bumpers-along-x", "-5", "5",
+                       "--bumpers-along-y", "0", "--out", str(tmp_path)]) == 0
+    with xr.open_dataset(tmp_path / "sweep.nc") as ds:
+        assert list(ds.eccentricity.values) == [0.0, 0.05]
+        np.testing.assert_array_equal(ds.point_along.values, [-5, 5, -5, 5, 0, 0])
+        assert float(ds.peak_rotation.sel(eccentricity=0.0).max()) < 1e-15 \
+            < float(ds.peak_rotation.sel(eccentricity=0.05).min())
+    assert sweep.main([*common, "--bumpers-along-x", "0", "--out", str(tmp_path / "x")]) == 2
+    assert "go together" in capsys.readouterr().err
