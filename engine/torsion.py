@@ -115,56 +115,51 @@ def checked_layout(building) -> dict:
     """The torsional fields of a Building (plan_size given), checked and as tuples of floats:
     {name: value} to set on the frozen dataclass. EngineError names the first bad one."""
     b_x, b_y = plan_dimensions(building.plan_size)
+    half = np.array([b_x, b_y]) / 2
     n_levels, n_stories = building.n_levels, building.n_stories
-    out = {"plan_size": (b_x, b_y)}
-    ecc = np.asarray(building.eccentricity, float)
-    if ecc.shape == (2,):
-        ecc = np.broadcast_to(ecc, (n_levels, 2))
-    if ecc.shape != (n_levels, 2) or not np.all(np.isfinite(ecc)) \
-            or np.any(np.abs(ecc) > np.array([b_x, b_y]) / 2):
-        raise EngineError(f"eccentricity must be (e_x, e_y) in metres, or one pair per level "
-                          f"({n_levels}), within the plan, got {building.eccentricity!r}")
-    out["eccentricity"] = tuple(map(tuple, ecc.tolist())) if np.ndim(building.eccentricity) \
-        == 2 else tuple(ecc[0].tolist())
-    if building.mass_inertia is not None:
-        inertia = np.asarray(building.mass_inertia, float)
-        if inertia.shape != (n_levels,) or not np.all(np.isfinite(inertia) & (inertia > 0)):
-            raise EngineError(f"mass_inertia must be {n_levels} positive polar moments in "
-                              f"kg m2 (one per level), got {building.mass_inertia!r}")
-        out["mass_inertia"] = tuple(inertia.tolist())
+    out = {"plan_size": (b_x, b_y),
+           "eccentricity": _pairs(building, "eccentricity", n_levels, "level", half)}
+    if building.story_stiffness_centre is not None:
+        out["story_stiffness_centre"] = _pairs(building, "story_stiffness_centre", n_stories,
+                                               "story", half)
+    for name, count, what in (("mass_inertia", n_levels, "polar moments in kg m2 (one per "
+                                                          "level)"),
+                              ("story_torsional_stiffness", n_stories, "values in N m/rad "
+                                                                       "(one per story)")):
+        if getattr(building, name) is not None:
+            values = np.asarray(getattr(building, name), float)
+            if values.shape != (count,) or not np.all(np.isfinite(values) & (values > 0)):
+                raise EngineError(f"{name} must be {count} positive {what}, got "
+                                  f"{getattr(building, name)!r}")
+            out[name] = tuple(values.tolist())
     if building.isolator_positions is not None:
         xy = np.asarray(building.isolator_positions, float)
         if xy.ndim != 2 or xy.shape[1] != 2 or xy.shape[0] < 2 or not np.all(np.isfinite(xy)) \
-                or np.any(np.abs(xy) > np.array([b_x, b_y]) / 2 * (1 + 1e-12)):
+                or np.any(np.abs(xy) > half * (1 + 1e-12)):
             raise EngineError(f"isolator_positions must be (n, 2) metres from the plan's "
                               f"centre, n >= 2, under the slab, got shape {xy.shape}")
         if np.ptp(xy[:, 0]) == 0 and np.ptp(xy[:, 1]) == 0:
             raise EngineError("isolator_positions: the bearings stand at one point, the slab "
                               "would have no torsional stiffness")
         out["isolator_positions"] = tuple(map(tuple, xy.tolist()))
-    if building.story_stiffness_centre is not None:
-        centre = np.asarray(building.story_stiffness_centre, float)
-        if centre.shape == (2,):
-            centre = np.broadcast_to(centre, (n_stories, 2))
-        if centre.shape != (n_stories, 2) or not np.all(np.isfinite(centre)) \
-                or np.any(np.abs(centre) > np.array([b_x, b_y]) / 2):
-            raise EngineError(f"story_stiffness_centre must be (x, y) in metres, or one pair "
-                              f"per story ({n_stories}), within the plan, got "
-                              f"{building.story_stiffness_centre!r}")
-        out["story_stiffness_centre"] = tuple(map(tuple, centre.tolist())) \
-            if np.ndim(building.story_stiffness_centre) == 2 else tuple(centre[0].tolist())
-    if building.story_torsional_stiffness is not None:
-        k_t = np.asarray(building.story_torsional_stiffness, float)
-        if k_t.shape != (n_stories,) or not np.all(np.isfinite(k_t) & (k_t > 0)):
-            raise EngineError(f"story_torsional_stiffness must be {n_stories} positive values "
-                              f"in N m/rad (one per story), got "
-                              f"{building.story_torsional_stiffness!r}")
-        out["story_torsional_stiffness"] = tuple(k_t.tolist())
     if not building.story_law.is_linear or building.p_delta or building.damping != "paper":
         raise EngineError("a building that twists (plan_size) needs linear stories without "
                           "p_delta and damping='paper': the stories' laws, P-Delta and modal "
                           "damping have no torsional counterpart in the engine yet")
     return out
+
+
+def _pairs(building, name: str, count: int, what: str, half: np.ndarray) -> tuple:
+    """Field `name`, one (x, y) pair (m) or `count` of them (one per `what`), within the plan
+    (half its dimensions, half), as a tuple of floats or of pairs (EngineError otherwise)."""
+    given = getattr(building, name)
+    pairs = np.asarray(given, float)
+    one = pairs.shape == (2,)
+    full = np.broadcast_to(pairs, (count, 2)) if one else pairs
+    if full.shape != (count, 2) or not np.all(np.isfinite(full)) or np.any(np.abs(full) > half):
+        raise EngineError(f"{name} must be (x, y) in metres, or one pair per {what} ({count}), "
+                          f"within the plan, got {given!r}")
+    return tuple(pairs.tolist()) if one else tuple(map(tuple, pairs.tolist()))
 
 
 def torsional_stiffness(building) -> np.ndarray:

@@ -163,8 +163,8 @@ def _member(levels, padded, slots, b, s0, s1, ag, dt, op, respond, load, story_k
     n_imp = n_impacts[b]
     touch_x, touch_y = st[_TOUCH_X] != 0.0, st[_TOUCH_Y] != 0.0
 
-    # The contact points on the stack (P known when the kernel compiles): their directions,
-    # gaps and state, and this step's indentations, law terms and forces.
+    # The contact points on the stack (POINT_SLOTS at a time; P at run time): their
+    # directions, gaps and state, and this step's indentations, law terms and forces.
     gx_ = carray(stack_doubles(slots), (n_points,))
     gy_ = carray(stack_doubles(slots), (n_points,))
     gt_ = carray(stack_doubles(slots), (n_points,))

@@ -105,6 +105,7 @@ def run_torsion(ag, dt, b: BuildingArrays, t: TorsionArrays, contacts, points: C
     coupling = np.einsum("bpi,bij,bqj->bpq", g, r0, g)
     tangent_compliance = np.einsum("bpi,bij,bpj->bp", tangent, r0, tangent)
     walls = [_Points(*laws) for laws in point_laws(contacts, points)]
+    wall_columns = [np.flatnonzero(points.wall == w) for w in range(len(WALLS["rectangular"]))]
     bearing_x, bearing_y = t.bearings[..., 0], t.bearings[..., 1]
     n_bearings = bearing_x.shape[1]
     k_el, k_slip, f_limit = (x[:, None] / n_bearings for x in (b.k_elastic, b.k_slip,
@@ -191,7 +192,7 @@ def run_torsion(ag, dt, b: BuildingArrays, t: TorsionArrays, contacts, points: C
                     v_next += np.einsum("bij,bj->bi", respond, along)
                     push += along
         peaks["impact_energy"] -= np.sum(push * (v_prev0 + v_next[:, :3]), axis=1) * (0.5 * dt)
-        _contact_peaks(peaks, points, force, delta)
+        _contact_peaks(peaks, wall_columns, force, delta)
 
         v_next = v_next.reshape(size, n_levels, 3)
         total_accel = (v_next[..., :2] - v_half[..., :2]) / dt + a[:, None, :]
@@ -242,13 +243,14 @@ def story_forces(story_k, centre, drift):
     return np.stack([f_x, f_y, moment], axis=-1)
 
 
-def _contact_peaks(peaks, points: ContactPoints, force, delta):
+def _contact_peaks(peaks, wall_columns, force, delta):
     """Raise the moat's peaks with this step's point forces and indentations (B, P): each
-    point's, each wall's sum, the largest wall sum and the deepest indentation."""
+    point's, each wall's sum (wall_columns: each wall's points), the largest wall sum and the
+    deepest indentation."""
     np.maximum(peaks["max_point_force"], force, out=peaks["max_point_force"])
     np.maximum(peaks["max_point_indentation"], delta, out=peaks["max_point_indentation"])
     np.maximum(peaks["max_indentation"], delta.max(axis=1), out=peaks["max_indentation"])
-    per_wall = np.stack([force[:, points.wall == w].sum(axis=1) for w in range(4)], axis=1)
+    per_wall = np.stack([force[:, columns].sum(axis=1) for columns in wall_columns], axis=1)
     np.maximum(peaks["max_impact_force_wall"], per_wall, out=peaks["max_impact_force_wall"])
     np.maximum(peaks["max_impact_force"], per_wall.max(axis=1), out=peaks["max_impact_force"])
 

@@ -30,6 +30,8 @@ import json
 
 import numpy as np
 
+from engine.torsion import DEFAULT_GRID
+
 from ..common.options import add_bound, chosen_pairs, scaled_suite, site_options
 from ..common.paper import AREA, DELTA_U, N_BUMPERS, THICKNESS
 from ..common.recipe import Recipe, provenance, run_options
@@ -136,7 +138,7 @@ PER_RUN = ("peak_isolator_disp", "peak_corner_disp", "peak_rotation", "max_impac
 def dataset(swept, code, suite, thetas, eccs, positions, gaps, fractions, args):
     """The study's archive: dims record, eccentricity, angle, gap, barrier (and point for the
     pads' and corners' forces), the code's D_M and D_TM per eccentricity, the suite."""
-    from engine.results import TORSION_PEAKS, quantity
+    from engine.results import PEAKS, PLAN_PEAKS, TORSION_PEAKS
     from pipeline.archive import labelled_dataset, variable
     from pipeline.assess.derived import bumper_stress, crushed
     from pipeline.assess.validity import RUBBER_STRESS_LIMIT
@@ -153,9 +155,9 @@ def dataset(swept, code, suite, thetas, eccs, positions, gaps, fractions, args):
     dims_free = ("record", "eccentricity", "angle")
     dims_wall = ("record", "eccentricity", "angle", "gap", "barrier")
     data = {}
-    declared = {q.name: q for q in TORSION_PEAKS}
+    declared = {q.name: q for q in (*PEAKS, *PLAN_PEAKS, *TORSION_PEAKS)}
     for name in PER_RUN:
-        q = declared.get(name) or quantity(name)
+        q = declared[name]
         stack = blocks(name)
         if name == "peak_total_accel":  # the largest over the floors
             stack = stack.max(axis=-1)
@@ -166,7 +168,7 @@ def dataset(swept, code, suite, thetas, eccs, positions, gaps, fractions, args):
                                         f"{q.long_name}, without wall {what}".strip())
         data[name] = variable(dims_wall, walls, q.units, f"{q.long_name} {what}".strip())
     for name in ("max_point_force", "max_point_indentation", "max_impact_force_wall"):
-        q = declared.get(name) or next(q for q in _plan_peaks() if q.name == name)
+        q = declared[name]
         stack = blocks(name)[:, :, :, 1:]
         stack = stack.reshape(n_r, n_e, n_a, n_g, 2, stack.shape[-1])
         along = "point" if "point" in name else "wall"
@@ -209,15 +211,10 @@ def dataset(swept, code, suite, thetas, eccs, positions, gaps, fractions, args):
              "pads_per_wall": int(args.pads), "pad_thickness_m": THICKNESS,
              "pad_positions_m": json.dumps([list(map(float, p)) for p in positions]),
              "paper_pads_per_wall": N_BUMPERS,
-             "bearings": "a 4 x 4 grid under the slab, the outer ones at its edges, each 1/16 "
+             "bearings": f"a {DEFAULT_GRID[0]} x {DEFAULT_GRID[1]} grid under the slab, the "
+                         f"outer ones at its edges, each 1/{DEFAULT_GRID[0] * DEFAULT_GRID[1]} "
                          "of the isolator (engine.torsion)"}
     return labelled_dataset({**data, **suite_data}, {**coords, **suite_coords}, attrs)
-
-
-def _plan_peaks():
-    from engine.results import PLAN_PEAKS
-
-    return PLAN_PEAKS
 
 
 def orbit_variables(suite, building, ecc, args, engine) -> dict:
