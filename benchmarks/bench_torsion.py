@@ -56,9 +56,10 @@ def main(argv=None) -> int:
     accel = accel[: int(SECONDS / acc_dt) + 1]
     steps = int(np.floor((len(accel) - 1) * acc_dt / DT + 1e-9)) + 1
     buildings = {
-        "four": engine.Building(plan_size=PLAN, eccentricity=ECCENTRICITY,
-                                isolator_positions=CORNER_BEARINGS),
-        "grid": engine.Building(plan_size=PLAN, eccentricity=ECCENTRICITY),
+        "four": engine.Building(torsion=engine.Torsion(
+            plan_size=PLAN, mass_offset=ECCENTRICITY, isolator_positions=CORNER_BEARINGS)),
+        "grid": engine.Building(torsion=engine.Torsion(plan_size=PLAN,
+                                                       mass_offset=ECCENTRICITY)),
     }
 
     def runner(building, moat="rectangular"):

@@ -3,9 +3,13 @@
 Arrays in, arrays out; SI units (units.py converts the paper's cm, g, kN); a leading batch
 axis B on every state array. Where things live:
 
-    building.py   the shear building: any number of stories on a story law, P-Delta,
-                  collapse, damping; torsion.py: a building that twists in plan (its plan,
-                  eccentric masses, bearings where they stand, the moat's contact points)
+    model.py      the run's model named once (planar, plan, twisting) and SUPPORTS, the one
+                  table of what each model takes
+    building.py   the shear building, its fields declared once (declared.py): any number of
+                  stories on a story law, P-Delta, collapse, damping; torsion_fields.py its
+                  Torsion component (a building that twists: its plan, the masses' offsets,
+                  bearings where they stand), torsion.py that model's matrices and the moat's
+                  contact points; plan.py the Moat and what a run in plan takes
     stories/      the story laws, one module each in stories/laws/ (linear, bilinear, imk),
                   and the Stories a building's stories follow
     isolators/    the isolator laws, one module each in isolators/laws/ (bilinear, friction
@@ -18,8 +22,9 @@ axis B on every state array. Where things live:
     results.py    what the engine returns, declared once (every peak and history: shape, unit,
                   long name), and the Result / History / TwoBodyResult types
     simulate.py   the entry points simulate(), two_body(), stable_dt(); backends.py picks the loop
-    loops/        the NumPy time loop (the readable reference) and the compiled one (numba,
-                  the default): both import only the scheme, the laws and the results
+    loops/        each model's NumPy time loop (the readable reference) and compiled one
+                  (numba, the default): numpy_loop / numba_loop (planar), numpy_plan /
+                  numba_plan, numpy_torsion / numba_torsion
     damping_fit.py  Eq. 9 re-derived by energy equilibrium; units.py, errors.py
 
 Nothing here imports pipeline/ or studies/. The contract is in API.md.
@@ -29,11 +34,15 @@ from .building import Building
 from .errors import EngineError, UnstableTimeStep
 from .impact import Contact
 from .isolators import Isolator
+from .model import MODELS, Model
+from .plan import Moat
 from .results import History, PlanResult, Result, TorsionResult, TwoBodyResult
 from .scheme import DEFAULT_DT
 from .simulate import simulate, stable_dt, two_body
 from .stories import Stories
+from .torsion_fields import Torsion
 
 __all__ = ["Building", "Contact", "DEFAULT_DT", "EngineError", "History", "Isolator",
-           "PlanResult", "Result", "Stories", "TorsionResult", "TwoBodyResult",
-           "UnstableTimeStep", "simulate", "stable_dt", "two_body", "units"]
+           "MODELS", "Model", "Moat", "PlanResult", "Result", "Stories", "Torsion",
+           "TorsionResult", "TwoBodyResult", "UnstableTimeStep", "simulate", "stable_dt",
+           "two_body", "units"]

@@ -2,7 +2,8 @@
 
 `resolve_backend(None)` picks "numba" when the compiled loop can be imported, else "numpy" and
 says so once per process, in one line on stderr (through `warnings`, category BackendNotice).
-`time_loop(name)` is the module of that loop (engine/loops/).
+`model_loop(model, name)` is the module of that loop for a model (engine/model.py: each model
+names its loops, engine/loops/<backend>_<model.loop>.py); `time_loop(name)` the planar one.
 """
 from __future__ import annotations
 
@@ -11,11 +12,9 @@ import warnings
 from types import ModuleType
 
 from .errors import EngineError
+from .model import PLANAR
 
 BACKENDS = ("numba", "numpy")
-_LOOPS = {"numba": "numba_loop", "numpy": "numpy_loop"}
-_PLAN_LOOPS = {"numba": "numba_plan", "numpy": "numpy_plan"}
-_TORSION_LOOPS = {"numba": "numba_torsion", "numpy": "numpy_torsion"}
 
 
 class BackendNotice(RuntimeWarning):
@@ -25,21 +24,16 @@ class BackendNotice(RuntimeWarning):
 _notice_given = False
 
 
+def model_loop(model, backend: str) -> ModuleType:
+    """The loop module of a model (engine.model.Model) and backend ("numba" or "numpy"):
+    engine/loops/<backend>_<model.loop>.py; ImportError for numba without numba. Imported on
+    first use: the NumPy loops need no compiler, and numba takes a second."""
+    return importlib.import_module(f"{__package__}.loops.{backend}_{model.loop}")
+
+
 def time_loop(backend: str) -> ModuleType:
-    """The loop module of a backend ("numba" or "numpy"); ImportError for numba without numba.
-    Imported on first use: the NumPy loop needs no compiler, and numba takes a second."""
-    return importlib.import_module(f"{__package__}.loops.{_LOOPS[backend]}")
-
-
-def plan_loop(backend: str) -> ModuleType:
-    """The loop module of a run in plan (engine/loops/numba_plan.py or numpy_plan.py)."""
-    return importlib.import_module(f"{__package__}.loops.{_PLAN_LOOPS[backend]}")
-
-
-def torsion_loop(backend: str) -> ModuleType:
-    """The loop module of buildings that twist (engine/loops/numba_torsion.py or
-    numpy_torsion.py)."""
-    return importlib.import_module(f"{__package__}.loops.{_TORSION_LOOPS[backend]}")
+    """The planar model's loop module of a backend (it also runs two_body)."""
+    return model_loop(PLANAR, backend)
 
 
 def resolve_backend(backend: str | None) -> str:

@@ -15,124 +15,123 @@ from functools import lru_cache
 
 import numpy as np
 
-from . import torsion
 from .chain import chain_matrix
+from .declared import checked, declared, defaults_of, fields_of
 from .errors import EngineError
 from .isolators import Isolator
+from .model import TWISTING
 from .stories import Stories
 from .stories.registry import MAX_FIELDS, MAX_STATE
+from .torsion_fields import Torsion
 from .units import G
 
 MAX_STORIES = 30
 PAPER_MASSES = (320e3, 320e3, 320e3, 320e3, 250e3)
 """kg, levels 0 (isolation slab) .. 4 (roof): the paper's Fig. 7c."""
-FIELD_UNITS = {"masses": "kg", "story_stiffness": "N m-1", "k1": "N m-1", "k2": "N m-1",
-               "fy_ratio": "1", "zeta_iso": "1", "zeta_sup": "1", "damping": None, "g": "m s-2",
-               "isolator": None, "story_yield_force": "N", "story_post_yield_ratio": "1",
-               "story_stiffness_y": "N m-1", "stories": None, "story_height": "m",
-               "p_delta": None, "collapse_drift_ratio": "1", "plan_size": "m",
-               "eccentricity": "m", "mass_inertia": "kg m2", "isolator_positions": "m",
-               "story_torsional_stiffness": "N m rad-1", "story_stiffness_centre": "m"}
-"""Every Building field and its SI unit (None: text or an Isolator), for files and archives."""
-PER_LEVEL = ("masses", "mass_inertia")
-"""Fields with one value per level, the isolation slab first."""
-PER_STORY = ("story_stiffness", "story_yield_force", "story_stiffness_y", "story_height",
-             "story_torsional_stiffness")
-IN_PLAN = ("plan_size", "eccentricity", "isolator_positions", "story_stiffness_centre")
-TORSION_FIELDS = ("plan_size", "eccentricity", "mass_inertia", "isolator_positions",
-                  "story_torsional_stiffness", "story_stiffness_centre")
-"""The fields of a building that twists (engine/torsion.py), plan_size first: the others are
-given only with it."""
-"""Fields of coordinates in plan, (x, y) pairs: one pair, or one per level or per bearing."""
-"""Fields with one value per story, the first story first."""
 
 
 @dataclass(frozen=True)
 class Building:
-    """One building's properties. Defaults are the paper's (Fig. 7c).
+    """One building's properties, each field declared once below (unit, shape, range,
+    meaning, default: engine/declared.py); the defaults are the paper's (Fig. 7c).
 
-    masses : kg per level 0..N (N + 1 values); story_stiffness : N/m per story 1..N (N values);
-    k1, k2, fy_ratio : the bilinear isolator's initial and post-yield stiffness (N/m) and yield
-        force as a fraction of the total weight: the shorthand for
-        isolator=Isolator.bilinear(k1, k2, fy_ratio) (leave them at their defaults when an
-        isolator is given);
-    isolator : an engine.Isolator (engine/isolators/laws/: bilinear, friction_pendulum), or
-        None for the bilinear shorthand;
-    zeta_iso : isolation damping ratio on the isolator's initial stiffness; None: the isolator
-        law's default (bilinear 0.05, friction pendulum 0: friction is its damping);
-    zeta_sup : superstructure damping ratio;
-    damping : "paper" (isolation dashpot 2*zeta_iso*sqrt(k_0*M_tot), k_0 the isolator's
-        initial stiffness, plus stiffness-proportional story dashpots 2*zeta_sup*k/omega_1 of
-        the fixed-base superstructure; SPEC decision) or "modal" (classical damping of the
-        linear building with the isolator at k_0: zeta_iso in mode 1, zeta_sup in the others);
-    g : m/s^2, used for the weight;
-    story_yield_force : None (linear stories) or N yield forces F_i (N): each story then
-        follows bilinear kinematic hardening, elastic k_i up to the yield drift F_i / k_i, then
-        story_post_yield_ratio * k_i (exact return mapping, like the isolator's).
-    story_stiffness_y : None (isotropic stories: the default) or N story stiffnesses (N/m)
-        along y for runs in plan, story_stiffness then being along x; the y direction's
-        damping follows the same `damping` rule with them. Linear stories only: a circular
-        yield surface needs the same stiffness both ways. A planar run is along x.
-    stories : None (linear stories, or the bilinear shorthand story_yield_force) or an
-        engine.Stories: the stories' law and its parameters (engine/stories/laws/: linear,
-        bilinear, imk), the elastic stiffness being story_stiffness either way;
-    story_height : None or N story heights (m), needed by p_delta and collapse_drift_ratio;
-    p_delta : the weight of the levels above each story acting on its drift, a geometric
-        stiffness -P_i / h_i in parallel with story i (P_i = g times the masses of levels
-        i..N; small displacements, constant gravity; the isolators carry no P-Delta term:
-        their law is their test's). Default False: the paper's building;
-    collapse_drift_ratio : None, or the drift ratio |drift_i| / h_i past which a member's run
-        ends as collapsed (e.g. COLLAPSE_DRIFT_RATIO); a non-finite state (a numerical
-        instability) ends a run as collapsed whatever this is;
-    plan_size : None (a run in plan moves the levels without rotating them) or (b_x, b_y) m,
-        the rectangular plan of every level: the building then twists in plan (three degrees
-        of freedom per level, engine/torsion.py: the model, its limits);
-    eccentricity : (e_x, e_y) m, or one pair per level: the mass centre from the plan's centre;
-    mass_inertia : None (uniform slabs, m (b_x^2 + b_y^2) / 12) or per level the polar moment
-        (kg m^2) about the level's own mass centre;
-    isolator_positions : None (a 4 x 4 grid under the slab, the outer bearings at its edges)
-        or (n, 2) m, the bearings' positions from the plan's centre, each 1/n of the isolator;
-    story_torsional_stiffness : None (a perimeter frame's, k_y (b_x/2)^2 + k (b_y/2)^2) or N
-        values in N m/rad, about the stories' centre of stiffness;
-    story_stiffness_centre : None (the plan's centre) or (x, y) m, or one pair per story: where
-        the stories' stiffness acts (a frame stiffer on one side moves it).
+    Two pairs of fields are a shorthand or its explicit form, never both: k1, k2, fy_ratio for
+    isolator=Isolator.bilinear(k1, k2, fy_ratio); story_yield_force, story_post_yield_ratio
+    for stories=Stories.bilinear(...). A `torsion` component (engine.Torsion) makes the
+    building twist (engine/model.py's twisting model, engine/torsion.py's physics).
+
+    damping="paper": the isolation dashpot 2 zeta_iso sqrt(k_0 M_tot), k_0 the isolator's
+    initial stiffness, plus stiffness-proportional story dashpots 2 zeta_sup k / omega_1 of the
+    fixed-base superstructure (SPEC decision); "modal": classical damping of the linear
+    building with the isolator at k_0, zeta_iso in mode 1, zeta_sup in the others.
+    p_delta: the weight of the levels above each story on its drift, a geometric stiffness
+    -P_i / h_i in parallel with story i (P_i = g times the masses of levels i..N; small
+    displacements, constant gravity; the isolators carry no P-Delta term: their law is their
+    test's). collapse_drift_ratio: a member's run ends as collapsed past |drift_i| / h_i (e.g.
+    COLLAPSE_DRIFT_RATIO); a non-finite state (a numerical instability) ends a run as
+    collapsed whatever it is.
     """
 
-    masses: tuple[float, ...] = PAPER_MASSES
-    story_stiffness: tuple[float, ...] = (600e6,) * (len(PAPER_MASSES) - 1)
-    k1: float = 200e6
-    k2: float = 25e6
-    fy_ratio: float = 0.1
-    zeta_iso: float | None = None
-    zeta_sup: float = 0.02
-    damping: str = "paper"
-    g: float = G
-    isolator: Isolator | None = None
-    story_yield_force: tuple[float, ...] | None = None
-    story_post_yield_ratio: float = 0.02
-    story_stiffness_y: tuple[float, ...] | None = None
-    stories: Stories | None = None
-    story_height: tuple[float, ...] | None = None
-    p_delta: bool = False
-    collapse_drift_ratio: float | None = None
-    plan_size: tuple[float, float] | None = None
-    eccentricity: tuple = (0.0, 0.0)
-    mass_inertia: tuple[float, ...] | None = None
-    isolator_positions: tuple | None = None
-    story_torsional_stiffness: tuple[float, ...] | None = None
-    story_stiffness_centre: tuple | None = None
+    masses: tuple[float, ...] = declared(
+        PAPER_MASSES, "kg", "mass of each level, the isolation slab (level 0) first",
+        per="level", valid="(0, inf)", plausible="[1e3, 1e9]")
+    story_stiffness: tuple[float, ...] = declared(
+        (600e6,) * (len(PAPER_MASSES) - 1), "N m-1", "elastic stiffness of each story (along "
+        "x in plan), the first story first", per="story", valid="(0, inf)",
+        plausible="[1e5, 1e13]")
+    k1: float = declared(200e6, "N m-1", "the bilinear isolator's initial stiffness (the "
+                         "shorthand isolator)", kind="shorthand")
+    k2: float = declared(25e6, "N m-1", "the bilinear isolator's post-yield stiffness (the "
+                         "shorthand isolator)", kind="shorthand")
+    fy_ratio: float = declared(0.1, "1", "the bilinear isolator's yield force over the total "
+                               "weight (the shorthand isolator)", kind="shorthand")
+    zeta_iso: float | None = declared(
+        None, "1", "isolation damping ratio on the isolator's initial stiffness (None: the "
+        "isolator law's default: bilinear 0.05, friction pendulum 0)", valid="[0, 1)",
+        optional=True)
+    zeta_sup: float = declared(0.02, "1", "superstructure damping ratio", valid="[0, 1)")
+    damping: str = declared("paper", None, "the damping rule (see the class docstring)",
+                            kind="text", choices=("paper", "modal"))
+    g: float = declared(G, "m s-2", "the acceleration of gravity, for the weight",
+                        valid="(0, inf)")
+    isolator: Isolator | None = declared(
+        None, None, "the isolator law and its values, an engine.Isolator (None: the bilinear "
+        "shorthand k1, k2, fy_ratio)", kind="law", optional=True)
+    story_yield_force: tuple[float, ...] | None = declared(
+        None, "N", "each story's yield force: bilinear kinematic hardening, elastic up to "
+        "F_i / k_i, then story_post_yield_ratio k_i (the shorthand stories; None: linear)",
+        per="story", valid="(0, inf)", plausible="[1e3, 1e10]", optional=True)
+    story_post_yield_ratio: float = declared(
+        0.02, "1", "the shorthand stories' post-yield stiffness over the elastic",
+        valid="[0, 1)")
+    story_stiffness_y: tuple[float, ...] | None = declared(
+        None, "N m-1", "each story's stiffness along y in plan (None: as along x); linear "
+        "stories only", per="story", valid="(0, inf)", plausible="[1e5, 1e13]",
+        optional=True)
+    stories: Stories | None = declared(
+        None, None, "the stories' law and its values, an engine.Stories (None: linear, or the "
+        "bilinear shorthand story_yield_force)", kind="law", optional=True)
+    story_height: tuple[float, ...] | None = declared(
+        None, "m", "each story's height (P-Delta and collapse need them)", per="story",
+        valid="(0, inf)", plausible="[1.5, 30]", optional=True)
+    p_delta: bool = declared(False, None, "the stories' P-Delta (see the class docstring)",
+                             kind="flag")
+    collapse_drift_ratio: float | None = declared(
+        None, "1", "the drift ratio |drift_i| / h_i past which a run ends as collapsed",
+        valid="(0, 1]", optional=True)
+    torsion: Torsion | None = declared(
+        None, None, "a building that twists: its plan, masses' offsets and inertia, bearings "
+        "and stories' torsion, an engine.Torsion (None: it does not twist)",
+        kind="component", optional=True)
 
     def __post_init__(self):
         masses = np.asarray(self.masses, dtype=float)
-        stiff = np.asarray(self.story_stiffness, dtype=float)
         if masses.ndim != 1 or not 2 <= masses.size <= MAX_STORIES + 1 \
                 or not np.all(masses > 0):
             raise EngineError(f"masses must be 2 to {MAX_STORIES + 1} positive values in kg "
                               f"(levels 0..N, level 0 the isolation slab), got {self.masses!r}")
-        if stiff.shape != (masses.size - 1,) or not np.all(stiff > 0):
-            raise EngineError(
-                f"story_stiffness must be {masses.size - 1} positive values in N/m (one per "
-                f"story, as masses has {masses.size} levels), got {self.story_stiffness!r}")
+        counts = {"level": masses.size, "story": masses.size - 1}
+        for name, spec in FIELDS.items():
+            value = getattr(self, name)
+            if name == "masses" or (value is None and spec.optional):
+                continue
+            if spec.kind == "number":
+                why = f", as masses has {masses.size} levels" if name == "story_stiffness" else ""
+                checked(name, spec, value, counts.get(spec.per), why)
+            elif spec.kind == "text" and value not in spec.choices:
+                raise EngineError(f"{name} must be {' or '.join(map(repr, spec.choices))}, got "
+                                  f"{value!r}")
+            elif spec.kind == "flag" and not isinstance(value, (bool, np.bool_)):
+                raise EngineError(f"{name} must be True or False, got {value!r}")
+        self._check_isolator()
+        self._check_stories(np.asarray(self.story_stiffness, dtype=float))
+        if self.story_stiffness_y is not None and not self.story_law.is_linear:
+            raise EngineError("story_stiffness_y applies to linear stories: yielding stories "
+                              "have a circular yield surface, the same stiffness both ways")
+        self._check_torsion()
+
+    def _check_isolator(self) -> None:
+        """The isolator: `isolator`, or the bilinear shorthand k1, k2, fy_ratio (not both)."""
         if self.isolator is None:
             try:
                 object.__setattr__(self, "_isolation", Isolator.bilinear(
@@ -142,50 +141,29 @@ class Building:
         elif not isinstance(self.isolator, Isolator):
             raise EngineError(f"isolator must be an engine.Isolator, got {self.isolator!r}")
         else:
-            shorthand = {name: getattr(self, name) for name in ("k1", "k2", "fy_ratio")
-                         if getattr(self, name) != _FIELDS[name].default}
+            shorthand = {name: getattr(self, name) for name in SHORTHAND_ISOLATOR
+                         if getattr(self, name) != DEFAULTS[name]}
             if shorthand:
                 raise EngineError(f"give the isolator either as isolator= or by k1, k2, "
                                   f"fy_ratio, not both (got isolator and {shorthand})")
             object.__setattr__(self, "_isolation", self.isolator)
-        zeta_iso = self.isolation_zeta
-        if not 0 <= zeta_iso < 1:
-            raise EngineError(f"zeta_iso must be in [0, 1), got {zeta_iso}")
-        if not 0 <= self.zeta_sup < 1:
-            raise EngineError(f"zeta_sup must be in [0, 1), got {self.zeta_sup}")
-        if self.damping not in ("paper", "modal"):
-            raise EngineError(f"damping must be 'paper' or 'modal', got {self.damping!r}")
-        if not 0 <= self.story_post_yield_ratio < 1:
-            raise EngineError(f"story_post_yield_ratio must be in [0, 1), got "
-                              f"{self.story_post_yield_ratio}")
-        if self.story_yield_force is not None:
-            yields = np.asarray(self.story_yield_force, dtype=float)
-            if yields.shape != stiff.shape or not np.all(yields > 0):
-                raise EngineError(f"story_yield_force must be {stiff.size} positive forces in N "
-                                  f"(one per story), got {self.story_yield_force!r}")
-        self._check_stories(stiff)
-        if self.story_stiffness_y is not None:
-            stiff_y = np.asarray(self.story_stiffness_y, dtype=float)
-            if stiff_y.shape != stiff.shape or not np.all(stiff_y > 0):
-                raise EngineError(f"story_stiffness_y must be {stiff.size} positive values in "
-                                  f"N/m (one per story, along y), got "
-                                  f"{self.story_stiffness_y!r}")
-            if not self.story_law.is_linear:
-                raise EngineError("story_stiffness_y applies to linear stories: yielding "
-                                  "stories have a circular yield surface, the same stiffness "
-                                  "both ways")
-        self._check_plan()
 
-    def _check_plan(self) -> None:
-        """The fields of a building that twists: given only with plan_size, checked there."""
-        if self.plan_size is not None:
-            for name, value in torsion.checked_layout(self).items():
-                object.__setattr__(self, name, value)
+    def _check_torsion(self) -> None:
+        """The torsion component: an engine.Torsion fitting this building's levels and
+        stories, on what the twisting model supports (engine.model.SUPPORTS)."""
+        if self.torsion is None:
             return
-        given = [name for name in TORSION_FIELDS[2:] if getattr(self, name) is not None]
-        if given or np.any(np.asarray(self.eccentricity, float) != 0):
-            raise EngineError(f"{', '.join(given) or 'eccentricity'}: a building that twists "
-                              "needs its plan_size (b_x, b_y) m")
+        if not isinstance(self.torsion, Torsion):
+            raise EngineError(f"torsion must be an engine.Torsion, got {self.torsion!r}")
+        self.torsion.for_building(self.n_levels, self.n_stories)
+        TWISTING.check("story law", self.story_law.law)
+        TWISTING.check("p_delta", self.p_delta)
+        TWISTING.check("damping", self.damping)
+
+    @property
+    def twists(self) -> bool:
+        """Whether the building twists in plan (it has a torsion component)."""
+        return self.torsion is not None
 
     def _check_stories(self, stiff: np.ndarray) -> None:
         """The story law (the shorthand or `stories`), heights, P-Delta and collapse."""
@@ -193,7 +171,7 @@ class Building:
             if not isinstance(self.stories, Stories):
                 raise EngineError(f"stories must be an engine.Stories, got {self.stories!r}")
             if self.story_yield_force is not None \
-                    or self.story_post_yield_ratio != _FIELDS["story_post_yield_ratio"].default:
+                    or self.story_post_yield_ratio != DEFAULTS["story_post_yield_ratio"]:
                 raise EngineError("give the stories either as stories= or by "
                                   "story_yield_force (and story_post_yield_ratio), not both")
             law = self.stories
@@ -207,19 +185,8 @@ class Building:
                 raise EngineError(f"story_yield_force: {err}") from None
         law.fields(stiff)  # per-story lengths and the law's own consistency
         object.__setattr__(self, "_stories", law)
-        if self.story_height is not None:
-            height = np.asarray(self.story_height, dtype=float)
-            if height.shape != stiff.shape or not np.all(np.isfinite(height) & (height > 0)):
-                raise EngineError(f"story_height must be {stiff.size} positive heights in m "
-                                  f"(one per story), got {self.story_height!r}")
-        if not isinstance(self.p_delta, (bool, np.bool_)):
-            raise EngineError(f"p_delta must be True or False, got {self.p_delta!r}")
-        ratio = self.collapse_drift_ratio
-        if ratio is not None and not (isinstance(ratio, (int, float, np.floating))
-                                      and 0 < ratio <= 1):
-            raise EngineError(f"collapse_drift_ratio must be a drift ratio in (0, 1] (e.g. "
-                              f"0.1 for 10%), got {ratio!r}")
-        if (self.p_delta or ratio is not None) and self.story_height is None:
+        if (self.p_delta or self.collapse_drift_ratio is not None) \
+                and self.story_height is None:
             raise EngineError("p_delta and collapse_drift_ratio need story_height (m, one per "
                               "story)")
 
@@ -279,7 +246,7 @@ class Building:
             isolator = Isolator.of(law, **{**self.isolation.values, **values})
         except EngineError as err:
             raise EngineError(f"isolator: {err}") from None
-        defaults = {name: _FIELDS[name].default for name in ("k1", "k2", "fy_ratio")}
+        defaults = {name: DEFAULTS[name] for name in SHORTHAND_ISOLATOR}
         return dataclasses.replace(self, isolator=isolator, **defaults)
 
     @property
@@ -426,7 +393,12 @@ class BuildingArrays:
     stiffness: np.ndarray
 
     def take(self, index) -> BuildingArrays:
-        return BuildingArrays(*(getattr(self, f)[index] for f in self.__dataclass_fields__))
+        """The members at `index` (an index array or slice)."""
+        return BuildingArrays(**{name: getattr(self, name)[index] for name in ARRAY_FIELDS})
+
+
+ARRAY_FIELDS = tuple(f.name for f in dataclasses.fields(BuildingArrays))
+"""BuildingArrays' fields, in order."""
 
 
 def building_arrays(building: Building | Sequence[Building], size: int) -> BuildingArrays:
@@ -445,15 +417,16 @@ def building_arrays(building: Building | Sequence[Building], size: int) -> Build
         raise EngineError(f"building: the members of one batch must have the same number of "
                           f"levels, got {sorted(levels)}; run each height in its own batch")
     rows = [_building_row(b) for b in unique]
-    fields = [np.array(col) for col in zip(*rows, strict=True)]
     which = np.array([unique[b] for b in members]) if len(members) > 1 else np.zeros(size, int)
-    return BuildingArrays(*(f[which] for f in fields))
+    return BuildingArrays(**{name: np.array([row[name] for row in rows])[which]
+                             for name in ARRAY_FIELDS})
 
 
 @lru_cache(maxsize=4096)
-def _building_row(b: Building) -> tuple:
-    """One building's batch arrays, in BuildingArrays' order (its damping needs eigenvalues:
-    computed once per Building; the arrays are copied into the batch, never handed out)."""
+def _building_row(b: Building) -> dict:
+    """One building's batch arrays by BuildingArrays' field names (its damping needs
+    eigenvalues: computed once per Building; the arrays are copied into the batch, never
+    handed out)."""
     iso = b.isolation.fields(b.total_mass, b.g)
     k = np.asarray(b.story_stiffness, float)
     law = b.story_law
@@ -472,12 +445,21 @@ def _building_row(b: Building) -> tuple:
         post, slip, limit = (np.asarray(x, float) for x in law.module.plan_fields(
             k, **law.per_story(k.size)))
         post = post - gravity if b.p_delta else post
-    return (np.asarray(b.masses, float), story_k, iso["k_elastic"], iso["k_slip"],
-            iso["f_limit"], iso["slow_drop"], iso["rate"], law.is_linear, law.code, fields, state,
-            gravity, post, slip, limit, not law.is_linear and not uniaxial, uniaxial,
-            b.collapse_drift,
-            b.damping_matrix(), b.stiffness_matrix())
+    return {"masses": np.asarray(b.masses, float), "story_k": story_k,
+            **{name: iso[name] for name in ("k_elastic", "k_slip", "f_limit", "slow_drop",
+                                            "rate")},
+            "story_linear": law.is_linear, "story_code": law.code, "story_fields": fields,
+            "story_state": state, "story_gravity": gravity, "story_k_post": post,
+            "story_k_slip": slip, "story_f_limit": limit,
+            "story_yields": not law.is_linear and not uniaxial, "story_uniaxial": uniaxial,
+            "collapse_drift": b.collapse_drift, "damping": b.damping_matrix(),
+            "stiffness": b.stiffness_matrix()}
 
 
-_FIELDS = Building.__dataclass_fields__
-assert set(_FIELDS) == set(FIELD_UNITS), "FIELD_UNITS must name every Building field"
+FIELDS = fields_of(Building)
+"""name -> Field (engine/declared.py) of every Building field, in order: the one declaration
+the constructor's checks, building files, provenance and the docs read."""
+DEFAULTS = defaults_of(Building)
+"""name -> the default of every Building field (the paper's building)."""
+SHORTHAND_ISOLATOR = ("k1", "k2", "fy_ratio")
+"""The bilinear isolator's shorthand fields (isolator=Isolator.bilinear(k1, k2, fy_ratio))."""

@@ -24,7 +24,7 @@ REQUIRED = object()
 _INTERVAL_RE = re.compile(r"^\s*([\[(])\s*(\S+?)\s*,\s*(\S+?)\s*([\])])\s*$")
 
 
-def _interval(name: str, text: str) -> tuple[float, bool, float, bool]:
+def interval(name: str, text: str) -> tuple[float, bool, float, bool]:
     """(low, low closed, high, high closed) of interval notation such as '(0, 1]'."""
     m = _INTERVAL_RE.match(text)
     if m is None:
@@ -32,9 +32,9 @@ def _interval(name: str, text: str) -> tuple[float, bool, float, bool]:
     return float(m.group(2)), m.group(1) == "[", float(m.group(3)), m.group(4) == "]"
 
 
-def _outside(array: np.ndarray, interval: tuple[float, bool, float, bool]) -> np.ndarray:
-    """Where `array` lies outside the interval (NaN included)."""
-    low, low_closed, high, high_closed = interval
+def outside(array: np.ndarray, bounds: tuple[float, bool, float, bool]) -> np.ndarray:
+    """Where `array` lies outside the interval `bounds` (interval's tuple; NaN included)."""
+    low, low_closed, high, high_closed = bounds
     above = array >= low if low_closed else array > low
     below = array <= high if high_closed else array < high
     return ~(above & below)  # NaN fails both
@@ -120,9 +120,9 @@ class Parameter:
     bounds: tuple = field(init=False, repr=False, compare=False)
 
     def __post_init__(self):
-        object.__setattr__(self, "bounds", _interval(self.name, self.valid))
+        object.__setattr__(self, "bounds", interval(self.name, self.valid))
         if self.plausible is not None:
-            _interval(self.name, self.plausible)
+            interval(self.name, self.plausible)
 
     def implausible(self, values) -> np.ndarray:
         """The values outside the `plausible` interval: valid to the engine, but what no real
@@ -132,7 +132,7 @@ class Parameter:
         array = np.atleast_1d(np.asarray(values, dtype=float))
         if self.plausible is None:
             return array[:0]
-        return array[_outside(array, _interval(self.name, self.plausible))]
+        return array[outside(array, interval(self.name, self.plausible))]
 
     @property
     def required(self) -> bool:
@@ -147,7 +147,7 @@ class Parameter:
         except (TypeError, ValueError):
             raise EngineError(f"{name} must be a number or an array of numbers, "
                               f"got {value!r}") from None
-        bad = _outside(array, self.bounds)
+        bad = outside(array, self.bounds)
         if self.integer:
             bad |= array != np.round(array)
         if np.any(bad):

@@ -2,6 +2,11 @@
 of a record pair and the friction between slab and wall (engine.simulate with accel (N, 2);
 the loops are loops/numpy_plan.py and loops/numba_plan.py, what they return
 results.PLAN_PEAKS and PLAN_HISTORIES)."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .errors import EngineError
 from .parameters import Parameter
 from .results import WALLS
 
@@ -22,3 +27,34 @@ sticks (loops/numpy_plan.py: the implicit Coulomb solve)."""
 
 PLAN_PARAMETERS = {p.sweep: p for p in (ANGLE, MU_WALL)}
 """The parameters of runs in plan only, by sweep name (pipeline.grid.PLAN_PARAMS)."""
+
+
+@dataclass(frozen=True)
+class Moat:
+    """The moat of a run in plan (engine.simulate's moat): its shape and what stands on its
+    walls.
+
+    shape: "rectangular" (walls normal to x at +- the clear gap of simulate's contact, normal
+    to y at +- that of contact_y; a corner loads both) or "circular" (one wall at the clear
+    gap of `contact`, pushing along the radius); contact_y: None (the y walls as the x walls)
+    or a Contact of B members, the y walls of a rectangular moat; mu_wall: None (0) or (B,)
+    Coulomb friction coefficients between slab and wall (-), MU_WALL: a slab pressing on a
+    wall with normal force N slides along it against mu_wall N or sticks; bumper_positions:
+    None (a building that twists meets bare walls with its corners) or (along the x walls,
+    along the y walls), the bumpers' positions in metres from the plan's centre (twisting
+    model only), each carrying its share of the wall's law.
+    """
+
+    shape: str = "rectangular"
+    contact_y: object = None
+    mu_wall: object = None
+    bumper_positions: object = None
+
+    def __post_init__(self):
+        if self.shape not in MOATS:
+            raise EngineError(f"moat must be one of {MOATS}, got {self.shape!r}")
+
+    @classmethod
+    def of(cls, moat) -> Moat:
+        """A Moat from engine.simulate's moat argument: a Moat, or a shape's name."""
+        return moat if isinstance(moat, Moat) else cls(shape=moat)

@@ -13,11 +13,12 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from . import torsion
-from .backends import plan_loop, resolve_backend, time_loop, torsion_loop
+from .backends import model_loop, resolve_backend, time_loop
 from .building import Building, building_arrays
 from .errors import EngineError, UnstableTimeStep
 from .impact import NONE, Contact
-from .plan import ANGLE, MOATS, MU_WALL
+from .model import TWISTING, model_of
+from .plan import ANGLE, MU_WALL, Moat
 from .results import History, PlanResult, Result, TorsionResult, TwoBodyResult
 from .scheme import (
     DEFAULT_DT,
@@ -39,7 +40,7 @@ def stable_dt(contact: Contact, building: Building | Sequence[Building] = Buildi
     corners as its points (bumpers stand within the sides: their limit is no lower)."""
     size = len(contact)
     if _twisting(building):
-        twist = torsion_arrays([building] if isinstance(building, Building) else building, size)
+        twist = torsion_arrays(_members(building), size)
         tangent = contact.max_tangent_stiffness(indentation_bound)
         return torsion.stability_limit(twist, contact_points(twist.plan), [tangent, tangent])
     return stability_limit(building_arrays(building, size), contact, indentation_bound)
@@ -49,57 +50,50 @@ def simulate(accel, accel_dt: float, contact: Contact,
              building: Building | Sequence[Building] = Building(), dt: float = DEFAULT_DT,
              history: History | None = None,
              progress: Callable[[int, int], None] | None = None,
-             backend: str | None = None, scale=None, *, moat: str | None = None,
-             contact_y: Contact | None = None, angle=None, mu_wall=None,
-             bumper_positions=None) -> Result:
+             backend: str | None = None, scale=None, *, moat: str | Moat | None = None,
+             angle=None) -> Result:
     """Integrate B isolated buildings under one ground motion, pounding on their moat walls.
 
-    accel: (N,) ground acceleration in m/s^2 every accel_dt s, linearly interpolated onto dt;
-    or (N, 2), the two horizontal components (x, y) of a record pair: the run is in plan (see
-    below) and returns a PlanResult;
-    contact: a Contact of B members; building: one Building or a sequence of B of them;
+    The run's model (engine/model.py) follows from the inputs, once: accel (N,), one
+    component along x, is the planar model (a Result); accel (N, 2), a record pair's x and y
+    components, runs in plan (a PlanResult), or twisting when the buildings have a torsion
+    component (a TorsionResult). What each model takes is engine.model.SUPPORTS; anything
+    else is refused quoting it.
+
+    accel: the ground acceleration in m/s^2 every accel_dt s, linearly interpolated onto dt;
+    contact: a Contact of B members (in plan: the x walls, and every wall unless the moat
+    gives contact_y); building: one Building or a sequence of B of them (one model);
     dt: integration step (s), refused above the stability limit;
-    history: record time histories for some members every `every` steps: the result's history
-    dict holds time (T,) s, members (M,), isolator_disp (M, T) m, total_accel (M, T, levels)
-    m/s^2, impact_force (M, T) N, indentation (M, T) m (results.HISTORIES);
+    history: record time histories for some members every `every` steps (the model's
+    histories: results.HISTORIES, PLAN_HISTORIES, TORSION_HISTORIES);
     progress: called as progress(step, n_steps) about every 1% of the run;
     backend: "numba" (the compiled kernel), "numpy" (the vectorised reference loop) or None:
     numba when it can be imported, else numpy with a one-line notice;
     scale: None or (B,) positive factors (-) multiplying the ground acceleration member by
-    member, so that one call runs one record at several intensities (e.g. the search for the
-    factor that brings a record to a design displacement). None is 1 for every member, and a
-    factor of 1 leaves a member's result bit for bit unchanged.
-    Returns a Result: the peaks of results.PEAKS, (B, ...) in batch order.
-
-    In plan ((N, 2) accel): the building moves in x and y on coupled isolators (circular yield
-    surface, exact radial return; loops/numpy_plan.py), its stories isotropic. moat:
-    "rectangular" (default: walls normal to x at +- the clear gap of `contact`, normal to y at
-    +- that of contact_y, default the same walls; a corner loads both) or "circular" (one wall
-    at the clear gap of `contact`, pushing along the radius). angle: None or (B,) incidence
-    angles in degrees rotating each member's pair counterclockwise (one call runs a pair at
-    many angles). mu_wall: None (0) or (B,) Coulomb friction coefficients between slab and
-    wall (-): a slab pressing on a wall with normal force N slides along it against mu_wall N
-    or sticks. The building's story_stiffness_y (if any) sets its stories along y.
-    A building with a plan_size twists (engine/torsion.py; rectangular moat only): it returns
-    a TorsionResult, the peaks at the plan's centre with the corners', the rotation and each
-    contact point's (results.TORSION_PEAKS); bumper_positions: None (the slab's corners meet
-    bare walls) or (along the x walls, along the y walls), the bumpers' positions in metres
-    from the plan's centre, each carrying its share of the wall's law.
-    Returns a PlanResult: the PEAKS as resultants (vector magnitudes), the
-    per-direction peaks and the largest force on each wall (loops/numba_plan.py compiled, or
-    loops/numpy_plan.py); its history (results.PLAN_HISTORIES) has the isolator's orbit
-    (M, T, 2) m, the floor accelerations (M, T, levels, 2) m/s^2, the moat's force |F| (M, T)
-    N and the deepest indentation (M, T) m.
+    member, so that one call runs one record at several intensities. None is 1 for every
+    member, and a factor of 1 leaves a member's result bit for bit unchanged;
+    moat (in plan): None ("rectangular"), a shape's name ("rectangular", "circular") or an
+    engine.Moat (its shape, the y walls' contact_y, the wall friction mu_wall, the bumpers'
+    positions along the walls of a building that twists);
+    angle (in plan): None or (B,) incidence angles in degrees rotating each member's pair
+    counterclockwise (one call runs a pair at many angles).
+    Returns the model's result: the peaks of model.peaks, (B, ...) in batch order (in plan
+    the PEAKS as resultants, vector magnitudes), and its history.
     """
-    if np.ndim(accel) == 2:
-        return _simulate_plan(accel, accel_dt, contact, building, dt, history, progress,
-                              backend, scale, moat, contact_y, angle, mu_wall,
-                              bumper_positions)
-    if moat is not None or contact_y is not None or angle is not None or mu_wall is not None \
-            or bumper_positions is not None or _twisting(building):
-        raise EngineError("moat, contact_y, angle, mu_wall, bumper_positions and a building's "
-                          "plan_size apply to a run in plan: give accel as (N, 2), the record "
-                          "pair's x and y components")
+    model = model_of(np.shape(accel)[1] if np.ndim(accel) == 2 else 1, _twisting(building))
+    if not model.in_plan:
+        if moat is not None or angle is not None:
+            raise model.refuse("moat" if moat is not None else "angle")
+        return _simulate_planar(accel, accel_dt, contact, building, dt, history, progress,
+                                backend, scale)
+    return _simulate_plan(model, accel, accel_dt, contact, building, dt,
+                          (history, progress, backend, scale),
+                          (Moat.of("rectangular" if moat is None else moat), angle))
+
+
+def _simulate_planar(accel, accel_dt, contact, building, dt, history, progress, backend,
+                     scale) -> Result:
+    """simulate for one component (N,): the planar loop (see simulate)."""
     if not isinstance(contact, Contact):
         raise EngineError("contact must be an engine.Contact")
     size = len(contact)
@@ -125,37 +119,37 @@ def simulate(accel, accel_dt: float, contact: Contact,
     return Result(**peaks, dt=dt, history=hist)
 
 
+def _members(building) -> list:
+    """The batch's buildings: [one] broadcast, or the sequence's."""
+    return [building] if isinstance(building, Building) else list(building)
+
+
 def _twisting(building) -> bool:
-    """Whether the members twist (plan_size given); EngineError when only some do."""
-    members = [building] if isinstance(building, Building) else list(building)
-    twists = {getattr(b, "plan_size", None) is not None for b in members}
+    """Whether the members twist (a torsion component); EngineError when only some do."""
+    twists = {getattr(b, "twists", False) for b in _members(building)}
     if len(twists) > 1:
-        raise EngineError("building: the members of one batch either all twist (plan_size "
-                          "given) or none does")
+        raise EngineError("building: the members of one batch either all twist (a torsion "
+                          "component) or none does")
     return twists == {True}
 
 
-def _simulate_plan(accel, accel_dt, contact, building, dt, history, progress, backend, scale,
-                   moat, contact_y, angle, mu_wall, bumper_positions) -> PlanResult:
-    """simulate for a record pair (N, 2): the plan loop (see simulate)."""
-    moat = "rectangular" if moat is None else moat
-    if moat not in MOATS:
-        raise EngineError(f"moat must be one of {MOATS}, got {moat!r}")
-    twisting = _twisting(building)
-    if bumper_positions is not None and not twisting:
-        raise EngineError("bumper_positions place bumpers along the walls of a building that "
-                          "twists: give the building its plan_size")
-    if twisting and moat != "rectangular":
-        raise EngineError("a building that twists (plan_size) needs the rectangular moat")
+def _simulate_plan(model, accel, accel_dt, contact, building, dt, run, walls) -> PlanResult:
+    """simulate for a record pair (N, 2) (see simulate): run = (history, progress, backend,
+    scale), walls = (the Moat, angle)."""
+    history, progress, backend, scale = run
+    moat, angle = walls
+    model.check("moat", moat.shape)
+    model.check("bumper_positions", moat.bumper_positions is not None)
+    contact_y = moat.contact_y
     if not isinstance(contact, Contact) or (contact_y is not None
                                             and not isinstance(contact_y, Contact)):
         raise EngineError("contact (and contact_y) must be an engine.Contact")
     size = len(contact)
     if size == 0:
         raise EngineError("contact: empty batch")
-    if contact_y is not None and (moat != "rectangular" or len(contact_y) != size):
+    if contact_y is not None and (moat.shape != "rectangular" or len(contact_y) != size):
         raise EngineError(f"contact_y: the y walls of a rectangular moat, one per member "
-                          f"({size}), got {len(contact_y)} for a {moat} moat")
+                          f"({size}), got {len(contact_y)} for a {moat.shape} moat")
     if history is not None:
         _check_history(history, size)
     accel = np.asarray(accel, dtype=float)
@@ -167,11 +161,11 @@ def _simulate_plan(accel, accel_dt, contact, building, dt, history, progress, ba
     arrays = building_arrays(building, size)
     arrays_y = _arrays_along_y(building, size)
     contacts = (contact, contact if contact_y is None else contact_y) \
-        if moat == "rectangular" else (contact,)
+        if moat.shape == "rectangular" else (contact,)
     directions = (arrays,) if arrays_y is None else (arrays, arrays_y)
-    if twisting:
-        twist = torsion_arrays([building] if isinstance(building, Building) else building, size)
-        points = contact_points(twist.plan, bumper_positions)
+    if model is TWISTING:
+        twist = torsion_arrays(_members(building), size)
+        points = contact_points(twist.plan, moat.bumper_positions)
         limit = torsion.stability_limit(twist, points, [c.max_tangent_stiffness(
             INDENTATION_BOUND) for c in contacts])  # bumpers' points: a limit of their own
     else:
@@ -185,21 +179,21 @@ def _simulate_plan(accel, accel_dt, contact, building, dt, history, progress, ba
     checked_record(accel[:, 1], accel_dt, dt)
     scale = checked_scale(scale, size)
     angle = np.zeros(size) if angle is None else checked_angle(angle, size)
+    mu_wall = moat.mu_wall
     friction = None if mu_wall is None else _checked_member_values(MU_WALL, mu_wall, size)
     if friction is not None and not np.any(friction > 0):
         friction = None  # frictionless walls: the loops skip the tangential solve
     from .loops import numpy_plan
 
     ag = numpy_plan.ground_motion(accel, float(accel_dt), float(dt), n_steps)
-    if twisting:
-        loop = torsion_loop(resolve_backend(backend))
+    loop = model_loop(model, resolve_backend(backend))
+    if model is TWISTING:
         peaks, hist = loop.run_torsion(ag, dt, arrays, twist, contacts, points, progress, scale,
                                        np.radians(angle), history, friction)
-        return TorsionResult(**peaks, dt=dt, history=hist, moat=moat, points=points)
-    loop = plan_loop(resolve_backend(backend))
-    peaks, hist = loop.run_plan(ag, dt, arrays, contacts, moat, progress, scale,
+        return TorsionResult(**peaks, dt=dt, history=hist, moat=moat.shape, points=points)
+    peaks, hist = loop.run_plan(ag, dt, arrays, contacts, moat.shape, progress, scale,
                                 np.radians(angle), history, arrays_y, friction)
-    return PlanResult(**peaks, dt=dt, history=hist, moat=moat)
+    return PlanResult(**peaks, dt=dt, history=hist, moat=moat.shape)
 
 
 def _check_history(history: History, size: int) -> None:
@@ -214,7 +208,7 @@ def _check_history(history: History, size: int) -> None:
 def _arrays_along_y(building, size: int):
     """The batch's arrays along y when a member's stories differ along y, else None (the
     loops then use the x arrays both ways, bit for bit as an isotropic building)."""
-    members = [building] if isinstance(building, Building) else list(building)
+    members = _members(building)
     if all(b.isotropic for b in members):
         return None
     along_y = members[0].along_y() if len(members) == 1 else [b.along_y() for b in members]

@@ -46,7 +46,7 @@ import numpy as np
 
 from .chain import chain_matrix
 from .errors import EngineError
-from .parameters import Parameter
+from .torsion_fields import plan_dimensions
 
 DEFAULT_GRID = (4, 4)
 """Bearings along x and along y of the default layout: a regular grid under the slab."""
@@ -54,28 +54,15 @@ CORNERS = ((1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0))
 """The slab's corners as signs of (b_x / 2, b_y / 2), counterclockwise from (+, +)."""
 
 
-ACCIDENTAL_ECCENTRICITY = Parameter(
-    "eccentricity", "1", "accidental eccentricity: every level's mass centre moved by this "
-    "fraction of each plan dimension (e_x + e b_x, e_y + e b_y) from the building's own", 0.0,
-    "[0, 0.5)", equation="ASCE 7-22 17.5.3.3 (5%)", sweep="eccentricity", plausible="[0, 0.2]")
-"""A member's accidental eccentricity (pipeline.sweep's eccentricity; `shifted`): the mass
-moved along the plan's diagonal, which loads both directions' torsion at once."""
-
-
 def shifted(building, fraction: float):
     """The building that twists with every level's mass centre moved by fraction (b_x, b_y)
-    (ACCIDENTAL_ECCENTRICITY), the building itself at 0."""
-    if building.plan_size is None:
+    (ACCIDENTAL_ECCENTRICITY, Torsion.shifted), the building itself at 0."""
+    if building.torsion is None:
         raise EngineError("an accidental eccentricity moves the mass of a building that twists: "
-                          "give the building its plan_size")
-    fraction = float(ACCIDENTAL_ECCENTRICITY.check(np.asarray(fraction, float)))
-    if fraction == 0:
-        return building
-    offset = fraction * np.asarray(building.plan_size)
-    own = np.asarray(building.eccentricity, float)
-    moved = own + offset  # one pair, or one per level
-    return dataclasses.replace(building, eccentricity=tuple(map(tuple, moved.tolist()))
-                               if moved.ndim == 2 else tuple(moved.tolist()))
+                          "give the building its torsion component (engine.Torsion)")
+    moved = building.torsion.shifted(fraction)
+    return building if moved is building.torsion else dataclasses.replace(building,
+                                                                           torsion=moved)
 
 
 def grid_positions(plan_size, per_side: tuple[int, int] = DEFAULT_GRID) -> np.ndarray:
@@ -96,14 +83,6 @@ def corner_orbits(disp, rotation, corners) -> np.ndarray:
     return disp + rotation[..., None] * np.stack([-corners[..., 1], corners[..., 0]], axis=-1)
 
 
-def plan_dimensions(plan_size) -> tuple[float, float]:
-    """(b_x, b_y) m, checked positive and finite."""
-    size = np.asarray(plan_size, float)
-    if size.shape != (2,) or not np.all(np.isfinite(size) & (size > 0)):
-        raise EngineError(f"plan_size must be (b_x, b_y), positive metres, got {plan_size!r}")
-    return float(size[0]), float(size[1])
-
-
 def slab_inertia(masses, plan_size) -> np.ndarray:
     """kg m^2: the polar moment of uniform rectangular slabs of `masses` (kg) about their own
     centres, m (b_x^2 + b_y^2) / 12."""
@@ -111,63 +90,12 @@ def slab_inertia(masses, plan_size) -> np.ndarray:
     return np.asarray(masses, float) * (b_x**2 + b_y**2) / 12
 
 
-def checked_layout(building) -> dict:
-    """The torsional fields of a Building (plan_size given), checked and as tuples of floats:
-    {name: value} to set on the frozen dataclass. EngineError names the first bad one."""
-    b_x, b_y = plan_dimensions(building.plan_size)
-    half = np.array([b_x, b_y]) / 2
-    n_levels, n_stories = building.n_levels, building.n_stories
-    out = {"plan_size": (b_x, b_y),
-           "eccentricity": _pairs(building, "eccentricity", n_levels, "level", half)}
-    if building.story_stiffness_centre is not None:
-        out["story_stiffness_centre"] = _pairs(building, "story_stiffness_centre", n_stories,
-                                               "story", half)
-    for name, count, what in (("mass_inertia", n_levels, "polar moments in kg m2 (one per "
-                                                          "level)"),
-                              ("story_torsional_stiffness", n_stories, "values in N m/rad "
-                                                                       "(one per story)")):
-        if getattr(building, name) is not None:
-            values = np.asarray(getattr(building, name), float)
-            if values.shape != (count,) or not np.all(np.isfinite(values) & (values > 0)):
-                raise EngineError(f"{name} must be {count} positive {what}, got "
-                                  f"{getattr(building, name)!r}")
-            out[name] = tuple(values.tolist())
-    if building.isolator_positions is not None:
-        xy = np.asarray(building.isolator_positions, float)
-        if xy.ndim != 2 or xy.shape[1] != 2 or xy.shape[0] < 2 or not np.all(np.isfinite(xy)) \
-                or np.any(np.abs(xy) > half * (1 + 1e-12)):
-            raise EngineError(f"isolator_positions must be (n, 2) metres from the plan's "
-                              f"centre, n >= 2, under the slab, got shape {xy.shape}")
-        if np.ptp(xy[:, 0]) == 0 and np.ptp(xy[:, 1]) == 0:
-            raise EngineError("isolator_positions: the bearings stand at one point, the slab "
-                              "would have no torsional stiffness")
-        out["isolator_positions"] = tuple(map(tuple, xy.tolist()))
-    if not building.story_law.is_linear or building.p_delta or building.damping != "paper":
-        raise EngineError("a building that twists (plan_size) needs linear stories without "
-                          "p_delta and damping='paper': the stories' laws, P-Delta and modal "
-                          "damping have no torsional counterpart in the engine yet")
-    return out
-
-
-def _pairs(building, name: str, count: int, what: str, half: np.ndarray) -> tuple:
-    """Field `name`, one (x, y) pair (m) or `count` of them (one per `what`), within the plan
-    (half its dimensions, half), as a tuple of floats or of pairs (EngineError otherwise)."""
-    given = getattr(building, name)
-    pairs = np.asarray(given, float)
-    one = pairs.shape == (2,)
-    full = np.broadcast_to(pairs, (count, 2)) if one else pairs
-    if full.shape != (count, 2) or not np.all(np.isfinite(full)) or np.any(np.abs(full) > half):
-        raise EngineError(f"{name} must be (x, y) in metres, or one pair per {what} ({count}), "
-                          f"within the plan, got {given!r}")
-    return tuple(pairs.tolist()) if one else tuple(map(tuple, pairs.tolist()))
-
-
 def torsional_stiffness(building) -> np.ndarray:
     """(N,) the stories' torsional stiffness (N m/rad): story_torsional_stiffness, or the
     perimeter frame's k_y (b_x / 2)^2 + k (b_y / 2)^2."""
-    if building.story_torsional_stiffness is not None:
-        return np.asarray(building.story_torsional_stiffness, float)
-    b_x, b_y = building.plan_size
+    if building.torsion.story_torsional_stiffness is not None:
+        return np.asarray(building.torsion.story_torsional_stiffness, float)
+    b_x, b_y = building.torsion.plan_size
     k = np.asarray(building.story_stiffness, float)
     k_y = np.asarray(building.along_y().story_stiffness, float)
     return k_y * (b_x / 2) ** 2 + k * (b_y / 2) ** 2
@@ -175,9 +103,9 @@ def torsional_stiffness(building) -> np.ndarray:
 
 def bearing_positions(building) -> np.ndarray:
     """(n, 2) m: isolator_positions, or the default grid under the slab."""
-    if building.isolator_positions is None:
-        return grid_positions(building.plan_size)
-    return np.asarray(building.isolator_positions, float)
+    if building.torsion.isolator_positions is None:
+        return grid_positions(building.torsion.plan_size)
+    return np.asarray(building.torsion.isolator_positions, float)
 
 
 @dataclass(frozen=True)
@@ -218,11 +146,11 @@ def torsion_arrays(members: Sequence, size: int) -> TorsionArrays:
 
 def _row(b) -> tuple:
     """One building's TorsionArrays row, in its fields' order."""
-    n_levels = b.n_levels
+    n_levels, twist = b.n_levels, b.torsion
     masses = np.asarray(b.masses, float)
-    ecc = np.broadcast_to(np.asarray(b.eccentricity, float), (n_levels, 2))
-    inertia = slab_inertia(masses, b.plan_size) if b.mass_inertia is None \
-        else np.asarray(b.mass_inertia, float)
+    ecc = np.broadcast_to(np.asarray(twist.mass_offset, float), (n_levels, 2))
+    inertia = slab_inertia(masses, twist.plan_size) if twist.mass_inertia is None \
+        else np.asarray(twist.mass_inertia, float)
     mass = np.zeros((3 * n_levels, 3 * n_levels))
     for j in range(n_levels):
         e_x, e_y = ecc[j]
@@ -240,8 +168,8 @@ def _row(b) -> tuple:
     c_iso, c_story = b.dashpots()
     c_story_y = b.along_y().dashpots()[1]
     c_theta = c_story * k_theta / np.asarray(b.story_stiffness, float)
-    centre = np.zeros((b.n_stories, 2)) if b.story_stiffness_centre is None else \
-        np.broadcast_to(np.asarray(b.story_stiffness_centre, float), (b.n_stories, 2))
+    centre = np.zeros((b.n_stories, 2)) if twist.story_stiffness_centre is None else \
+        np.broadcast_to(np.asarray(twist.story_stiffness_centre, float), (b.n_stories, 2))
     damping = _story_chain(np.column_stack([c_story, c_story_y, c_theta]), centre)
     stiffness = _story_chain(story_k, centre)
     damping[:3, :3] += c_iso * layout
@@ -249,7 +177,7 @@ def _row(b) -> tuple:
     influence = np.zeros((3 * n_levels, 2))
     influence[0::3, 0] = influence[1::3, 1] = 1.0
     return (mass, damping, stiffness, mass @ influence, story_k, np.array(centre), xy,
-            np.asarray(b.plan_size, float))
+            np.asarray(twist.plan_size, float))
 
 
 def _story_chain(springs: np.ndarray, centre: np.ndarray) -> np.ndarray:

@@ -98,7 +98,7 @@ def _sweep(records, *, impact: str = "bumper", dt: float | None = None, workers:
         multiplying each record's acceleration on top of the level (a code suite's MCE_R
         factors): a member runs at factor x level (level 1 when not given). The archive then
         has a `level` coordinate and `record_factor` along record.
-    bumper_positions: for a building that twists (its plan_size; moat "rectangular"): None,
+    bumper_positions: for a building that twists (its torsion; moat "rectangular"): None,
         its corners against bare walls, or (along the x walls, along the y walls), the
         bumpers' positions (m) from the plan's centre (engine.simulate's); the archive then
         has each contact point's peaks (dimension `point`) and the corners' and rotation's.
@@ -212,8 +212,8 @@ def _execute(grid, records, arguments: dict, *, dt=None, workers: int = 1, sched
     from .writing import check_out, guard
 
     building = check_building(building)
-    if building.plan_size is not None and moat != "rectangular":
-        raise SweepError("a building that twists (its plan_size) runs in plan against the "
+    if building.twists and moat != "rectangular":
+        raise SweepError("a building that twists (its torsion) runs in plan against the "
                          f"rectangular moat, under record pairs: give moat='rectangular', not "
                          f"{moat!r}")
     dt = check_dt(grid, engine.DEFAULT_DT if dt is None else dt, building)
@@ -240,9 +240,9 @@ def _execute(grid, records, arguments: dict, *, dt=None, workers: int = 1, sched
     if bumper_positions is not None:
         import numpy as np
 
-        if building.plan_size is None or moat != "rectangular":
+        if not building.twists or moat != "rectangular":
             raise SweepError("bumper_positions place bumpers along the rectangular moat's "
-                             "walls of a building that twists (its plan_size)")
+                             "walls of a building that twists (its torsion)")
         bumper_positions = tuple(tuple(float(x) for x in np.ravel(side))
                                  for side in bumper_positions)
         arguments["bumper_positions"] = [list(side) for side in bumper_positions]

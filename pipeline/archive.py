@@ -140,7 +140,7 @@ def point_coords(building: engine.Building, bumper_positions) -> dict:
     """The contact points of a building that twists: their wall and position along it."""
     from engine.torsion import contact_points
 
-    points = contact_points(np.array([building.plan_size]), bumper_positions)
+    points = contact_points(np.array([building.torsion.plan_size]), bumper_positions)
     return {
         "point": variable("point", np.arange(points.wall.size), "1",
                           "contact point of the moat: a corner of the slab against a bare "

@@ -1,6 +1,7 @@
 """The user's building from text: a TOML or JSON file, and NAME=VALUE settings on the command
-line, into an engine.Building. SI units throughout (engine.building.FIELD_UNITS); a wrong key,
-type or unit is one BuildingError naming the key and what it expects.
+line, into an engine.Building. SI units throughout, each field as engine.building.FIELDS
+declares it (a building that twists: its [torsion] table, engine.torsion_fields.FIELDS); a
+wrong key, type or unit is one BuildingError naming the key and what it expects.
 
     # examples/eight_story_friction_pendulum.toml (abridged)
     masses = [600e3, 450e3, 450e3, 450e3, 450e3, 450e3, 450e3, 450e3, 400e3]  # kg, slab first
@@ -21,11 +22,14 @@ type or unit is one BuildingError naming the key and what it expects.
     mu_slow = 0.05
     mu_fast = 0.10
     rate = 30.0             # s/m
+    # [torsion]             # optional: a building that twists (engine.Torsion)
+    # plan_size = [30, 20]  # m
+    # mass_offset = [1.5, 0.0]  # m, the mass centre from the plan's centre
 
 Every top-level key is an engine.Building field; the [isolator] table names a registered
 isolator law and its declared parameters (engine/isolators/laws/), the [stories] table a
-story law and its (engine/stories/laws/). A JSON file holds the same
-object.
+story law and its (engine/stories/laws/), the [torsion] table the fields of engine.Torsion
+(on the command line torsion.NAME=VALUE). A JSON file holds the same object.
 """
 from __future__ import annotations
 
@@ -37,17 +41,11 @@ from pathlib import Path
 import numpy as np
 
 import engine
-from engine.building import (
-    FIELD_UNITS,
-    IN_PLAN,
-    MAX_STORIES,
-    PAPER_MASSES,
-    PER_LEVEL,
-    PER_STORY,
-)
+from engine.building import FIELDS, MAX_STORIES, PAPER_MASSES
 from engine.isolators import LAWS as ISOLATOR_LAWS
 from engine.parameters import REQUIRED, Parameter
 from engine.stories import LAWS as STORY_LAWS
+from engine.torsion_fields import FIELDS as TORSION_FIELDS
 
 from .checks import plausible
 from .errors import BuildingError, SweepError
@@ -58,21 +56,16 @@ else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 
-# What real buildings have, per field (SI): outside it a value is most likely in another unit
-# (t for kg, kN/mm for N/m, kN for N). The engine itself takes any positive value, so that a
-# laboratory model can be simulated directly.
-PLAUSIBLE = {
-    "masses": Parameter("masses", "kg", "mass of a level", REQUIRED, "(0, inf)",
-                        plausible="[1e3, 1e9]"),
-    "story_stiffness": Parameter("story_stiffness", "N m-1", "story stiffness", REQUIRED,
-                                 "(0, inf)", plausible="[1e5, 1e13]"),
-    "story_yield_force": Parameter("story_yield_force", "N", "story yield force", REQUIRED,
-                                   "(0, inf)", plausible="[1e3, 1e10]"),
-    "story_stiffness_y": Parameter("story_stiffness_y", "N m-1", "story stiffness along y",
-                                   REQUIRED, "(0, inf)", plausible="[1e5, 1e13]"),
-    "story_height": Parameter("story_height", "m", "story height", REQUIRED, "(0, inf)",
-                              plausible="[1.5, 30]"),
-}
+PER_LEVEL = tuple(name for name, spec in FIELDS.items() if spec.per == "level")
+PER_STORY = tuple(name for name, spec in FIELDS.items() if spec.per == "story")
+TABLES = {name: spec for name, spec in FIELDS.items() if spec.kind in ("law", "component")}
+"""The fields given as a table of their own ([isolator], [stories], [torsion])."""
+# What real buildings have, per field (SI; the declarations' `plausible`): outside it a value
+# is most likely in another unit (t for kg, kN/mm for N/m, kN for N). The engine itself takes
+# any positive value, so that a laboratory model can be simulated directly.
+PLAUSIBLE = {name: Parameter(name, spec.units, spec.meaning, REQUIRED, spec.valid or
+                             "(-inf, inf)", plausible=spec.plausible)
+             for name, spec in FIELDS.items() if spec.plausible is not None}
 
 
 def check_building(building):
@@ -150,18 +143,29 @@ def building_from(specs: Sequence[str] = ()) -> engine.Building:
     for setting in settings:
         name, _, text = setting.partition("=")
         name = name.strip()
-        tables = ("isolator", "stories")
-        if name not in FIELD_UNITS or name in tables:
-            settable = ", ".join(n for n in FIELD_UNITS if n not in tables)
+        table, _, part = name.rpartition(".")
+        declarations = TORSION_FIELDS if table == "torsion" else FIELDS if not table else {}
+        if part not in declarations or part in TABLES:
+            settable = ", ".join([*(n for n in FIELDS if n not in TABLES),
+                                  *(f"torsion.{n}" for n in TORSION_FIELDS)])
             raise BuildingError(f"--building {setting!r}: NAME must be one of {settable} (an "
                                 "isolator or story law is given in a building file)")
-        if name in IN_PLAN:  # x,y pairs, one after the other: "30,20" or "-15,-10;15,10"
+        spec = declarations[part]
+        if spec.coordinates:  # x,y pairs, one after the other: "30,20" or "-15,-10;15,10"
             text = [pair.split(",") for pair in text.split(";")]
-            text = text[0] if len(text) == 1 and name != "isolator_positions" else text
-        elif name in PER_LEVEL + PER_STORY:
+            text = text[0] if len(text) == 1 and spec.per == "pair" else text
+        elif spec.many:
             text = text.split(",")
-        fields[name] = text if FIELD_UNITS[name] is None else \
-            _numbers(name, text, f"--building {setting!r}")
+        value = text if spec.units is None else \
+            _numbers(part, spec, text, f"--building {setting!r}")
+        if table:
+            torsion = fields.setdefault("torsion", {})
+            if not isinstance(torsion, dict):
+                raise BuildingError(f"--building {setting!r}: the building file's torsion is "
+                                    "not a table")
+            torsion[part] = value
+        else:
+            fields[name] = value
     result = building(fields, where=where)
     notice = defaults_notice(fields, where, described=bool(files))
     if notice:
@@ -252,25 +256,29 @@ def defaults_notice(data: dict, where: str, described: bool = False) -> str | No
 def building(data: dict, where: str = "building") -> engine.Building:
     """engine.Building from a mapping of its fields (SI units; an `isolator` mapping with
     `law` and the law's parameters), every value checked by name."""
-    unknown = sorted(set(data) - set(FIELD_UNITS))
+    unknown = sorted(set(data) - set(FIELDS))
     if unknown:
         raise BuildingError(f"{where}: unknown key(s) {unknown}; a building has "
-                            f"{', '.join(FIELD_UNITS)}")
+                            f"{', '.join(FIELDS)}")
     fields = {}
     for name, value in data.items():
         if value is None:  # the field's default (JSON null)
             continue
+        spec = FIELDS[name]
         if name in LAW_TABLES:
             fields[name] = value if isinstance(value, LAW_TABLES[name][1]) \
                 else _law_table(name, value, where)
-        elif name == "p_delta":
+        elif name == "torsion":
+            fields[name] = value if isinstance(value, engine.Torsion) \
+                else _torsion_table(value, where)
+        elif spec.kind == "flag":
             fields[name] = _flag(name, value, where)
-        elif FIELD_UNITS[name] is None:
+        elif spec.units is None:
             if not isinstance(value, str):
                 raise BuildingError(f"{where}: {name} must be text, got {value!r}")
             fields[name] = value
         else:
-            fields[name] = _numbers(name, value, where)
+            fields[name] = _numbers(name, spec, value, where)
     check_complete(fields, where)
     try:
         return engine.Building(**fields)
@@ -326,14 +334,31 @@ def _law_table(key: str, table, where: str):
         raise BuildingError(f"{where}: {key} ({law}): {err}") from None
 
 
-def _numbers(name: str, value, where: str):
+def _torsion_table(table, where: str) -> engine.Torsion:
+    """The engine.Torsion of a [torsion] table (its declared fields, engine.torsion_fields);
+    BuildingError naming what is wrong."""
+    if not isinstance(table, dict):
+        raise BuildingError(f"{where}: torsion must be a table of {', '.join(TORSION_FIELDS)}")
+    unknown = sorted(set(table) - set(TORSION_FIELDS))
+    if unknown:
+        raise BuildingError(f"{where}: unknown torsion key(s) {unknown}; a building that twists "
+                            f"has {', '.join(TORSION_FIELDS)}")
+    fields = {name: _numbers(name, TORSION_FIELDS[name], value, where)
+              for name, value in table.items() if value is not None}
+    try:
+        return engine.Torsion(**fields)
+    except engine.EngineError as err:
+        raise BuildingError(f"{where}: torsion: {err}") from None
+
+
+def _numbers(name: str, spec, value, where: str):
     """A float, or a tuple of floats for per-level and per-story fields, named in errors with
-    the unit the field expects."""
-    units = FIELD_UNITS[name]
-    if name in IN_PLAN:
-        return _coordinates(name, value, where)
-    many = name in PER_LEVEL + PER_STORY
-    what = ("a list of numbers, one per level from the isolation slab up" if name in PER_LEVEL
+    the unit the field (its declaration, spec) expects."""
+    units = spec.units
+    if spec.coordinates:
+        return _coordinates(name, spec, value, where)
+    many = spec.many
+    what = ("a list of numbers, one per level from the isolation slab up" if spec.per == "level"
             else "a list of numbers, one per story from the first up" if many else "a number")
     unit = "" if units == "1" else f" in {units}"
     try:
@@ -351,16 +376,17 @@ def _numbers(name: str, value, where: str):
                             "number") from None
 
 
-def _coordinates(name: str, value, where: str):
+def _coordinates(name: str, spec, value, where: str):
     """An (x, y) pair or a list of them (m), as nested tuples of floats: plan_size,
-    eccentricity (one pair, or one per level), isolator_positions (one per bearing)."""
+    mass_offset (one pair, or one per level), isolator_positions (one per bearing)."""
     try:
         array = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
         array = None
     if array is None or array.ndim not in (1, 2) or array.shape[-1] != 2:
+        several = spec.pairs_per or spec.per == "point"
         raise BuildingError(f"{where}: {name} must be an (x, y) pair in m"
-                            f"{' or a list of them' if name != 'plan_size' else ''}, e.g. "
+                            f"{' or a list of them' if several else ''}, e.g. "
                             f"[30, 20], got {value!r}")
     if array.ndim == 1:
         return tuple(array.tolist())

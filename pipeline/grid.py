@@ -39,7 +39,8 @@ from engine.impact import LAWS, M_EFF, NO_WALL
 from engine.isolators import LAWS as ISOLATOR_LAWS
 from engine.parameters import Parameter
 from engine.plan import PLAN_PARAMETERS
-from engine.torsion import ACCIDENTAL_ECCENTRICITY, shifted
+from engine.torsion import shifted
+from engine.torsion_fields import ACCIDENTAL_ECCENTRICITY
 
 from .checks import checked_values, plausible
 from .errors import PlausibilityWarning, SweepError
@@ -71,7 +72,7 @@ LEVEL = Parameter("level", "1", "intensity level: the factor multiplying every r
 the angle, the baseline and unconstrained blocks repeated per level. Members carry it only
 when the sweep is given levels or record factors (NaN otherwise: the record as it is)."""
 TORSION_PARAMETERS = {ACCIDENTAL_ECCENTRICITY.sweep: ACCIDENTAL_ECCENTRICITY}
-"""The parameters of a building that twists (its plan_size; runs in plan): its accidental
+"""The parameters of a building that twists (its torsion; runs in plan): its accidental
 eccentricity, a fraction of the plan (engine.torsion.shifted). Members carry it only when a
 sweep gives it (NaN otherwise: the building's own eccentricity)."""
 TORSION_PARAMS = tuple(TORSION_PARAMETERS)

@@ -27,7 +27,6 @@ from pathlib import Path
 import numpy as np
 
 import engine
-from engine.building import TORSION_FIELDS
 from engine.impact import LAWS
 
 from .grid import BASELINE, BASELINE_LAW, ISOLATOR_PARAMS, Grid, baseline_text
@@ -270,9 +269,12 @@ def building_attributes(building: engine.Building) -> dict:
             continue
         if name in OPTIONAL_FIELDS and getattr(building, name) in (None, False):
             continue  # unused: a building without them (the paper's) keeps its attributes
-        if name in TORSION_FIELDS:  # only for a building that twists; pairs as JSON text
-            if building.plan_size is not None and getattr(building, name) is not None:
-                attrs[f"building_{name}"] = json.dumps(getattr(building, name))
+        if name == "torsion":  # a building that twists: its fields given, as JSON text
+            if building.twists:
+                attrs.update({f"building_torsion_{f.name}": json.dumps(getattr(building.torsion,
+                                                                               f.name))
+                              for f in dataclasses.fields(building.torsion)
+                              if getattr(building.torsion, f.name) is not None})
             continue
         value = building.isolation_zeta if name == "zeta_iso" else getattr(building, name)
         if value is None:

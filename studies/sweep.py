@@ -59,7 +59,7 @@ def declared(name: str) -> str:
         if name in PLAN_PARAMS:
             default += "; runs in plan only (--moat)"
         elif name in TORSION_PARAMS:
-            default += ("; a building that twists only (--building plan_size=BX,BY, --moat "
+            default += ("; a building that twists only (--building torsion.plan_size=BX,BY, --moat "
                         "rectangular)")
         texts[law] = f"{p.help_text()}, in {p.valid}, {default}"
     if len(set(texts.values())) == 1:
@@ -130,7 +130,7 @@ def parser() -> argparse.ArgumentParser:
                         "same walls on every side, --angle rotates the pairs (default: the "
                         "paper's planar model)")
     p.add_argument("--bumpers-along-x", nargs="+", type=float, default=None, metavar="M",
-                   help="a building that twists (--building plan_size=BX,BY): the bumpers' "
+                   help="a building that twists (--building torsion.plan_size=BX,BY): the bumpers' "
                         "positions (m, from the plan's centre, along y) on the two walls normal "
                         "to x, each carrying its share of the wall's law (default: the slab's "
                         "corners meet bare walls); with --bumpers-along-y")
@@ -173,7 +173,8 @@ def parser() -> argparse.ArgumentParser:
                         "of a local cluster); tls://host:8786 with the --tls-* options")
     add_tls_options(p)
     p.add_argument("--batch-size", type=int, metavar="N",
-                   help="simulations per engine call (default: up to 512)")
+                   help="simulations per engine call (default: sized for the cores and the "
+                        "records, at most 4096)")
     p.add_argument("--out", default="results", metavar="PATH",
                    help="where the archive goes, as for every recipe: a path ending in .nc is "
                         "the archive itself (.zarr: a Zarr store, for large sweeps), anything "

@@ -42,7 +42,7 @@ def simulate_batch(accel: np.ndarray, accel_dt: float, members: np.ndarray,
     member at its angle): PEAKS as resultants, then PLAN_PEAKS. factor: the record's
     intensity factor (None: 1); members carrying a level run at factor x level (engine's
     scale), those without (NaN) at the record as it is. A building that twists (its
-    plan_size) adds TORSION_PEAKS, its bumpers at bumper_positions (engine.simulate's).
+    torsion) adds TORSION_PEAKS, its bumpers at bumper_positions (engine.simulate's).
 
     progress(step, n_steps) is called as the engine goes; on a dask worker, report =
     (topic, tag) sends [tag, step / n_steps] to the client's event topic instead.
@@ -55,11 +55,11 @@ def simulate_batch(accel: np.ndarray, accel_dt: float, members: np.ndarray,
         def progress(step, n_steps):
             worker.log_event(topic, [tag, step / n_steps])
 
-    plan = {} if moat is None else {"moat": moat, "angle": members["angle"],
-                                    "mu_wall": members["mu_wall"]}
-    twists = building.plan_size is not None
-    if twists:
-        plan["bumper_positions"] = bumper_positions
+    twists = building.twists
+    plan = {} if moat is None else {
+        "moat": engine.Moat(moat, mu_wall=members["mu_wall"],
+                            bumper_positions=bumper_positions if twists else None),
+        "angle": members["angle"]}
     result = engine.simulate(accel, accel_dt, contact_for(members),
                              building=buildings_for(members, building), dt=dt,
                              progress=progress, scale=member_scale(members, factor), **plan)

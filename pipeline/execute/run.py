@@ -43,9 +43,9 @@ class Run:
     @property
     def n_points(self) -> int | None:
         """The moat's contact points of a building that twists (None: it does not)."""
-        if self.building.plan_size is None:
+        if not self.building.twists:
             return None
         from engine.torsion import contact_points
 
-        return contact_points(np.array([self.building.plan_size]),
+        return contact_points(np.array([self.building.torsion.plan_size]),
                               self.bumper_positions).wall.size

@@ -113,7 +113,7 @@ def code_designed_building(design, building, *, r_i: float = R_I,
     isolator yield force; the largest over the property bounds is the caller's to give).
     ValueError for a bad argument.
     """
-    import engine
+    from engine.building import DEFAULTS as BUILDING_DEFAULTS
     from engine.stories import LAWS, Stories
 
     if not (math.isfinite(r_i) and 1 <= r_i <= 2):
@@ -140,8 +140,7 @@ def code_designed_building(design, building, *, r_i: float = R_I,
     values = LAWS[story_law].code_values(strength, heights)
     designed = dataclasses.replace(
         building, stories=Stories.of(story_law, **values), story_yield_force=None,
-        story_post_yield_ratio=engine.Building.__dataclass_fields__[
-            "story_post_yield_ratio"].default,
+        story_post_yield_ratio=BUILDING_DEFAULTS["story_post_yield_ratio"],
         story_height=tuple(map(float, heights)), p_delta=p_delta,
         collapse_drift_ratio=collapse_drift_ratio)
     return SuperstructureDesign(v_b=v_b, v_st=v_st, v_s=v_s, v_s_activation=activation,

@@ -30,6 +30,7 @@ import json
 
 import numpy as np
 
+import engine
 from engine.torsion import DEFAULT_GRID
 
 from ..common.options import add_bound, chosen_pairs, scaled_suite, site_options
@@ -93,7 +94,6 @@ def members(gaps, thetas) -> dict:
 
 
 def compute(args):
-    import engine
     from pipeline import sweep
     from pipeline.errors import SweepError
     from pipeline.motions.code_suite import describe
@@ -114,7 +114,7 @@ def compute(args):
     eccs = np.array(QUICK_ECCENTRICITIES if args.quick else ECCENTRICITIES)
     fractions = QUICK_GAP_FRACTIONS if args.quick else GAP_FRACTIONS
     positions = pad_positions(plan, args.pads)
-    building = dataclasses.replace(suite.building, plan_size=plan)
+    building = dataclasses.replace(suite.building, torsion=engine.Torsion(plan_size=plan))
     # one sweep: per eccentricity (the members' accidental eccentricity, engine.torsion.shifted)
     # and angle, no wall, then the bare wall and the bumpers at each gap, D_TM the code's for
     # that eccentricity
@@ -224,7 +224,7 @@ def orbit_variables(suite, building, ecc, args, engine) -> dict:
     from pipeline.archive import variable
 
     pair = suite.pairs[0]
-    plan = building.plan_size
+    plan = building.torsion.plan_size
     run = engine.simulate(pair.accel, pair.dt, engine.Contact.none(1), shifted(building, ecc),
                           engine.DEFAULT_DT if args.dt is None else args.dt,
                           history=engine.History([0], every=ORBIT_EVERY),

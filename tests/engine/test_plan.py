@@ -215,13 +215,13 @@ def test_radial_return():
 
 @pytest.mark.parametrize("kwargs, match", [
     ({"moat": "hexagonal"}, "moat must be one of"),
+    ({"moat": engine.Moat(contact_y=Contact.linear([0.1, 0.2]))}, "contact_y"),
     ({"history": engine.History([5])}, "history.members"),
-    ({"contact_y": Contact.linear([0.1, 0.2])}, "contact_y"),
     ({"angle": [1.0, 2.0]}, "angle"),
 ])
 def test_bad_plan_input(kwargs, match):
     accel, dt = record()
     with pytest.raises(engine.EngineError, match=match):
         engine.simulate(np.column_stack([accel, accel]), dt, Contact.linear([0.1]), **kwargs)
-    with pytest.raises(engine.EngineError, match="apply to a run in plan"):
+    with pytest.raises(engine.EngineError, match="moat: the planar model takes none"):
         engine.simulate(accel, dt, Contact.linear([0.1]), moat="circular")

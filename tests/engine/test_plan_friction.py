@@ -21,7 +21,7 @@ import numpy as np
 import pytest
 
 import engine
-from engine import Building, Contact
+from engine import Building, Contact, Moat
 
 BACKENDS = ("numba", "numpy")
 K1 = 10e6  # N/m: an isolator that stays elastic here (yield force 0.9 W at 1.35 m)
@@ -51,7 +51,7 @@ def moat_force(result, member: int = 0) -> tuple[np.ndarray, np.ndarray]:
 def run(mu, moat="rectangular", backend="numba", contact_y=None):
     accel, dt = pair()
     return engine.simulate(accel, dt, Contact.linear([0.10] * np.size(mu)), ELASTIC,
-                           moat=moat, contact_y=contact_y, mu_wall=mu, backend=backend,
+                           moat=Moat(moat, contact_y=contact_y, mu_wall=mu), backend=backend,
                            history=engine.History(list(range(np.size(mu))), every=1))
 
 
@@ -111,11 +111,11 @@ def test_no_friction_is_the_frictionless_run_and_the_loops_agree(moat):
     contact = Contact.concat([Contact.linear([0.08, 0.12]), Contact.bumper([0.10],
                                                                            thickness=0.05)])
     plain = engine.simulate(accel, dt, contact, moat=moat)
-    zero = engine.simulate(accel, dt, contact, moat=moat, mu_wall=0.0)
+    zero = engine.simulate(accel, dt, contact, moat=Moat(moat, mu_wall=0.0))
     for name, value in {**plain.peaks(), **plain.plan_peaks()}.items():
         np.testing.assert_array_equal(getattr(zero, name), value, err_msg=name)
     mixed = [0.0, 0.2, 0.6]
-    fast, ref = (engine.simulate(accel, dt, contact, moat=moat, mu_wall=mixed,
+    fast, ref = (engine.simulate(accel, dt, contact, moat=Moat(moat, mu_wall=mixed),
                                  backend=backend) for backend in BACKENDS)
     for name, value in {**ref.peaks(), **ref.plan_peaks()}.items():
         np.testing.assert_allclose(getattr(fast, name), value, rtol=1e-9,
@@ -130,9 +130,11 @@ def test_no_friction_is_the_frictionless_run_and_the_loops_agree(moat):
 def test_friction_is_refused_out_of_range():
     accel, dt = pair()
     with pytest.raises(engine.EngineError, match="mu_wall"):
-        engine.simulate(accel, dt, Contact.linear([0.1]), moat="circular", mu_wall=-0.1)
-    with pytest.raises(engine.EngineError, match="run in plan"):
-        engine.simulate(accel[:, 0], dt, Contact.linear([0.1]), mu_wall=0.2)
+        engine.simulate(accel, dt, Contact.linear([0.1]),
+                        moat=Moat("circular", mu_wall=-0.1))
+    refusal = "the planar model takes none.*accel as \\(N, 2\\)"
+    with pytest.raises(engine.EngineError, match=refusal):
+        engine.simulate(accel[:, 0], dt, Contact.linear([0.1]), moat=Moat(mu_wall=0.2))
 
 
 SOFT_Y = (300e6, 280e6, 250e6, 200e6)  # N/m per story along y
@@ -163,8 +165,9 @@ def test_stories_per_direction_on_both_loops_and_refused_with_yielding():
     accel, dt = pair()
     walls = Contact.concat([Contact.linear([0.08]), Contact.bumper([0.10], thickness=0.05)])
     buildings = [Building(story_stiffness_y=SOFT_Y), Building()]
-    fast, ref = (engine.simulate(accel, dt, walls, buildings, moat="circular", angle=20.0,
-                                 mu_wall=0.1, backend=backend) for backend in BACKENDS)
+    fast, ref = (engine.simulate(accel, dt, walls, buildings, angle=20.0,
+                                 moat=Moat("circular", mu_wall=0.1), backend=backend)
+                 for backend in BACKENDS)
     for name, value in {**ref.peaks(), **ref.plan_peaks()}.items():
         np.testing.assert_allclose(getattr(fast, name), value, rtol=1e-9,
                                    atol=1e-9 * np.abs(value).max(), err_msg=name)

@@ -15,16 +15,18 @@ Pacoima Dam 164 from 1.5 to 3.7 s (its pulse hits every wall), along y the same 
 """
 from __future__ import annotations
 
+import dataclasses
 import functools
 
 import numpy as np
 import pytest
 
 import engine
-from engine import Building, Contact, History, Isolator
+from engine import Building, Contact, History, Isolator, Moat, Torsion
 from engine.impact.contact import LAW_ARGUMENTS
 from engine.impact.registry import LAW_MODULES
 from engine.torsion import contact_points, grid_positions, torsion_arrays
+from engine.torsion_fields import FIELDS as TORSION_FIELDS
 
 START, END = 1.5, 3.7  # s: the record's quiet start left out, its pulse in
 RTOL = 1e-9
@@ -75,9 +77,9 @@ def test_a_slab_that_does_not_turn_is_the_plan_run(layout, backend):
     plan = engine.simulate(accel, dt, contact, Building(), angle=angle, backend=backend)
     bearings = None if layout == "grid" else CORNER_BEARINGS
     bumpers = ((-8.0, 0.0, 8.0), (0.0,)) if layout == "bumpers" else None  # 3 + 3 + 1 + 1
-    twist = engine.simulate(accel, dt, contact, Building(plan_size=PLAN,
-                                                         isolator_positions=bearings),
-                            angle=angle, bumper_positions=bumpers, backend=backend)
+    twist = engine.simulate(accel, dt, contact, Building(torsion=Torsion(
+        plan_size=PLAN, isolator_positions=bearings)), angle=angle,
+        moat=Moat(bumper_positions=bumpers), backend=backend)
     assert (plan.n_impacts[1:] > 0).all()  # every wall law is hit
     assert_peaks_equal(plan_peaks(twist), plan_peaks(plan))
     assert np.all(twist.peak_rotation < 1e-15)  # rad: round-off only
@@ -99,10 +101,11 @@ def test_a_half_turn_of_the_pair_mirrors_the_response(backend):
     accel, dt = pair()
     contact = walls()
     ecc = (2.5, -1.5)
-    first = engine.simulate(accel, dt, contact, Building(plan_size=PLAN, eccentricity=ecc),
+    first = engine.simulate(accel, dt, contact,
+                            Building(torsion=Torsion(plan_size=PLAN, mass_offset=ecc)),
                             backend=backend)
-    turned = engine.simulate(accel, dt, contact,
-                             Building(plan_size=PLAN, eccentricity=(-ecc[0], -ecc[1])),
+    turned = engine.simulate(accel, dt, contact, Building(
+        torsion=Torsion(plan_size=PLAN, mass_offset=(-ecc[0], -ecc[1]))),
                              angle=180.0, backend=backend)
     assert np.all(first.peak_rotation[1:] > 1e-4)  # it twists
     names = [*plan_peaks(first), "peak_corner_disp", "peak_rotation"]
@@ -130,12 +133,13 @@ def test_undamped_torsional_vibration_keeps_its_energy(backend):
     accel = np.zeros((300, 2))
     accel[:t_pulse.size, 0] = 1.5 * np.sin(2 * np.pi * t_pulse)  # m/s^2: one cycle, then rest
     accel[:t_pulse.size, 1] = -0.8 * np.sin(4 * np.pi * t_pulse)
-    building = Building(plan_size=PLAN, eccentricity=(3.0, 2.0), zeta_iso=0.0, zeta_sup=0.0,
+    building = Building(zeta_iso=0.0, zeta_sup=0.0,
                         isolator=Isolator.bilinear(k1=40e6, k2=20e6, fy_ratio=50.0),
-                        isolator_positions=((-15.0, -10.0), (15.0, -6.0), (9.0, 10.0),
-                                            (-15.0, 10.0)),
-                        story_stiffness_centre=((2.0, -1.0), (0.0, 0.0), (-3.0, 4.0),
-                                                (1.0, 1.0)))
+                        torsion=Torsion(plan_size=PLAN, mass_offset=(3.0, 2.0),
+                                        isolator_positions=((-15.0, -10.0), (15.0, -6.0),
+                                                            (9.0, 10.0), (-15.0, 10.0)),
+                                        story_stiffness_centre=((2.0, -1.0), (0.0, 0.0),
+                                                                (-3.0, 4.0), (1.0, 1.0))))
     result = engine.simulate(accel, 0.01, Contact.none(1), building, dt=dt,
                              history=History([0]), backend=backend)
     hist = result.history
@@ -171,8 +175,8 @@ def test_a_story_off_centre_is_its_springs_moved_there():
     """One story's stiffness about the plan's centre: T' diag(k, k_y, k_theta) T, T the drift
     at its centre (x_s, y_s) = (2, -1) m, written out."""
     k, k_t = 600e6, 3e10
-    building = Building(masses=(320e3, 250e3), story_stiffness=(k,), plan_size=PLAN,
-                        story_torsional_stiffness=(k_t,), story_stiffness_centre=(2.0, -1.0))
+    building = Building(masses=(320e3, 250e3), story_stiffness=(k,), torsion=Torsion(
+        plan_size=PLAN, story_torsional_stiffness=(k_t,), story_stiffness_centre=(2.0, -1.0)))
     got = torsion_arrays([building], 1).stiffness[0, 3:, 3:]
     story = np.array([[k, 0.0, k * 1.0], [0.0, k, k * 2.0],
                       [k * 1.0, k * 2.0, k_t + k * (2.0**2 + 1.0**2)]])
@@ -194,13 +198,15 @@ def test_the_points_are_the_corners_and_the_bumpers():
                                                                  [-15, 10], [15, 10]])
 
 
+TWISTS = Building(torsion=Torsion(plan_size=PLAN))
+
+
 @pytest.mark.parametrize("kwargs, match", [
-    ({"building": Building(plan_size=PLAN), "moat": "circular"}, "rectangular moat"),
-    ({"bumper_positions": ((0.0,), (0.0,))}, "plan_size"),
-    ({"building": Building(plan_size=PLAN), "bumper_positions": ((11.0,), (0.0,))},
+    ({"building": TWISTS, "moat": "circular"}, "twisting model takes 'rectangular'"),
+    ({"moat": Moat(bumper_positions=((0.0,), (0.0,)))}, "torsion component"),
+    ({"building": TWISTS, "moat": Moat(bumper_positions=((11.0,), (0.0,)))},
      "within the slab"),
-    ({"building": [Building(plan_size=PLAN), Building()], "contact": Contact.none(2)},
-     "all twist"),
+    ({"building": [TWISTS, Building()], "contact": Contact.none(2)}, "all twist"),
 ])
 def test_bad_torsion_input(kwargs, match):
     accel, dt = pair()
@@ -211,21 +217,27 @@ def test_bad_torsion_input(kwargs, match):
 
 
 @pytest.mark.parametrize("fields, match", [
-    ({"eccentricity": (1.0, 0.0)}, "plan_size"),
-    ({"plan_size": PLAN, "eccentricity": (16.0, 0.0)}, "eccentricity"),
-    ({"plan_size": PLAN, "isolator_positions": ((0.0, 0.0), (0.0, 0.0))}, "one point"),
-    ({"plan_size": PLAN, "story_yield_force": (3e6,) * 4}, "linear stories"),
+    ({"plan_size": None, "mass_offset": (1.0, 0.0)}, "plan_size"),
+    ({"mass_offset": (16.0, 0.0)}, "mass_offset"),
+    ({"mass_offset": ((1.0, 0.0),) * 3}, "mass_offset must be .* one pair per level \\(5\\)"),
+    ({"isolator_positions": ((0.0, 0.0), (0.0, 0.0))}, "one point"),
+    ({"story_torsional_stiffness": (1e10,) * 3}, "story_torsional_stiffness must be 4"),
+    ({"story_yield_force": (3e6,) * 4}, "story law 'bilinear': the twisting model takes "
+                                        "'linear'"),
+    ({"damping": "modal"}, "damping 'modal': the twisting model takes 'paper'"),
     ({"plan_size": (30.0, -1.0)}, "plan_size"),
 ])
 def test_bad_torsion_building(fields, match):
+    """Each refusal names its field; what the twisting model does not take quotes SUPPORTS."""
+    twist = {name: fields.pop(name) for name in list(fields) if name in TORSION_FIELDS}
     with pytest.raises(engine.EngineError, match=match):
-        Building(**fields)
+        Building(**fields, torsion=Torsion(**{"plan_size": PLAN, **twist}))
 
 
 def test_a_planar_record_refuses_a_building_that_twists():
     accel, dt = pair()
-    with pytest.raises(engine.EngineError, match="plan_size"):
-        engine.simulate(accel[:, 0], dt, Contact.none(1), Building(plan_size=PLAN))
+    with pytest.raises(engine.EngineError, match="torsion component.*accel as \\(N, 2\\)"):
+        engine.simulate(accel[:, 0], dt, Contact.none(1), TWISTS)
 
 
 def test_the_compiled_loop_gives_the_numpy_loops_numbers():
@@ -234,16 +246,14 @@ def test_the_compiled_loop_gives_the_numpy_loops_numbers():
     accel, dt = pair()
     contact = Contact.concat([walls(), Contact.bumper([0.12], n_bumpers=3)])
     size = len(contact)
-    buildings = [Building(plan_size=PLAN, eccentricity=(3.0, -1.0),
-                          isolator_positions=CORNER_BEARINGS,
-                          story_stiffness_centre=(-2.0, 1.5)),
-                 Building(plan_size=PLAN, eccentricity=(3.0, -1.0),
-                          isolator_positions=CORNER_BEARINGS,
+    corner = Torsion(plan_size=PLAN, mass_offset=(3.0, -1.0), isolator_positions=CORNER_BEARINGS)
+    buildings = [Building(torsion=dataclasses.replace(corner, story_stiffness_centre=(-2.0, 1.5))),
+                 Building(torsion=corner,
                           isolator=Isolator.friction_pendulum(radius=2.0, mu_slow=0.05,
                                                               mu_fast=0.10, rate=30.0))]
     members = [buildings[i % 2] for i in range(size)]
-    options = dict(angle=np.linspace(0.0, 60.0, size), mu_wall=0.4,
-                   bumper_positions=((-8.0, 0.0, 8.0), (-12.0,)),
+    options = dict(angle=np.linspace(0.0, 60.0, size),
+                   moat=Moat(mu_wall=0.4, bumper_positions=((-8.0, 0.0, 8.0), (-12.0,))),
                    history=History([0, 3, 3], every=3))
     runs = [engine.simulate(accel, dt, contact, members, backend=b, **options)
             for b in BACKENDS]

@@ -22,7 +22,7 @@ import numpy as np
 import pytest
 
 import engine
-from engine import Building, Contact
+from engine import Building, Contact, Torsion
 
 pytest.importorskip("openseespy.opensees")
 
@@ -54,8 +54,8 @@ def engine_runs(backend: str) -> dict[str, dict]:
     pair, pair_dt = short_pair()
     out = {}
     for name, (ecc, walls) in CASES.items():
-        building = Building(plan_size=PLAN, eccentricity=ecc,
-                            isolator_positions=tuple(map(tuple, CORNER_BEARINGS)))
+        building = Building(torsion=Torsion(plan_size=PLAN, mass_offset=ecc,
+                                            isolator_positions=CORNER_BEARINGS))
         contact = Contact.linear(SHORT_GAP, k=WALL_K, cor=1.0) if walls else Contact.none(1)
         result = engine.simulate(pair, pair_dt, contact, building, backend=backend)
         out[name] = {k: np.asarray(getattr(result, k))[0] for k in PEAKS}

@@ -14,9 +14,9 @@ from pipeline.records import RecordPair, load_pair
 from tests.helpers import assert_udunits
 
 SECONDS = 6.0
-BUILDING = engine.Building(plan_size=(30.0, 20.0), eccentricity=(2.0, -1.0),
-                           isolator_positions=((-15.0, -10.0), (15.0, -10.0), (15.0, 10.0),
-                                               (-15.0, 10.0)))
+BUILDING = engine.Building(torsion=engine.Torsion(
+    plan_size=(30.0, 20.0), mass_offset=(2.0, -1.0),
+    isolator_positions=((-15.0, -10.0), (15.0, -10.0), (15.0, 10.0), (-15.0, 10.0))))
 PADS = ((-5.0, 5.0), (-8.0, 8.0))  # m along the x walls, the y walls
 
 
@@ -65,11 +65,11 @@ def test_bumpers_where_they_stand(tmp_path):
                         building=BUILDING, bumper_positions=PADS, quiet=True)
     np.testing.assert_array_equal(ds.point_along.values, [-5, 5, -5, 5, -8, 8, -8, 8])
     alone = engine.simulate(pair.accel, pair.dt, engine.Contact.bumper(0.08, n_bumpers=[2, 3]),
-                            BUILDING, moat="rectangular", bumper_positions=PADS)
+                            BUILDING, moat=engine.Moat("rectangular", bumper_positions=PADS))
     np.testing.assert_array_equal(ds.max_point_force.isel(record=0).values,
                                   alone.max_point_force)
     assert (alone.max_point_force > 0).any()
-    with pytest.raises(SweepError, match="plan_size"):
+    with pytest.raises(SweepError, match="torsion"):
         pipeline.sweep([pair], gap=0.10, moat="rectangular", bumper_positions=PADS, quiet=True)
     for moat in (None, "circular"):  # refused before any compute
         with pytest.raises(SweepError, match="rectangular moat"):
@@ -98,16 +98,15 @@ def test_the_accidental_eccentricity_is_a_sweep_dimension():
                         building=BUILDING, eccentricity=[0.0, 0.05], quiet=True)
     assert ds.peak_rotation.dims == ("record", "eccentricity") \
         and ds.eccentricity.attrs["units"] == "1"
-    moved = engine.Building(**{**{f: getattr(BUILDING, f) for f in
-                                  BUILDING.__dataclass_fields__},
-                               "eccentricity": (2.0 + 1.5, -1.0 + 1.0)})
+    moved = dataclasses.replace(BUILDING, torsion=dataclasses.replace(
+        BUILDING.torsion, mass_offset=(2.0 + 1.5, -1.0 + 1.0)))
     alone = engine.simulate(pair.accel, pair.dt, engine.Contact.linear(0.03), moved,
                             moat="rectangular")
     np.testing.assert_array_equal(ds.peak_corner_disp.sel(eccentricity=0.05).values,
                                   alone.peak_corner_disp)
     for kwargs in ({"building": engine.Building(), "moat": "rectangular"},
                    {"building": BUILDING}):
-        with pytest.raises(SweepError, match="plan_size|in plan"):
+        with pytest.raises(SweepError, match="torsion|in plan"):
             pipeline.sweep([pair] if "moat" in kwargs else ["RSN953"], gap=0.03,
                            impact="linear", eccentricity=[0.05], quiet=True, **kwargs)
 
@@ -136,8 +135,8 @@ def test_the_command_line_sweeps_a_building_that_twists(tmp_path, capsys):
 
     from studies import sweep
 
-    common = ["--records", "RSN953", "--moat", "rectangular", "--building", "plan_size=30,20",
-              "--gap-cm", "10", "--quiet"]
+    common = ["--records", "RSN953", "--moat", "rectangular", "--building",
+              "torsion.plan_size=30,20", "--gap-cm", "10", "--quiet"]
     assert sweep.main([*common, "--eccentricity", "0", "0.05", "--bumpers-along-x", "-5", "5",
                        "--bumpers-along-y", "0", "--out", str(tmp_path)]) == 0
     with xr.open_dataset(tmp_path / "sweep.nc") as ds:

@@ -66,13 +66,14 @@ def test_a_run_is_the_engines(quick):
     pairs, names = resolve_pairs([str(r) for r in ds.record.values], None)
     suite = code_suite(pairs, names, engine.Building(), bound="lower")
     assert float(ds.scale_factor[0]) == suite.factors[0]
-    building = engine.Building(**{**_fields(suite.building), "plan_size": torsion.PLAN,
-                                  "eccentricity": (3.0, 2.0)})
+    building = engine.Building(**{**_fields(suite.building), "torsion": engine.Torsion(
+        plan_size=torsion.PLAN, mass_offset=(3.0, 2.0))})
     gap = float(ds.gap_length.sel(eccentricity=0.1, gap="0.6 D_M"))
     run = engine.simulate(pairs[0].accel, pairs[0].dt,
                           engine.Contact.bumper(gap, thickness=torsion.THICKNESS, n_bumpers=2),
                           building, angle=45.0, scale=[suite.factors[0]],
-                          bumper_positions=torsion.pad_positions(torsion.PLAN, 2))
+                          moat=engine.Moat(bumper_positions=torsion.pad_positions(torsion.PLAN,
+                                                                                  2)))
     got = ds.isel(record=0).sel(eccentricity=0.1, angle=45.0, gap="0.6 D_M", barrier="bumpers")
     for name in ("peak_corner_disp", "peak_rotation", "max_point_force", "peak_isolator_disp"):
         np.testing.assert_array_equal(got[name].values, getattr(run, name)[0], err_msg=name)

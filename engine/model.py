@@ -1,0 +1,198 @@
+"""The run's model, named once: planar, in plan, or twisting (in the manner of OpenSees'
+`model basic -ndm 2 -ndf 3`, said once at the top of a script).
+
+    planar    one horizontal component along x; the building's levels move along x, the moat
+              is a wall on each side (the paper's model, sections 4-5)
+    plan      a record pair (x, y); the levels move in x and y without rotating, on coupled
+              isolators, against a rectangular or circular moat (SPEC section 7)
+    twisting  a record pair; every level is a rigid diaphragm (u_x, u_y, theta), on bearings
+              where they stand, against the rectangular moat's contact points (engine/
+              torsion.py; a Building with a `torsion` component)
+
+`model_of(components, twists)` derives it once from the inputs (the ground motion's
+components, whether the building has a `torsion` component); `SUPPORTS` is the one table of
+what each model takes. engine.simulate refuses what its model does not support by quoting
+that table (Model.refuse), the pipeline asks the same table before any record is read, and
+docs/model.md prints it (`support_table`).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .errors import EngineError
+from .results import (
+    HISTORIES,
+    PEAKS,
+    PLAN_HISTORIES,
+    PLAN_PEAKS,
+    TORSION_HISTORIES,
+    TORSION_PEAKS,
+    WALLS,
+    Quantity,
+)
+
+EVERY = "every registered law"
+"""A SUPPORTS entry: every law of the registry (engine/stories/laws/, engine/isolators/laws/)."""
+
+
+@dataclass(frozen=True)
+class Model:
+    """One model of the run and what it supports.
+
+    name: "planar", "plan" or "twisting"; meaning: one line; components: the ground motion's
+    horizontal components (1: (N,), 2: (N, 2)); moats: the moat shapes it runs against
+    (planar: its own two walls, no shape); story_laws, isolator_laws: the law names it takes,
+    or EVERY; damping: the damping rules it takes ("paper", "modal"); p_delta: whether it
+    takes the stories' P-Delta; y_walls: whether the y walls may differ from the x walls
+    (contact_y); angle, wall_friction: the incidence angle and the slab-wall friction;
+    bumper_positions: bumpers placed along the walls; story_stiffness_y: stories stiffer one
+    way; peaks, histories: what it returns (engine/results.py); loop: the name of its loop
+    modules in engine/loops/ (numba_<loop>, numpy_<loop>).
+    """
+
+    name: str
+    meaning: str
+    components: int
+    moats: tuple[str, ...]
+    story_laws: str | tuple[str, ...]
+    isolator_laws: str | tuple[str, ...]
+    damping: tuple[str, ...]
+    p_delta: bool
+    y_walls: bool
+    angle: bool
+    wall_friction: bool
+    bumper_positions: bool
+    story_stiffness_y: bool
+    peaks: tuple[Quantity, ...]
+    histories: tuple[Quantity, ...]
+    loop: str
+    how: str
+
+    @property
+    def in_plan(self) -> bool:
+        """Whether the building moves in x and y (plan or twisting)."""
+        return self.components == 2
+
+    def refuse(self, what: str, given=None) -> EngineError:
+        """The EngineError for `what` (a SUPPORTS row), which this model does not take as
+        given: the table's row says what it does take, and which model would."""
+        row = SUPPORTS[what]
+        others = [m for m in MODELS.values() if m is not self and _admits(row.value(m), given)]
+        shown = "" if given is None else f" {given!r}"
+        advice = "" if not others else \
+            f"; the {' or '.join(m.name for m in others)} model takes it: {others[0].how}"
+        return EngineError(f"{what}{shown}: the {self.name} model takes "
+                           f"{_text(row.value(self))} (engine.model.SUPPORTS){advice}")
+
+    def check(self, what: str, value) -> None:
+        """EngineError (refuse) unless this model takes `value` for the SUPPORTS row `what`:
+        a name among its names, or True for a yes/no row (False always passes)."""
+        takes = SUPPORTS[what].value(self)
+        if isinstance(takes, bool):
+            if value and not takes:
+                raise self.refuse(what)
+        elif takes != EVERY and value not in takes:
+            raise self.refuse(what, value)
+
+
+@dataclass(frozen=True)
+class Support:
+    """One row of SUPPORTS: what (its name), the Model field that holds it, and its meaning."""
+
+    field: str
+    meaning: str
+
+    def value(self, model: Model):
+        return getattr(model, self.field)
+
+
+SUPPORTS: dict[str, Support] = {
+    "ground motion components": Support("components", "horizontal components of the record "
+                                        "(1: accel (N,); 2: a pair, accel (N, 2))"),
+    "moat": Support("moats", "the moat's shape (engine.simulate's moat)"),
+    "story law": Support("story_laws", "the stories' laws (engine.Stories)"),
+    "isolator law": Support("isolator_laws", "the isolators' laws (engine.Isolator)"),
+    "damping": Support("damping", "Building.damping"),
+    "p_delta": Support("p_delta", "the stories' P-Delta (Building.p_delta)"),
+    "contact_y": Support("y_walls", "y walls of their own (engine.simulate's contact_y)"),
+    "angle": Support("angle", "incidence angles of the record pair (engine.simulate's angle)"),
+    "mu_wall": Support("wall_friction", "friction between slab and wall (engine.simulate's "
+                       "mu_wall)"),
+    "bumper_positions": Support("bumper_positions", "bumpers placed along the walls "
+                                "(engine.simulate's bumper_positions)"),
+    "story_stiffness_y": Support("story_stiffness_y", "stories of another stiffness along y "
+                                 "(Building.story_stiffness_y)"),
+}
+"""What each model supports, one row per input: the one table engine.simulate, the pipeline
+and docs/model.md read."""
+
+PLANAR = Model(
+    "planar", "one component along x, the levels moving along x against a wall on each side "
+    "(the paper's model)", components=1, moats=(), story_laws=EVERY, isolator_laws=EVERY,
+    damping=("paper", "modal"), p_delta=True, y_walls=False, angle=False, wall_friction=False,
+    bumper_positions=False, story_stiffness_y=False, peaks=PEAKS, histories=HISTORIES,
+    loop="loop", how="give accel as (N,), one component")
+PLAN = Model(
+    "plan", "a record pair, the levels moving in x and y without rotating on coupled "
+    "isolators", components=2, moats=tuple(WALLS), story_laws=EVERY, isolator_laws=EVERY,
+    damping=("paper", "modal"), p_delta=True, y_walls=True, angle=True, wall_friction=True,
+    bumper_positions=False, story_stiffness_y=True, peaks=(*PEAKS, *PLAN_PEAKS),
+    histories=PLAN_HISTORIES, loop="plan",
+    how="give accel as (N, 2), a record pair's x and y components")
+TWISTING = Model(
+    "twisting", "a record pair, every level a rigid diaphragm (u_x, u_y, theta) on bearings "
+    "where they stand (a Building with a torsion component)", components=2,
+    moats=("rectangular",), story_laws=("linear",), isolator_laws=EVERY, damping=("paper",),
+    p_delta=False, y_walls=True, angle=True, wall_friction=True, bumper_positions=True,
+    story_stiffness_y=True, peaks=(*PEAKS, *PLAN_PEAKS, *TORSION_PEAKS),
+    histories=TORSION_HISTORIES, loop="torsion",
+    how="give the building a torsion component (engine.Torsion) and accel as (N, 2)")
+
+MODELS: dict[str, Model] = {m.name: m for m in (PLANAR, PLAN, TWISTING)}
+"""The models by name."""
+
+
+def model_of(components: int, twists: bool) -> Model:
+    """The model of a run whose ground motion has `components` horizontal components (1 or 2)
+    on buildings that twist or not; EngineError for a building that twists under one
+    component (it needs a record pair)."""
+    if components == 1:
+        if twists:
+            raise EngineError("a building that twists (its torsion component) runs in plan: "
+                              "give accel as (N, 2), the record pair's x and y components "
+                              "(engine.model.TWISTING)")
+        return PLANAR
+    if components != 2:
+        raise EngineError(f"the ground motion has 1 or 2 horizontal components, got "
+                          f"{components}")
+    return TWISTING if twists else PLAN
+
+
+def _admits(takes, given=None) -> bool:
+    """Whether a SUPPORTS entry admits `given` (None: anything at all)."""
+    if isinstance(takes, bool) or given is None:
+        return takes is True or (not isinstance(takes, bool) and bool(takes))
+    return takes == EVERY or given in takes
+
+
+def _text(takes) -> str:
+    """A SUPPORTS entry in words."""
+    if isinstance(takes, bool):
+        return "it" if takes else "none"
+    if isinstance(takes, int):
+        return str(takes)
+    if takes == EVERY:
+        return EVERY
+    return " or ".join(map(repr, takes)) if takes else "none"
+
+
+def support_table() -> str:
+    """SUPPORTS as a Markdown table, one column per model (docs/model.md holds it; a test
+    keeps it current)."""
+    names = list(MODELS)
+    lines = ["| input | " + " | ".join(names) + " |", "|---" * (len(names) + 1) + "|"]
+    for what, row in SUPPORTS.items():
+        cells = [("yes" if row.value(m) else "no") if isinstance(row.value(m), bool)
+                 else _text(row.value(m)).replace("'", "") for m in MODELS.values()]
+        lines.append(f"| {what} | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
