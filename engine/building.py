@@ -97,7 +97,7 @@ class Building:
     p_delta: bool = declared(False, None, "the stories' P-Delta (see the class docstring)",
                              kind="flag")
     collapse_drift_ratio: float | None = declared(
-        None, "1", "the drift ratio |drift_i| / h_i past which a run ends as collapsed",
+        None, "1", "the drift ratio abs(drift_i) / h_i past which a run ends as collapsed",
         valid="(0, 1]", optional=True)
     torsion: Torsion | None = declared(
         None, None, "a building that twists: its plan, masses' offsets and inertia, bearings "

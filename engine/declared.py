@@ -132,3 +132,24 @@ def _bad(spec: Field, array: np.ndarray) -> bool:
     if spec.valid is None:
         return not np.all(np.isfinite(array))
     return bool(np.any(outside(array, interval(spec.meaning, spec.valid))))
+
+
+def field_table(fields: dict[str, Field], defaults: dict, prefix: str = "") -> str:
+    """A component's declared fields as a Markdown table (docs/model.md holds Building's and
+    Torsion's; a test keeps them current): name, unit, shape, valid range, default, meaning."""
+    shapes = {None: "one", "level": "one per level", "story": "one per story",
+              "pair": "(x, y)", "point": "(n, 2)"}
+    lines = ["| field | unit | shape | valid | default | meaning |", "|---" * 6 + "|"]
+    for name, spec in fields.items():
+        shape = shapes[spec.per] + (f" or one per {spec.pairs_per}" if spec.pairs_per else "")
+        if spec.kind not in ("number", "shorthand"):
+            shape = {"flag": "True / False", "text": " / ".join(spec.choices),
+                     "law": "a law", "component": "a component"}[spec.kind]
+        default = defaults[name]
+        default = "required" if default is None and not spec.optional else \
+            f"{default:g}" if isinstance(default, float) else repr(default)
+        if len(default) > 24:
+            default = "the paper's"
+        lines.append(f"| `{prefix}{name}` | {spec.unit_text or '-'} | {shape} | "
+                     f"{spec.valid or '-'} | {default} | {spec.meaning} |")
+    return "\n".join(lines)

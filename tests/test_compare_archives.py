@@ -28,3 +28,21 @@ def test_equal_changed_and_missing(tmp_path, capsys):
     assert compare.main([str(tmp_path / "before"), str(tmp_path / "changed")]) == 1
     assert "x: values differ" in capsys.readouterr().out
     assert compare.main([str(tmp_path / "before"), str(tmp_path / "nowhere"), "a"]) == 1
+
+
+def test_a_renamed_label_is_compared_under_its_new_name(tmp_path, capsys):
+    """--renamed OLD=NEW: a label renamed on purpose (a dimension, a variable, a global
+    attribute) compares its bits under the new name; a changed bit still fails."""
+    before, after = tmp_path / "before", tmp_path / "after"
+    archive(before, [0.1, 0.2], building_eccentricity="[0, 0]")
+    after.mkdir()
+    xr.Dataset({"y": ("k", [0.1, 0.2], {"units": "m"})},
+               attrs={"building_torsion_mass_offset": "[0, 0]"}).to_netcdf(after / "a.nc")
+    assert compare.main([str(before), str(after)]) == 1
+    assert "missing x" in capsys.readouterr().out
+    renamed = ["--renamed", "x=y", "n=k", "building_eccentricity=building_torsion_mass_offset"]
+    assert compare.main([str(before), str(after), *renamed]) == 0
+    assert "a: equal" in capsys.readouterr().out
+    xr.Dataset({"y": ("k", [0.1, 0.3], {"units": "m"})},
+               attrs={"building_torsion_mass_offset": "[0, 0]"}).to_netcdf(after / "a.nc")
+    assert compare.main([str(before), str(after), *renamed]) == 1

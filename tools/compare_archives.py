@@ -5,12 +5,15 @@ number.
     (cd ../before && python -m studies.gap_size --out /tmp/before)   # every recipe, both sides
     python -m studies.gap_size --out /tmp/after
     python tools/compare_archives.py /tmp/before /tmp/after [NAME ...]
+    python tools/compare_archives.py /tmp/before /tmp/after --renamed OLD=NEW ...
 
 For every archive NAME.nc (or NAME.zarr) of BEFORE (or those named): every variable and
 coordinate of BEFORE must be in AFTER with the same dims, dtype, attributes and bytes;
 variables and global attributes AFTER adds are listed, global attributes that differ are
 shown (those that say when and from which commit a run was made are not compared). Exit
-status 1 when anything of BEFORE differs or is missing.
+status 1 when anything of BEFORE differs or is missing. --renamed OLD=NEW compares BEFORE's
+name OLD (a variable, a dimension or a global attribute) with AFTER's NEW: a change that
+renames a label and must change no number says so, and the rest is compared bit for bit.
 """
 from __future__ import annotations
 
@@ -25,10 +28,17 @@ VOLATILE = frozenset({"date_created", "git_commit", "engine_fingerprint", "confi
 """Global attributes that say when and from what a run was made, not what it computed."""
 
 
-def open_archive(path: Path) -> xr.Dataset:
+def open_archive(path: Path, renamed: dict[str, str] | None = None) -> xr.Dataset:
+    """The archive at path, loaded; renamed: OLD -> NEW names given to its variables,
+    dimensions and global attributes (BEFORE's, to be compared under AFTER's names)."""
     opener = xr.open_zarr if path.suffix == ".zarr" else xr.open_dataset
     with opener(path, decode_times=False) as ds:
-        return ds.load()
+        ds = ds.load()
+    if renamed:
+        ds = ds.rename({old: new for old, new in renamed.items()
+                        if old in ds.variables or old in ds.dims})
+        ds.attrs = {renamed.get(key, key): value for key, value in ds.attrs.items()}
+    return ds
 
 
 def differences(before: xr.Dataset, after: xr.Dataset) -> tuple[list[str], list[str]]:
@@ -64,7 +74,11 @@ def main(argv=None) -> int:
     parser.add_argument("before", type=Path, help="folder of the archives before the change")
     parser.add_argument("after", type=Path, help="folder of the archives after it")
     parser.add_argument("names", nargs="*", help="archive stems (default: every one of BEFORE)")
+    parser.add_argument("--renamed", nargs="+", default=[], metavar="OLD=NEW",
+                        help="BEFORE's name OLD is AFTER's NEW (a variable, a dimension or a "
+                             "global attribute renamed on purpose)")
     args = parser.parse_args(argv)
+    renamed = dict(pair.split("=", 1) for pair in args.renamed)
     names = args.names or sorted({p.stem for p in args.before.iterdir()
                                   if p.suffix in (".nc", ".zarr")})
     failed = 0
@@ -76,7 +90,7 @@ def main(argv=None) -> int:
             print(f"{name}: no archive in {args.before if paths[0] is None else args.after}")
             failed += 1
             continue
-        issues, added = differences(*map(open_archive, paths))
+        issues, added = differences(open_archive(paths[0], renamed), open_archive(paths[1]))
         print(f"{name}: {'differs' if issues else 'equal'}"
               + (f" (added: {', '.join(added)})" if added else ""))
         for line in issues:

@@ -63,3 +63,14 @@ def test_checked_returns_what_the_dataclass_keeps():
         checked("k", spec, [1.0, -2.0], 2)
     with pytest.raises(ValueError, match="kind must be one of"):
         Field("m", "a length", kind="length")
+
+
+def test_the_docs_list_every_field_as_declared():
+    from pathlib import Path
+
+    from engine.declared import defaults_of, field_table
+
+    text = (Path(__file__).resolve().parents[2] / "docs" / "model.md").read_text()
+    for table in (field_table(FIELDS, DEFAULTS),
+                  field_table(TORSION_FIELDS, defaults_of(engine.Torsion), "torsion.")):
+        assert table in text, "docs/model.md: paste engine.declared.field_table's tables"
