@@ -35,59 +35,75 @@ EVERY = "every registered law"
 """A SUPPORTS entry: every law of the registry (engine/stories/laws/, engine/isolators/laws/)."""
 
 
+SUPPORTS: dict[str, str] = {
+    "ground motion components": "horizontal components of the record (1: accel (N,); 2: a "
+                                "pair, accel (N, 2))",
+    "moat": "the moat's shape (engine.simulate's moat; planar: a wall on each side)",
+    "story law": "the stories' laws (engine.Stories)",
+    "isolator law": "the isolators' laws (engine.Isolator)",
+    "damping": "the damping rule (Building.damping)",
+    "p_delta": "the stories' P-Delta (Building.p_delta)",
+    "collapse_drift_ratio": "a run ending as collapsed past a story drift ratio",
+    "history": "time histories of chosen members (engine.History)",
+    "contact_y": "y walls of their own (engine.Moat's contact_y)",
+    "angle": "incidence angles of the record pair (engine.simulate's angle)",
+    "mu_wall": "friction between slab and wall (engine.Moat's mu_wall)",
+    "bumper_positions": "bumpers placed along the walls (engine.Moat's bumper_positions)",
+    "story_stiffness_y": "stories of another stiffness along y (Building.story_stiffness_y)",
+}
+"""What a model may or may not take, one row per input -> its meaning: the one table
+engine.simulate, the pipeline and docs/model.md read (each Model's `supports` holds its
+column)."""
+
+
 @dataclass(frozen=True)
 class Model:
     """One model of the run and what it supports.
 
     name: "planar", "plan" or "twisting"; meaning: one line; components: the ground motion's
-    horizontal components (1: (N,), 2: (N, 2)); moats: the moat shapes it runs against
-    (planar: its own two walls, no shape); story_laws, isolator_laws: the law names it takes,
-    or EVERY; damping: the damping rules it takes ("paper", "modal"); p_delta: whether it
-    takes the stories' P-Delta; y_walls: whether the y walls may differ from the x walls
-    (contact_y); angle, wall_friction: the incidence angle and the slab-wall friction;
-    bumper_positions: bumpers placed along the walls; story_stiffness_y: stories stiffer one
-    way; peaks, histories: what it returns (engine/results.py); loop: the name of its loop
-    modules in engine/loops/ (numba_<loop>, numpy_<loop>).
+    horizontal components (1: (N,), 2: (N, 2)); supports: its column of SUPPORTS, each row
+    True / False, or the names it takes (EVERY: every registered law); peaks, histories: what
+    it returns (engine/results.py); loop: the name of its loop modules in engine/loops/
+    (numba_<loop>, numpy_<loop>); how: what a run does to be of this model (the advice of
+    another model's refusal).
     """
 
     name: str
     meaning: str
     components: int
-    moats: tuple[str, ...]
-    story_laws: str | tuple[str, ...]
-    isolator_laws: str | tuple[str, ...]
-    damping: tuple[str, ...]
-    p_delta: bool
-    y_walls: bool
-    angle: bool
-    wall_friction: bool
-    bumper_positions: bool
-    story_stiffness_y: bool
+    supports: dict
     peaks: tuple[Quantity, ...]
     histories: tuple[Quantity, ...]
     loop: str
     how: str
+
+    def __post_init__(self):
+        if set(self.supports) != set(SUPPORTS) - {"ground motion components"}:
+            raise ValueError(f"model {self.name}: supports must give every SUPPORTS row")
 
     @property
     def in_plan(self) -> bool:
         """Whether the building moves in x and y (plan or twisting)."""
         return self.components == 2
 
+    def takes(self, what: str):
+        """This model's entry of the SUPPORTS row `what`."""
+        return self.components if what == "ground motion components" else self.supports[what]
+
     def refuse(self, what: str, given=None) -> EngineError:
         """The EngineError for `what` (a SUPPORTS row), which this model does not take as
         given: the table's row says what it does take, and which model would."""
-        row = SUPPORTS[what]
-        others = [m for m in MODELS.values() if m is not self and _admits(row.value(m), given)]
+        others = [m for m in MODELS.values() if m is not self and _admits(m.takes(what), given)]
         shown = "" if given is None else f" {given!r}"
         advice = "" if not others else \
             f"; the {' or '.join(m.name for m in others)} model takes it: {others[0].how}"
         return EngineError(f"{what}{shown}: the {self.name} model takes "
-                           f"{_text(row.value(self))} (engine.model.SUPPORTS){advice}")
+                           f"{_text(self.takes(what))} (engine.model.SUPPORTS){advice}")
 
     def check(self, what: str, value) -> None:
         """EngineError (refuse) unless this model takes `value` for the SUPPORTS row `what`:
         a name among its names, or True for a yes/no row (False always passes)."""
-        takes = SUPPORTS[what].value(self)
+        takes = self.takes(what)
         if isinstance(takes, bool):
             if value and not takes:
                 raise self.refuse(what)
@@ -95,57 +111,31 @@ class Model:
             raise self.refuse(what, value)
 
 
-@dataclass(frozen=True)
-class Support:
-    """One row of SUPPORTS: what (its name), the Model field that holds it, and its meaning."""
-
-    field: str
-    meaning: str
-
-    def value(self, model: Model):
-        return getattr(model, self.field)
-
-
-SUPPORTS: dict[str, Support] = {
-    "ground motion components": Support("components", "horizontal components of the record "
-                                        "(1: accel (N,); 2: a pair, accel (N, 2))"),
-    "moat": Support("moats", "the moat's shape (engine.simulate's moat)"),
-    "story law": Support("story_laws", "the stories' laws (engine.Stories)"),
-    "isolator law": Support("isolator_laws", "the isolators' laws (engine.Isolator)"),
-    "damping": Support("damping", "Building.damping"),
-    "p_delta": Support("p_delta", "the stories' P-Delta (Building.p_delta)"),
-    "contact_y": Support("y_walls", "y walls of their own (engine.simulate's contact_y)"),
-    "angle": Support("angle", "incidence angles of the record pair (engine.simulate's angle)"),
-    "mu_wall": Support("wall_friction", "friction between slab and wall (engine.simulate's "
-                       "mu_wall)"),
-    "bumper_positions": Support("bumper_positions", "bumpers placed along the walls "
-                                "(engine.simulate's bumper_positions)"),
-    "story_stiffness_y": Support("story_stiffness_y", "stories of another stiffness along y "
-                                 "(Building.story_stiffness_y)"),
-}
-"""What each model supports, one row per input: the one table engine.simulate, the pipeline
-and docs/model.md read."""
+_IN_PLAN = {"contact_y": True, "angle": True, "mu_wall": True, "story_stiffness_y": True}
+"""What both models in plan take and the planar one does not."""
 
 PLANAR = Model(
     "planar", "one component along x, the levels moving along x against a wall on each side "
-    "(the paper's model)", components=1, moats=(), story_laws=EVERY, isolator_laws=EVERY,
-    damping=("paper", "modal"), p_delta=True, y_walls=False, angle=False, wall_friction=False,
-    bumper_positions=False, story_stiffness_y=False, peaks=PEAKS, histories=HISTORIES,
-    loop="loop", how="give accel as (N,), one component")
+    "(the paper's model)", components=1,
+    supports={"moat": (), "story law": EVERY, "isolator law": EVERY,
+              "damping": ("paper", "modal"), "p_delta": True, "collapse_drift_ratio": True,
+              "history": True, **dict.fromkeys(_IN_PLAN, False), "bumper_positions": False},
+    peaks=PEAKS, histories=HISTORIES, loop="loop", how="give accel as (N,), one component")
 PLAN = Model(
     "plan", "a record pair, the levels moving in x and y without rotating on coupled "
-    "isolators", components=2, moats=tuple(WALLS), story_laws=EVERY, isolator_laws=EVERY,
-    damping=("paper", "modal"), p_delta=True, y_walls=True, angle=True, wall_friction=True,
-    bumper_positions=False, story_stiffness_y=True, peaks=(*PEAKS, *PLAN_PEAKS),
-    histories=PLAN_HISTORIES, loop="plan",
+    "isolators", components=2,
+    supports={"moat": tuple(WALLS), "story law": EVERY, "isolator law": EVERY,
+              "damping": ("paper", "modal"), "p_delta": True, "collapse_drift_ratio": True,
+              "history": True, **_IN_PLAN, "bumper_positions": False},
+    peaks=(*PEAKS, *PLAN_PEAKS), histories=PLAN_HISTORIES, loop="plan",
     how="give accel as (N, 2), a record pair's x and y components")
 TWISTING = Model(
     "twisting", "a record pair, every level a rigid diaphragm (u_x, u_y, theta) on bearings "
     "where they stand (a Building with a torsion component)", components=2,
-    moats=("rectangular",), story_laws=("linear",), isolator_laws=EVERY, damping=("paper",),
-    p_delta=False, y_walls=True, angle=True, wall_friction=True, bumper_positions=True,
-    story_stiffness_y=True, peaks=(*PEAKS, *PLAN_PEAKS, *TORSION_PEAKS),
-    histories=TORSION_HISTORIES, loop="torsion",
+    supports={"moat": ("rectangular",), "story law": ("linear",), "isolator law": EVERY,
+              "damping": ("paper",), "p_delta": False, "collapse_drift_ratio": True,
+              "history": True, **_IN_PLAN, "bumper_positions": True},
+    peaks=(*PEAKS, *PLAN_PEAKS, *TORSION_PEAKS), histories=TORSION_HISTORIES, loop="torsion",
     how="give the building a torsion component (engine.Torsion) and accel as (N, 2)")
 
 MODELS: dict[str, Model] = {m.name: m for m in (PLANAR, PLAN, TWISTING)}
@@ -191,8 +181,8 @@ def support_table() -> str:
     keeps it current)."""
     names = list(MODELS)
     lines = ["| input | " + " | ".join(names) + " |", "|---" * (len(names) + 1) + "|"]
-    for what, row in SUPPORTS.items():
-        cells = [("yes" if row.value(m) else "no") if isinstance(row.value(m), bool)
-                 else _text(row.value(m)).replace("'", "") for m in MODELS.values()]
+    for what in SUPPORTS:
+        cells = [("yes" if m.takes(what) else "no") if isinstance(m.takes(what), bool)
+                 else _text(m.takes(what)).replace("'", "") for m in MODELS.values()]
         lines.append(f"| {what} | " + " | ".join(cells) + " |")
     return "\n".join(lines)

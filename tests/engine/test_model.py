@@ -74,7 +74,7 @@ def test_a_refusal_quotes_the_table(model, what, kwargs, building):
 ])
 def test_the_twisting_model_refuses_what_its_row_excludes(fields, row):
     """Each exclusion of the twisting model's column is an actual refusal of the building."""
-    value = SUPPORTS[row].value(TWISTING)
+    value = TWISTING.takes(row)
     assert value is False or value == ("linear",) or value == ("paper",)
     Building(**fields)  # the planar and plan models take it
     with pytest.raises(engine.EngineError, match=f"^{row}.*the twisting model takes"):
