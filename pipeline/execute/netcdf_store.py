@@ -132,11 +132,13 @@ class NetCDFStore:
     path, or None (the Dataset is only returned); work_dir: the work folder (None: `<out>.work`
     when out is given, removed once out is written; an explicit one is kept, and may be shared
     by several sweeps; no out and no work_dir: nothing is kept). key: the sweep's resume key
-    (keys.sweep_key), stored as the archive's configuration_key.
+    (keys.sweep_key), stored as the archive's configuration_key. derive: what the peaks mean,
+    added to the archive (pipeline.archive.build_dataset's; None: peaks only).
     """
 
-    def __init__(self, grid, run, out=None, work_dir=None):
+    def __init__(self, grid, run, out=None, work_dir=None, derive=None):
         self.grid, self.run, self.records, self.out = grid, run, run.records, out
+        self.derive = derive
         self.own_work_dir = work_dir is None and out is not None
         if self.own_work_dir:
             work_dir = out.with_name(out.name + ".work")
@@ -200,7 +202,7 @@ class NetCDFStore:
 
     def finish(self):
         """The labelled Dataset, written to out when given (the own work folder then goes)."""
-        ds = build_dataset(self.grid, self.run, self.results)
+        ds = build_dataset(self.grid, self.run, self.results, derive=self.derive)
         ds.attrs[KEY_ATTRIBUTE] = self.key
         if self.out is not None:
             write_netcdf(ds, self.out)
