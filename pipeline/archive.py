@@ -27,14 +27,8 @@ from engine.results import (
     run_quantities,
 )
 
-from .grid import (
-    EXCITATION_PARAMETERS,
-    ISOLATOR_PARAMS,
-    LISTED_PARAMS,
-    Grid,
-    baseline_text,
-    swept_parameter,
-)
+from .grid import Grid, baseline_text, swept_parameter
+from .members import EXCITATION_PARAMETERS, ISOLATOR_PARAMS, LISTED_PARAMS
 from .provenance import (
     ARCHIVE_VERSION,
     ARCHIVE_VERSION_ATTRIBUTE,

@@ -47,9 +47,7 @@ from .building_file import check_building
 from .checks import check_count, resolve_records
 from .errors import SweepError
 from .grid import (
-    IMPACT_LAWS,
     NO_WALL,
-    PARAMS,
     Block,
     Grid,
     check_dt,
@@ -57,6 +55,7 @@ from .grid import (
     describe_member,
     make_grid,
 )
+from .members import IMPACT_LAWS, PARAMS
 from .progress import Progress
 from .provenance import (
     arguments_attribute,

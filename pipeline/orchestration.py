@@ -24,8 +24,9 @@ from .execute.executor import execute
 from .execute.netcdf_store import NetCDFStore
 from .execute.run import Run
 from .execute.zarr_store import ZarrStore
-from .grid import DIMENSIONS, TORSION_PARAMS, check_dt, make_grid, sweep_parameters
+from .grid import check_dt, make_grid, sweep_parameters
 from .listed import check_records, listed_grid
+from .members import DIMENSIONS, TORSION_PARAMS
 from .motions.scaling import DEFAULT_DISPLACEMENT, DEFAULT_LIMITS
 from .motions.scaling import scale_to_displacement as scale
 from .provenance import plain
@@ -86,13 +87,13 @@ def sweep(records, *, impact: str = "bumper", dt: float | None = None, workers: 
     gap (m, the seismic gap before any bumper), thickness (m), cavity (m, depth of the wall
         cavity holding each bumper, paper 5.3), strain (-), n_bumpers (-), wall_k (N/m;
         N/m^1.5 for jankowski and hertzdamp), cor (-): the sweep parameters, those the impact
-        laws declare (pipeline.grid.PARAMS; another name raises SweepError). A scalar is held
+        laws declare (pipeline.members.PARAMS; another name raises SweepError). A scalar is held
         fixed (scalar coordinate), a sequence is swept (a dimension). None takes the impact
         law's declared default (engine.impact.LAWS[impact].PARAMETERS, where each law states
         what wall_k means for it); thickness, cavity, strain, n_bumpers apply to bumpers only.
     k1, k2 (N/m), fy_ratio (-) for a bilinear isolator; radius (m), mu_slow, mu_fast (-), rate
         (s/m), yield_disp (m) for a friction pendulum: the building's isolator parameters
-        (pipeline.grid.ISOLATOR_PARAMS, declared in engine/isolators/laws/), which replace the
+        (pipeline.members.ISOLATOR_PARAMS, declared in engine/isolators/laws/), which replace the
         building's own, held fixed or swept the same way (None: the building's). The
         baseline and unconstrained runs are then made once per isolator too.
     impact: "bumper" (the paper's rubber bumpers, default), "linear", "jankowski", "hertzdamp".

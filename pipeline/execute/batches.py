@@ -34,7 +34,7 @@ def simulate_batch(accel: np.ndarray, accel_dt: float, members: np.ndarray,
                    building: engine.Building, dt: float, moat: str | None = None,
                    factor: float | None = None, bumper_positions=None, progress=None,
                    report: tuple[str, str] | None = None) -> dict[str, np.ndarray]:
-    """Peaks of (b,) members (grid.MEMBER_DTYPE) under one record (m/s^2 every accel_dt s):
+    """Peaks of (b,) members (members.MEMBER_DTYPE) under one record (m/s^2 every accel_dt s):
     peak name -> (b, ...) array (engine.results.run_quantities: PEAKS, with collapsed and
     collapse_time for a building that can collapse). building: the sweep's; a member's
     isolator parameters replace its own (grid.buildings_for). moat: None for a planar run

@@ -3,7 +3,7 @@ finished batches kept meanwhile in a work folder, so that a run can resume.
 
 Workers return peak arrays and this process alone writes them (no races on shared files).
 Finished batches are kept in the work folder as .npz files holding their context key and
-members (grid.MEMBER_DTYPE) with their peaks, so a killed sweep rerun with the same arguments
+members (members.MEMBER_DTYPE) with their peaks, so a killed sweep rerun with the same arguments
 computes only the members it is missing. Every member is looked up by its context key and its
 member record (pipeline.execute.keys): batch sizes and worker counts may change between runs.
 """
@@ -21,7 +21,7 @@ from engine.results import empty_peaks
 
 from ..archive import build_dataset, write_netcdf
 from ..errors import SweepError
-from ..grid import MEMBER_DTYPE
+from ..members import MEMBER_DTYPE
 from ..writing import KEY_ATTRIBUTE, check_writable_folder
 from . import batches
 from .keys import batch_key, sweep_key
