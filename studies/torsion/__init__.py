@@ -140,7 +140,7 @@ def dataset(swept, code, suite, thetas, eccs, positions, gaps, fractions, args):
     pads' and corners' forces), the code's D_M and D_TM per eccentricity, the suite."""
     from engine.results import PEAKS, PLAN_PEAKS, TORSION_PEAKS
     from pipeline.archive import labelled_dataset, variable
-    from pipeline.assess.derived import bumper_stress, crushed
+    from pipeline.assess.derived import bumper_stress, crushed, largest_floor_accel
     from pipeline.assess.validity import RUBBER_STRESS_LIMIT, bumper_stress_exceeds
     from pipeline.suite_labels import archive_variables
 
@@ -160,7 +160,7 @@ def dataset(swept, code, suite, thetas, eccs, positions, gaps, fractions, args):
         q = declared[name]
         stack = blocks(name)
         if name == "peak_total_accel":  # the largest over the floors
-            stack = stack.max(axis=-1)
+            stack = largest_floor_accel(stack)
         free = stack[:, :, :, 0]
         walls = stack[:, :, :, 1:].reshape(n_r, n_e, n_a, n_g, 2)
         what = "the largest over the floors" if name == "peak_total_accel" else ""
