@@ -21,6 +21,7 @@ from dataclasses import dataclass
 
 from .errors import EngineError
 from .results import (
+    COLLAPSE,
     HISTORIES,
     PEAKS,
     PLAN_HISTORIES,
@@ -86,6 +87,12 @@ class Model:
         """Whether the building moves in x and y (plan or twisting)."""
         return self.components == 2
 
+    def quantities(self, collapse: bool = False) -> tuple[Quantity, ...]:
+        """What a run of this model returns and an archive keeps of it: its peaks, then
+        COLLAPSE for a building with a collapse criterion (so that a building without one,
+        the paper's, keeps the archive it had)."""
+        return (*self.peaks, *(COLLAPSE if collapse else ()))
+
     def takes(self, what: str):
         """This model's entry of the SUPPORTS row `what`."""
         return self.components if what == "ground motion components" else self.supports[what]
@@ -120,7 +127,8 @@ PLANAR = Model(
     supports={"moat": (), "story law": EVERY, "isolator law": EVERY,
               "damping": ("paper", "modal"), "p_delta": True, "collapse_drift_ratio": True,
               "history": True, **dict.fromkeys(_IN_PLAN, False), "bumper_positions": False},
-    peaks=PEAKS, histories=HISTORIES, loop="loop", how="give accel as (N,), one component")
+    peaks=PEAKS, histories=HISTORIES, loop="loop",
+    how="one component (accel (N,); a sweep without moat)")
 PLAN = Model(
     "plan", "a record pair, the levels moving in x and y without rotating on coupled "
     "isolators", components=2,
@@ -128,7 +136,7 @@ PLAN = Model(
               "damping": ("paper", "modal"), "p_delta": True, "collapse_drift_ratio": True,
               "history": True, **_IN_PLAN, "bumper_positions": False},
     peaks=(*PEAKS, *PLAN_PEAKS), histories=PLAN_HISTORIES, loop="plan",
-    how="give accel as (N, 2), a record pair's x and y components")
+    how="a record pair (accel (N, 2), its x and y components; a sweep's moat)")
 TWISTING = Model(
     "twisting", "a record pair, every level a rigid diaphragm (u_x, u_y, theta) on bearings "
     "where they stand (a Building with a torsion component)", components=2,
@@ -136,7 +144,7 @@ TWISTING = Model(
               "damping": ("paper",), "p_delta": False, "collapse_drift_ratio": True,
               "history": True, **_IN_PLAN, "bumper_positions": True},
     peaks=(*PEAKS, *PLAN_PEAKS, *TORSION_PEAKS), histories=TORSION_HISTORIES, loop="torsion",
-    how="give the building a torsion component (engine.Torsion) and accel as (N, 2)")
+    how="a building with a torsion component (engine.Torsion) under a record pair")
 
 MODELS: dict[str, Model] = {m.name: m for m in (PLANAR, PLAN, TWISTING)}
 """The models by name."""

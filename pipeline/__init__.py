@@ -9,308 +9,50 @@ of members -> the executor -> labelled archives -> what a result means.
 - records/ : AT2 and text files, the embedded library, the paper's records, pairs, lookup;
 - motions/ : what shakes the building: spectra, the code's targets and isolation design,
   scaling rules (rules/, a registry), code suites at levels of intensity, intensity measures;
-- grid.py : the sweep's parameters (derived from the laws' declarations, the excitation's
-  level, angle and wall friction), one member record per simulation, the baseline and
-  unconstrained blocks; listed.py : members listed one by one, for every record or per record;
-- execute/ : running the members: one executor (here or on dask, progress, Ctrl-C ->
+- members.py : what a member carries, one declaration (a row per number: the wall's, the
+  isolator's and the excitation's parameters, derived from the laws' declarations) and the
+  excitation's rule; grid.py : a set of members as one Grid (the sweep's combinations, the
+  baseline and unconstrained blocks); listed.py : members listed one by one, for every record
+  or per record (a Grid too, as histories.py's named configurations are);
+- execute/ : running the members: one executor (here or on dask, Ctrl-C ->
   errors.Interrupted), what a run is (run.py), its batches, its keys, and two stores behind
   one interface (netcdf_store.py: a resumable work folder, one NetCDF at the end; zarr_store.py:
   workers write chunk regions);
 - archive.py : labelled Datasets (units and long names from the declarations), atomic NetCDF;
   provenance.py : the global attributes; writing.py : atomic replacement and configuration
-  keys; histories.py : time histories of a few configurations;
+  keys; suite_labels.py : a code suite's variables in the archives; histories.py : time
+  histories of a few named configurations;
 - building_file.py : a building from a file or NAME=VALUE settings; cluster.py : connecting to
-  a dask cluster and refusing an unfit one; checks.py : the shared input checks; errors.py :
-  SweepError, ClusterError, Interrupted (a leaf);
+  a dask cluster and refusing an unfit one; checks.py : the shared input checks; progress.py :
+  the progress line; errors.py : SweepError, ClusterError, Interrupted (a leaf);
 - assess/ : what a result means, pure functions over arrays: derived responses, validity,
-  outcomes and weights, fragility.
-Imports happen inside the functions, so that light entry points such as
-`python -m pipeline.records` load neither xarray nor dask, and `import pipeline` loads nothing
-(`pipeline.sweep` is completed, with its parameters, on first use).
+  outcomes and weights, fragility;
+- orchestration.py : the sweep itself (`sweep`, `unconstrained_peaks`,
+  `scale_to_displacement`): checks the call, builds the grid, runs it into a store, has assess
+  say what the peaks mean and the archive label it.
+The packages stand in that order, each importing only from those before it (tests/test_layout.py
+keeps it so): records and the shared leaves (errors, checks, writing, building_file,
+progress) -> motions -> members, grid, listed, provenance, cluster, execute -> archive (and
+the stores that write archives, the suites' labels) -> assess -> the orchestrations
+(orchestration.py, histories.py). This face loads nothing: `import pipeline` imports no module
+of the project, so that light entry points such as `python -m pipeline.records` load neither
+xarray nor dask; the public names are the orchestration's, imported on first use.
 """
 from __future__ import annotations
 
 __all__ = ["SweepError", "scale_to_displacement", "sweep", "unconstrained_peaks"]
 
 
-def _sweep(records, *, impact: str = "bumper", dt: float | None = None, workers: int = 1,
-           scheduler=None, out=None, baseline: bool = False, unconstrained: bool = False,
-           building=None, m_eff: float | None = None, batch_size: int | None = None,
-           records_dir=None, quiet: bool = False, work_dir=None, force: bool = False,
-           moat: str | None = None, factors=None, members=None, bumper_positions=None,
-           **parameters):
-    """Simulate every combination of the parameters under every record; label the peaks.
-
-    records: paper keys ("kobe", "sylmar_converter", "olive_view", "pacoima"), library names,
-        AT2 paths (see pipeline.records.load_record) or Record objects; one or a list.
-    Every parameter after `records` is given by keyword.
-    gap (m, the seismic gap before any bumper), thickness (m), cavity (m, depth of the wall
-        cavity holding each bumper, paper 5.3), strain (-), n_bumpers (-), wall_k (N/m;
-        N/m^1.5 for jankowski and hertzdamp), cor (-): the sweep parameters, those the impact
-        laws declare (pipeline.grid.PARAMS; another name raises SweepError). A scalar is held
-        fixed (scalar coordinate), a sequence is swept (a dimension). None takes the impact
-        law's declared default (engine.impact.LAWS[impact].PARAMETERS, where each law states
-        what wall_k means for it); thickness, cavity, strain, n_bumpers apply to bumpers only.
-    k1, k2 (N/m), fy_ratio (-) for a bilinear isolator; radius (m), mu_slow, mu_fast (-), rate
-        (s/m), yield_disp (m) for a friction pendulum: the building's isolator parameters
-        (pipeline.grid.ISOLATOR_PARAMS, declared in engine/isolators/laws/), which replace the
-        building's own, held fixed or swept the same way (None: the building's). The
-        baseline and unconstrained runs are then made once per isolator too.
-    impact: "bumper" (the paper's rubber bumpers, default), "linear", "jankowski", "hertzdamp".
-    dt: integration step (s), default engine.DEFAULT_DT; refused at or above the stability
-        limit (engine.stable_dt).
-    workers: 0 or 1 (default) runs in this process, the compiled kernel spreading each batch's
-        members over every core with threads (measured the fastest on one machine: no worker
-        start-up, no copies); >= 2 starts that many local dask worker processes, one thread
-        each. Scripts need no `if __name__ == "__main__":` guard for them: the main script is
-        hidden while the workers start, so they do not run it again.
-    scheduler: a dask.distributed scheduler address (or Client) to run on instead.
-    out: NetCDF path, written atomically; finished batches are kept in `<out>.work/` so that a
-        rerun after a crash computes only what is missing; the folder goes once out is written.
-        A path ending in `.zarr` writes a Zarr store instead, for sweeps too large for one
-        file or the client's memory: workers write their batches into it directly, it is its
-        own resume record, and the return value is the store opened lazily (see
-        pipeline.execute.zarr_store).
-    baseline: also run the bare wall without bumpers (the linear law at its defaults, k 2.5e9
-        N/m, COR 0.5) once per (record, gap) at the full gap; adds baseline_* and
-        amplification_* variables.
-    unconstrained: also run each record without wall; adds unconstrained_* variables.
-    building: engine.Building (default: the paper's); m_eff: effective impact mass (kg;
-        default: the declared one, 320 t, the base slab).
-    batch_size: members per engine call (default: pipeline.execute.batches.default_batch_size).
-    records_dir: folder of AT2 files for the records' lookup; quiet: no progress bar.
-    work_dir: a folder that keeps finished batches (default: `<out>.work` when out is given,
-        removed once out is written; an explicit one is kept, and may be shared by several
-        sweeps). Ctrl-C raises pipeline.errors.Interrupted (a KeyboardInterrupt) saying how
-        many simulations are kept there; the same call again computes only the rest.
-    moat: None (default) for the paper's planar model, one record component each; or
-        "rectangular" / "circular" for runs in plan: records are then record PAIRS (anything
-        pipeline.records.load_pair takes: "RSN953", a paper key, "A.AT2+B.AT2", an (x, y)
-        tuple of Records; see pipeline.records.pair), the building moves in x and y on coupled
-        isolators, and `angle` (degrees, default 0; swept like any parameter) rotates each
-        pair counterclockwise; `mu_wall` (default 0; swept alike) is the Coulomb friction
-        between slab and wall. The archive then also holds the per-direction peaks (*_xy,
-        dimension `direction`) and the largest force per wall (`wall`); peak_* are
-        resultants. The same walls on every side (a square or circular moat).
-    level (-, any run; swept like any parameter): the intensity, a factor multiplying every
-        record's ground acceleration (engine.simulate's scale); the baseline and unconstrained
-        blocks repeat per level. factors: None, or (R,) positive factors (-), one per record,
-        multiplying each record's acceleration on top of the level (a code suite's MCE_R
-        factors): a member runs at factor x level (level 1 when not given). The archive then
-        has a `level` coordinate and `record_factor` along record.
-    bumper_positions: for a building that twists (its torsion; moat "rectangular"): None,
-        its corners against bare walls, or (along the x walls, along the y walls), the
-        bumpers' positions (m) from the plan's centre (engine.simulate's); the archive then
-        has each contact point's peaks (dimension `point`) and the corners' and rotation's.
-    members: instead of a grid, a table of members listed one by one (pipeline.listed: column
-        "law" and parameters by name, (K,) for every record or (R, K) per record); the
-        archive's dims are then (record, member). No other sweep parameter is given then.
-    force: replace an existing `out` that holds another sweep. Without it such an archive is
-        kept and SweepError raised before any compute; an archive of this very sweep (the
-        same records, dt, building, members and engine: its `configuration_key` attribute)
-        is replaced silently, since it holds the same numbers.
-
-    Returns an xarray.Dataset, dims: record, the swept parameters (in the order gap, thickness,
-    cavity, strain, n_bumpers, wall_k, cor, then the isolator's), floor (0..N) and story (1..N):
-    0-4 and 1-4 for the paper's building. Variables: peak_total_accel (m/s^2; floor),
-    peak_interstory_drift (m; story), peak_isolator_disp (m), max_indentation (m),
-    max_impact_force (N), n_impacts, impact_energy (J); with baseline, baseline_<same> (record,
-    gap, ...) and amplification_total_accel, amplification_interstory_drift (bumpers / no
-    bumpers); with unconstrained, unconstrained_<same> (record, ...). Raises SweepError, naming
-    the parameter, before any simulation runs.
-    """
-    from .building_file import check_building
-    from .errors import SweepError
-    from .grid import TORSION_PARAMS, make_grid, sweep_parameters
-
-    given = sweep_parameters(parameters)
-    building = check_building(building)
-    if moat is not None:
-        from engine.plan import MOATS
-
-        if moat not in MOATS:
-            raise SweepError(f"moat must be one of {MOATS} (or None: planar), got {moat!r}")
-    if members is not None:
-        from .listed import listed_grid
-
-        given = {k: v for k, v in given.items() if v is not None}
-        if given or baseline or unconstrained or m_eff is not None:
-            raise SweepError("members lists every member: give its parameters as its columns, "
-                             f"not as {', '.join(given) or 'baseline/unconstrained/m_eff'}")
-        grid = listed_grid(members, isolator=building.isolation.law, plan=moat is not None,
-                           intensity=factors is not None)
-    elif given["gap"] is None:
-        raise SweepError("gap is required (m)")
-    else:
-        grid = make_grid(impact=impact, isolator=building.isolation.law, m_eff=m_eff,
-                         baseline=baseline, unconstrained=unconstrained,
-                         plan=moat is not None, intensity=factors is not None, **given)
-    # a building that twists' parameters are recorded when given (other archives unchanged)
-    recorded = {k: v for k, v in given.items() if v is not None or k not in TORSION_PARAMS}
-    arguments = {"members": members, "moat": moat} if members is not None else {
-        **recorded, "impact": impact, "baseline": baseline, "unconstrained": unconstrained,
-        "m_eff": grid.m_eff, "moat": moat}
-    return _execute(grid, records, arguments, dt=dt, workers=workers, scheduler=scheduler,
-                    out=out, building=building, batch_size=batch_size,
-                    records_dir=records_dir, quiet=quiet, work_dir=work_dir, force=force,
-                    moat=moat, factors=factors, bumper_positions=bumper_positions)
-
-
-def _completed_sweep():
-    """`_sweep` as `pipeline.sweep`, its signature listing the sweep parameters by name
-    (keyword-only, default None) for help() and IDEs. Deriving them imports the impact and
-    isolator laws, which `import pipeline` does not."""
-    import inspect
-
-    from .grid import DIMENSIONS
-
-    own = [p for p in inspect.signature(_sweep).parameters.values()
-           if p.kind is not inspect.Parameter.VAR_KEYWORD]
-    swept = [inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=None)
-             for name in DIMENSIONS]
-    _sweep.__signature__ = inspect.Signature([own[0], *swept, *own[1:]])
-    _sweep.__name__ = _sweep.__qualname__ = "sweep"
-    globals()["sweep"] = _sweep
-    return _sweep
-
-
-def unconstrained_peaks(records, dt: float | None = None, building=None, workers: int = 1,
-                        scheduler=None, records_dir=None, quiet: bool = True, work_dir=None):
-    """Peaks of the building without moat wall: a Dataset with dims (record, floor/story).
-
-    Variables as in `sweep` (peak_isolator_disp m, peak_total_accel m/s^2, ...). Recipes use
-    it for "gap = 0.9 x unconstrained peak isolator displacement" and as the no-pounding
-    reference.
-    """
-    from .grid import make_grid
-
-    grid = make_grid(None, unconstrained=True)
-    ds = _execute(grid, records, {"unconstrained_only": True}, dt=dt, workers=workers,
-                  scheduler=scheduler, building=building, records_dir=records_dir, quiet=quiet,
-                  work_dir=work_dir)
-    prefix = "unconstrained_"
-    return ds.rename({name: name[len(prefix):] for name in ds.data_vars
-                      if name.startswith(prefix)})
-
-
-def _execute(grid, records, arguments: dict, *, dt=None, workers: int = 1, scheduler=None,
-             out=None, building=None, batch_size=None, records_dir=None, quiet: bool = False,
-             work_dir=None, force: bool = False, moat: str | None = None, factors=None,
-             bumper_positions=None):
-    """Check the rest of the input, open the store (.zarr: Zarr; else NetCDF), run, finish.
-    arguments: the call's, stored in the archive; the rest as `sweep` takes them."""
-    import engine
-
-    from .building_file import check_building
-    from .checks import check_count, resolve_pairs, resolve_records
-    from .errors import SweepError
-    from .execute.batches import default_batch_size
-    from .execute.executor import execute
-    from .execute.run import Run
-    from .grid import check_dt
-    from .provenance import plain
-    from .writing import check_out, guard
-
-    building = check_building(building)
-    if building.twists and moat != "rectangular":
-        raise SweepError("a building that twists (its torsion) runs in plan against the "
-                         f"rectangular moat, under record pairs: give moat='rectangular', not "
-                         f"{moat!r}")
-    dt = check_dt(grid, engine.DEFAULT_DT if dt is None else dt, building)
-    workers = check_count("workers", workers, minimum=0)
-    if scheduler is not None and not isinstance(scheduler, str) \
-            and not hasattr(scheduler, "submit"):
-        raise SweepError(f"scheduler must be an address such as 'tcp://host:8786' or a "
-                         f"dask.distributed Client, got {scheduler!r}")
-    if moat is None:
-        recs, names = resolve_records(records, records_dir)
-    else:
-        recs, names = resolve_pairs(records, records_dir)
-    factors = _factors(factors, len(recs))
-    if grid.table is not None:
-        from .listed import check_records
-
-        check_records(grid, len(recs))
-    if batch_size is None:
-        batch_size = default_batch_size(grid.n_members, len(recs), workers)
-    batch_size = check_count("batch_size", batch_size, minimum=1)
-    out = check_out(out)
-    arguments = plain({**arguments, "records": names, "dt": dt,
-                       **({} if factors is None else {"factors": factors})})
-    if bumper_positions is not None:
-        import numpy as np
-
-        if not building.twists or moat != "rectangular":
-            raise SweepError("bumper_positions place bumpers along the rectangular moat's "
-                             "walls of a building that twists (its torsion)")
-        bumper_positions = tuple(tuple(float(x) for x in np.ravel(side))
-                                 for side in bumper_positions)
-        arguments["bumper_positions"] = [list(side) for side in bumper_positions]
-    run = Run(recs, names, dt, building, moat, factors, arguments, bumper_positions)
-    new_store = None
-    if out is not None and out.suffix == ".zarr":
-        from .execute.zarr_store import ZarrStore
-
-        # the outermost folder this run creates, removed again if no batch runs
-        new_store = next((p for p in reversed((out, *out.parents)) if not p.exists()), None)
-        store = ZarrStore(grid, run, out, batch_size, force)
-    else:
-        from .execute.netcdf_store import NetCDFStore
-
-        store = NetCDFStore(grid, run, out, work_dir)
-        if out is not None:
-            guard(out, store.key, force, "force=True (--force)")
-    try:
-        execute(store, workers=workers, scheduler=scheduler, batch_size=batch_size,
-                quiet=quiet)
-    except SweepError:  # refused before any batch ran (e.g. no cluster): leave nothing
-        if new_store is not None and not store.done.any():
-            import shutil
-
-            shutil.rmtree(new_store, ignore_errors=True)
-        raise
-    return store.finish()
-
-
-def _factors(factors, n_records: int):
-    """(R,) float intensity factors of the records, or None; SweepError for anything but R
-    positive finite numbers."""
-    import numpy as np
-
-    from .errors import SweepError
-
-    if factors is None:
-        return None
-    try:
-        array = np.asarray(factors, dtype=float)
-    except (TypeError, ValueError):
-        raise SweepError(f"factors must be {n_records} numbers, one per record, got "
-                         f"{factors!r}") from None
-    if array.shape != (n_records,):
-        raise SweepError(f"factors must be {n_records} numbers, one per record, got shape "
-                         f"{array.shape}")
-    if not np.all(np.isfinite(array) & (array > 0)):
-        raise SweepError(f"factors must be positive and finite (-), got {array.tolist()}")
-    return array
-
-
-def scale_to_displacement(records, displacement: float | None = None,
-                          limits: tuple[float, float] | None = None, **options):
-    """Scale records so that the building without wall reaches `displacement` (m; default
-    pipeline.motions.scaling.DEFAULT_DISPLACEMENT, 0.30 m) with factors within `limits` (default
-    DEFAULT_LIMITS, 0.2-5): see pipeline.motions.scaling.scale_to_displacement (options: dt,
-    building,
-    records_dir, tolerance, quiet). Returns a pipeline.motions.scaling.ScaledSuite."""
-    from .motions.scaling import DEFAULT_DISPLACEMENT, DEFAULT_LIMITS
-    from .motions.scaling import scale_to_displacement as scale
-
-    return scale(records, DEFAULT_DISPLACEMENT if displacement is None else displacement,
-                 DEFAULT_LIMITS if limits is None else limits, **options)
-
-
 def __getattr__(name):
     if name == "sweep":
-        return _completed_sweep()
+        from .orchestration import completed_sweep
+
+        globals()["sweep"] = completed_sweep()
+        return globals()["sweep"]
+    if name in ("scale_to_displacement", "unconstrained_peaks"):
+        from . import orchestration
+
+        return getattr(orchestration, name)
     if name == "SweepError":
         from .errors import SweepError
 

@@ -24,17 +24,10 @@ from engine.results import (
     WALLS,
     Quantity,
     level_axes,
-    run_quantities,
 )
 
-from .grid import (
-    EXCITATION_PARAMETERS,
-    ISOLATOR_PARAMS,
-    LISTED_PARAMS,
-    Grid,
-    baseline_text,
-    swept_parameter,
-)
+from .grid import Grid, baseline_text, swept_parameter
+from .members import EXCITATION_PARAMETERS, ISOLATOR_PARAMS, LISTED_PARAMS
 from .provenance import (
     ARCHIVE_VERSION,
     ARCHIVE_VERSION_ATTRIBUTE,
@@ -46,16 +39,6 @@ from .provenance import (
 )
 from .writing import Staged
 
-STORY_DUCTILITY = Quantity("peak_story_ductility", "1", "peak story ductility (peak "
-                           "interstory deflection / yield deflection F_i / k_i)", "story")
-"""Derived from peak_interstory_drift when the building's stories yield."""
-AMPLIFICATION = {
-    "amplification_total_accel": ("peak_total_accel",
-                                  "peak floor acceleration, bumpers / no bumpers (Fig. 14)"),
-    "amplification_interstory_drift": ("peak_interstory_drift",
-                                       "peak interstory deflection, bumpers / no bumpers "
-                                       "(Fig. 15)"),
-}
 COMPRESSION = {"zlib": True, "complevel": 4}
 
 
@@ -157,89 +140,6 @@ def level_coords(n_levels: int) -> dict:
     """The floor and story coordinates of a building of n_levels levels."""
     return {axis: variable(axis, values, units, long_name)
             for axis, (values, units, long_name) in level_axes(n_levels).items()}
-
-
-def derived_variables(ds: xr.Dataset, building: engine.Building, grid: Grid | None = None) -> dict:
-    """Variables computed from a sweep's peaks, name -> (DataArray, the peak whose dims and
-    chunks it shares), lazy when ds is: the amplification ratios bumpers / no bumpers when ds
-    has a baseline block; the peak story ductility (peak drift / yield drift F_i / k_i) of
-    every block when the building's stories yield; with the grid, every block's validity
-    flags (`validity_variables`)."""
-    derived = {} if grid is None else validity_variables(ds, grid, building)
-    if "baseline_peak_total_accel" in ds:
-        for name, (peak, long_name) in AMPLIFICATION.items():
-            ratio = (ds[peak] / ds["baseline_" + peak]).transpose(*ds[peak].dims)
-            ratio.attrs = {"units": "1", "long_name": long_name}
-            derived[name] = (ratio, peak)
-    if building.story_yield_drift is not None:
-        yield_drift = xr.DataArray(building.story_yield_drift, dims="story")
-        for drift in [name for name in ds.data_vars
-                      if name.endswith("peak_interstory_drift")]:
-            prefix = drift[: -len("peak_interstory_drift")]
-            ductility = (ds[drift] / yield_drift).transpose(*ds[drift].dims)
-            ductility.attrs = {"units": STORY_DUCTILITY.units,
-                               "long_name": block_long_name(STORY_DUCTILITY, prefix)}
-            derived[prefix + "peak_story_ductility"] = (ductility, drift)
-    return derived
-
-
-def _pad_force(ds: xr.Dataset, prefix: str) -> xr.DataArray:
-    """The force the bumpers' stress is judged on, as if the wall's n_bumpers shared it: the
-    largest impact force; for a building that twists, the largest over the contact points of
-    a point's force times the points on its wall (a point carries n_bumpers / points of them),
-    which is no less where the slab turns and loads one pad more than its share."""
-    if prefix + "max_point_force" not in ds:
-        return ds[prefix + "max_impact_force"]
-    wall = ds["point_wall"].values
-    per_wall = xr.DataArray([np.sum(wall == w) for w in wall], dims="point")
-    return (ds[prefix + "max_point_force"] * per_wall).max("point")
-
-
-def validity_variables(ds: xr.Dataset, grid: Grid, building: engine.Building) -> dict:
-    """Every block's `invalid_*` flags, name -> (int8 DataArray over the block's dims, 1 where
-    the run left the model's range; the peak it follows), lazy when ds is
-    (pipeline.assess.validity at its default limits: the bumpers' calibration stress and
-    strain where the block has bumpers, the rigid-floor acceleration, a collapse where the
-    building can collapse; a sweep knows no story or wall capacity: those are not checked,
-    and the archive's validity_limits says so)."""
-    from engine.impact import LAWS as IMPACT_LAWS
-
-    from .assess.validity import ACCEL_LIMIT, FLAGS, Limits
-
-    limits = Limits()
-    default_area = IMPACT_LAWS["bumper"].PARAMETERS["area"].default
-    out, start = {}, 0
-    for block in grid.blocks:
-        part = slice(start, start + block.size)
-        start += block.size
-        p = block.prefix
-        force = ds[p + "max_impact_force"]
-        members = np.stack([grid.members_of(r)[part] for r in range(ds.sizes["record"])])
-
-        def along(values, force=force):  # (R, M) -> the block's (record, *dims)
-            return xr.DataArray(values.reshape(force.shape), dims=force.dims)
-
-        def flag(name, value, peak, p=p, dims=force.dims):
-            value = value.astype(np.int8).transpose(*dims)
-            value.attrs = {"units": "1", "long_name": f"1 where {FLAGS[name]}"}
-            out[p + name] = (value, peak)
-
-        flag("invalid_floor_accel", ds[p + "peak_total_accel"].max("floor") > ACCEL_LIMIT,
-             p + "peak_total_accel")
-        bumper = members["law"] == "bumper"
-        if bumper.any():
-            area = np.where(np.isnan(members["area"]), default_area, members["area"])
-            carried = along(np.where(bumper, members["n_bumpers"] * area, np.inf))
-            flag("invalid_bumper_stress", _pad_force(ds, p) / carried > limits.bumper_stress,
-                 p + "max_impact_force")
-            thickness = along(np.where(bumper, members["thickness"], np.inf))
-            flag("invalid_bumper_strain",
-                 ds[p + "max_indentation"] > limits.bumper_strain * thickness,
-                 p + "max_indentation")
-        if p + "collapsed" in ds:
-            flag("invalid_collapse", ds[p + "collapsed"], p + "collapsed")
-    ds.attrs["validity_limits"] = limits.describe()
-    return out
 
 
 def record_coords(records, names: list[str]) -> dict:
@@ -351,7 +251,7 @@ def listed_coords(grid: Grid) -> dict:
 
 
 def build_dataset(grid: Grid, run, results: list[dict[str, np.ndarray]] | None,
-                  chunks=None) -> xr.Dataset:
+                  chunks=None, derive=None) -> xr.Dataset:
     """Label the per-record peak arrays of a sweep (each (M, ...), the grid's member order)
     as its Dataset.
 
@@ -361,12 +261,14 @@ def build_dataset(grid: Grid, run, results: list[dict[str, np.ndarray]] | None,
     values (NaN, -1 for counts), chunks(block) giving the chunk sizes over its swept dims, and
     no amplification ratios. A run in plan (records are then pipeline.records.RecordPair):
     PLAN_PEAKS too, with direction and wall coordinates. Records with intensity factors: the
-    coordinate record_factor.
+    coordinate record_factor. derive: what a result means, computed from the labelled peaks
+    (derive(ds, building, grid) -> name -> (DataArray, the peak it follows); the sweep passes
+    pipeline.assess.sweep_variables.derived_variables), added as variables; None: peaks only.
     """
-    records, building, moat = run.records, run.building, run.moat
+    records, building, moat, model = run.records, run.building, run.moat, run.model
     names = record_labels(records, run.names)
     n_points = run.n_points
-    quantities = run_quantities(moat, building.can_collapse, n_points is not None)
+    quantities = model.quantities(building.can_collapse)
     data_vars = {}
     start = 0
     for block in grid.blocks:
@@ -378,7 +280,7 @@ def build_dataset(grid: Grid, run, results: list[dict[str, np.ndarray]] | None,
                 import dask.array as da
 
                 tail = q.trailing_shape(building.n_levels,
-                                        len(WALLS[moat]) if moat is not None else 1,
+                                        len(WALLS[moat]) if model.in_plan else 1,
                                         n_points or 1)
                 kind = np.dtype(q.dtype).kind
                 fill = np.nan if kind == "f" else False if kind == "b" else -1
@@ -391,19 +293,19 @@ def build_dataset(grid: Grid, run, results: list[dict[str, np.ndarray]] | None,
                                         quantities))
     coords = {**record_coords(records, names), **level_coords(building.n_levels),
               **parameter_coords(grid), **listed_coords(grid),
-              **({} if moat is None else plan_coords(moat)),
+              **(plan_coords(moat) if model.in_plan else {}),
               **({} if n_points is None else point_coords(building, run.bumper_positions))}
     if run.factors is not None:
         coords["record_factor"] = variable(
             "record", np.asarray(run.factors, dtype=float), "1", "the record's intensity "
             "factor: a member's ground acceleration is the record's times this times its level")
     attrs = attributes(grid, records, names, run.dt, building, run.arguments)
-    if moat is not None:
+    if model.in_plan:
         attrs.update(plan_attributes(moat))
     ds = labelled_dataset(data_vars, coords, attrs)
-    if results is not None:
+    if results is not None and derive is not None:
         ds = ds.assign({name: value for name, (value, _) in
-                        derived_variables(ds, building, grid).items()})
+                        derive(ds, building, grid).items()})
     return ds
 
 

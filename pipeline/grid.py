@@ -10,9 +10,10 @@ sweep's `wall_k` is, per law: the bumpers' k_w behind the crushed rubber (N/m, E
 linear wall's k (N/m, Eq. 1), Jankowski's beta (N/m^1.5), Hertzdamp's k (N/m^1.5).
 
 Every member of a sweep is one element of a structured array of `MEMBER_DTYPE` (law name, then
-the sweep parameters in SI units and m_eff; NaN where the law does not use a parameter), the
-same members for every record; the engine's Contact is built from them (`contact_for`), so a
-member fully describes its wall and is what resumable runs key on.
+every number pipeline.members declares, one row each: the sweep parameters in SI units and
+m_eff; NaN where the law does not use a parameter), the same members for every record; the
+engine's Contact is built from them (`contact_for`), so a member fully describes its wall and
+is what resumable runs key on.
 
 The building's isolator parameters can be swept too (ISOLATOR_PARAMS, declared by the isolator
 laws the same way: k1, k2, fy_ratio for the bilinear law; radius, mu_slow, mu_fast, rate,
@@ -37,85 +38,28 @@ import numpy as np
 import engine
 from engine.impact import LAWS, M_EFF, NO_WALL
 from engine.isolators import LAWS as ISOLATOR_LAWS
-from engine.parameters import Parameter
-from engine.plan import PLAN_PARAMETERS
 from engine.torsion import shifted
-from engine.torsion_fields import ACCIDENTAL_ECCENTRICITY
 
 from .checks import checked_values, plausible
 from .errors import PlausibilityWarning, SweepError
-
-IMPACT_LAWS = ("bumper", *(law for law in LAWS if law != "bumper"))
-"""The wall laws a sweep can run, the default (the paper's bumpers) first."""
-PARAMS = tuple(dict.fromkeys(name for law in IMPACT_LAWS
-                             for name in LAWS[law].PARAMETERS.swept()))
-"""The sweep's parameters: every law's declared `sweep` names, in declaration order, the
-default law's first (gap, thickness, cavity, strain, n_bumpers, wall_k, cor). Also the
-archive's dimension order: record first, then the swept parameters in this order."""
-
-
-ISOLATOR_PARAMS = tuple(dict.fromkeys(name for law in ISOLATOR_LAWS.values()
-                                       for name in law.PARAMETERS.swept()))
-"""The building's isolator parameters a sweep can vary: every isolator law's declared `sweep`
-names (k1, k2, fy_ratio, radius, mu_slow, mu_fast, rate, yield_disp). Each applies when the
-building's isolator is of a law that declares it, and replaces the building's own value; in
-the archive they follow the wall's parameters."""
-assert not set(ISOLATOR_PARAMS) & set(PARAMS), "isolator and wall parameters share a name"
-PLAN_PARAMS = tuple(PLAN_PARAMETERS)
-"""The parameters of runs in plan only: the record pair's incidence angle (degrees) and the
-slab-wall friction coefficient mu_wall (engine.plan.PLAN_PARAMETERS)."""
-LEVEL = Parameter("level", "1", "intensity level: the factor multiplying every record's "
-                  "ground acceleration (times the record's own factor when the sweep is given "
-                  "factors, e.g. a code suite's MCE_R factors)", 1.0, "(0, inf)",
-                  sweep="level", plausible="(0, 50]")
-"""A member's intensity (engine.simulate's scale, divided by its record's factor): swept like
-the angle, the baseline and unconstrained blocks repeated per level. Members carry it only
-when the sweep is given levels or record factors (NaN otherwise: the record as it is)."""
-TORSION_PARAMETERS = {ACCIDENTAL_ECCENTRICITY.sweep: ACCIDENTAL_ECCENTRICITY}
-"""The parameters of a building that twists (its torsion; runs in plan): its accidental
-eccentricity, a fraction of the plan (engine.torsion.shifted). Members carry it only when a
-sweep gives it (NaN otherwise: the building's own eccentricity)."""
-TORSION_PARAMS = tuple(TORSION_PARAMETERS)
-EXCITATION_PARAMETERS = {"level": LEVEL, **PLAN_PARAMETERS, **TORSION_PARAMETERS}
-"""What excites a member beside its record, by sweep name: the intensity level (any run), the
-incidence angle and the wall friction (runs in plan), the accidental eccentricity (a building
-that twists)."""
-EXCITATION_PARAMS = tuple(EXCITATION_PARAMETERS)
-DIMENSIONS = (*EXCITATION_PARAMS, *PARAMS, *ISOLATOR_PARAMS)
-"""Every sweep parameter, in the archive's dimension order (after record): the excitation's,
-the wall's, the isolator's."""
-
-
-def declarations(name: str) -> dict:
-    """Law -> its declaration (engine.parameters.Parameter) of sweep parameter `name`, for
-    every law that takes it: the impact laws (IMPACT_LAWS order) for a wall parameter, the
-    isolator laws for an isolator parameter; {"plan": its declaration} for a parameter of runs
-    in plan (angle, mu_wall); {"excitation": its declaration} for the level."""
-    if name in EXCITATION_PARAMS:
-        return {"plan" if name in PLAN_PARAMS else "excitation": EXCITATION_PARAMETERS[name]}
-    laws = ISOLATOR_LAWS if name in ISOLATOR_PARAMS else {law: LAWS[law] for law in IMPACT_LAWS}
-    return {law: module.PARAMETERS.swept()[name] for law, module in laws.items()
-            if name in module.PARAMETERS.swept()}
-
+from .members import (
+    COLUMNS,
+    DIMENSIONS,
+    EXCITATION,
+    EXCITATION_PARAMETERS,
+    EXCITATION_PARAMS,
+    IMPACT_LAWS,
+    ISOLATOR_PARAMS,
+    LISTED_PARAMS,
+    MEMBER_DTYPE,
+    PARAMS,
+    TORSION_PARAMS,
+    declarations,
+    excitation_carried,
+    names,
+)
 
 CHECK_SLICE = 65_536  # members checked at once by check_dt
-
-LISTED_PARAMS = tuple(dict.fromkeys(
-    p.name for law in IMPACT_LAWS for p in LAWS[law].PARAMETERS.numeric.values()
-    if p.sweep is None and p.name != "m_eff" and isinstance(p.default, float)))
-"""The wall laws' parameters a grid keeps at their defaults and a table of listed members
-(pipeline.listed) may set, by their names in the laws (area, k_r, n, alpha: a bumper of its
-own area, say, in a design search)."""
-
-MEMBER_DTYPE = np.dtype([("law", "U16"),
-                         *((name, "f8") for name in (*PARAMS, "m_eff", *ISOLATOR_PARAMS,
-                                                     *PLAN_PARAMS, "level", *LISTED_PARAMS,
-                                                     *TORSION_PARAMS))])
-"""One member: its wall law's name, the wall's sweep parameters (SI; NaN: unused by the law),
-m_eff kg, the isolator parameters that replace the building's (SI; NaN: the building's own),
-the parameters of a run in plan (angle degrees, mu_wall; NaN: a planar run), its intensity
-level (NaN: the record as it is), the wall law's LISTED_PARAMS (NaN: the law's defaults), the
-accidental eccentricity of a building that twists (NaN: the building's own)."""
 
 # The paper's bare wall, the reference of the amplification ratios (SPEC section 2 decision).
 BASELINE_LAW = "linear"
@@ -226,13 +170,8 @@ def make_grid(gap=None, *, impact: str = "bumper", isolator: str = "bilinear",
     # records carry factors), the angle and friction in plan.
     excitation, excitation_swept = {}, []
     for name, param in EXCITATION_PARAMETERS.items():
-        if name in (*PLAN_PARAMS, *TORSION_PARAMS) and not plan:
-            if given[name] is not None:
-                raise SweepError(f"{name} applies to runs in plan, under record pairs (moat="
-                                 "'rectangular' or 'circular')")
-            continue
-        if (name == "level" and not intensity or name in TORSION_PARAMS) \
-                and given[name] is None:
+        if not excitation_carried(name, given[name] is not None, plan=plan,
+                                  intensity=intensity):
             continue
         array, is_swept = _values(name, param.default if given[name] is None
                                   else given[name])
@@ -345,8 +284,8 @@ def _members_block(prefix: str, law: str, values: dict, swept, m_eff: float) -> 
     dims = tuple(name for name in values if name in swept)
     shape = tuple(values[d].size for d in dims)
     members = np.zeros(math.prod(shape), dtype=MEMBER_DTYPE)
-    for name in (*PARAMS, *ISOLATOR_PARAMS, *EXCITATION_PARAMS, *LISTED_PARAMS):
-        members[name] = np.nan
+    for column in COLUMNS:  # m_eff set below
+        members[column.name] = np.nan
     for name, column in zip(values, mesh, strict=True):
         members[name] = column.ravel()
     members["law"] = law
@@ -461,7 +400,6 @@ def check_dt(grid: Grid, dt: float, building: engine.Building) -> float:
 def describe_member(member) -> str:
     """One member's parameters as text, e.g. 'bumper(gap=0.2, thickness=0.05, ...)'."""
     params = ", ".join(f"{name}={member[name]:g}" for name in
-                       (*EXCITATION_PARAMS, *PARAMS, "m_eff", *ISOLATOR_PARAMS,
-                        *LISTED_PARAMS)
+                       names(*EXCITATION, "wall", "mass", "isolator", "listed")
                        if not np.isnan(member[name]))
     return f"{member['law']}({params})"

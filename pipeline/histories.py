@@ -34,7 +34,6 @@ from engine.impact import M_EFF
 from engine.results import HISTORIES, HISTORY_NAMES
 
 from .archive import (
-    derived_variables,
     labelled_dataset,
     level_coords,
     parameter_meta,
@@ -43,20 +42,21 @@ from .archive import (
     record_coords,
     variable,
 )
+from .assess.sweep_variables import derived_variables
 from .building_file import check_building
 from .checks import check_count, resolve_records
 from .errors import SweepError
-from .execute.progress import Progress
 from .grid import (
-    IMPACT_LAWS,
     NO_WALL,
-    PARAMS,
+    Block,
     Grid,
     check_dt,
     contact_for,
     describe_member,
     make_grid,
 )
+from .members import IMPACT_LAWS, PARAMS
+from .progress import Progress
 from .provenance import (
     arguments_attribute,
     common_attributes,
@@ -99,11 +99,9 @@ def histories(record, configurations: Mapping[str, Mapping], dt: float | None = 
     SweepError, naming the parameter, before any simulation runs.
     """
     m_eff = M_EFF.default if m_eff is None else m_eff
-    names, grids = _configurations(configurations, m_eff)
+    names, grid = configuration_grid(configurations, m_eff)
     building = check_building(building)
-    dt = engine.DEFAULT_DT if dt is None else dt
-    for grid in grids:
-        dt = check_dt(grid, dt, building)
+    dt = check_dt(grid, engine.DEFAULT_DT if dt is None else dt, building)
     every = check_count("every", every, minimum=1)
     recs, rec_names = resolve_records(record, records_dir)
     if len(recs) != 1:
@@ -112,8 +110,7 @@ def histories(record, configurations: Mapping[str, Mapping], dt: float | None = 
     if duration is not None:
         rec = segment(rec, duration)
 
-    members = np.concatenate([grid.members for grid in grids])
-    contact = contact_for(members)
+    contact = contact_for(grid.members)
     size = len(names)
     progress = Progress(size, quiet=quiet)
     result = engine.simulate(rec.accel, rec.dt, contact, building=building, dt=dt,
@@ -124,7 +121,7 @@ def histories(record, configurations: Mapping[str, Mapping], dt: float | None = 
 
     arguments = plain({"record": rec_name, "configurations": _given(configurations), "dt": dt,
                        "every": every, "m_eff": m_eff, "duration": duration})
-    return _dataset(names, grids, members, contact, rec, rec_name, result, dt, every, building,
+    return _dataset(names, grid, contact, rec, rec_name, result, dt, every, building,
                     m_eff, duration, arguments)
 
 
@@ -223,8 +220,11 @@ def segment(record, duration: float):
                                note=(note + " " if note else "") + f"Segment: {what} only.")
 
 
-def _configurations(configurations, m_eff) -> tuple[list[str], list[Grid]]:
-    """Validate the configurations; one single-member Grid each (pipeline.grid rules)."""
+def configuration_grid(configurations, m_eff) -> tuple[list[str], Grid]:
+    """Validate the named configurations (each by pipeline.grid's rules, as a single-member
+    grid); their names and the members as one Grid, as a sweep's and a listed table's are
+    (one block along `configuration`, in the order given; its impact names every law it runs,
+    space-separated, as they first appear)."""
     if not isinstance(configurations, Mapping) or not configurations:
         raise SweepError("configurations must be a non-empty dict: name -> parameters")
     names, grids = [], []
@@ -260,14 +260,17 @@ def _configurations(configurations, m_eff) -> tuple[list[str], list[Grid]]:
             raise SweepError(f"configurations[{name!r}]: {err}") from None
         names.append(name)
         grids.append(grid)
-    return names, grids
+    members = np.concatenate([grid.members for grid in grids])
+    laws = " ".join(dict.fromkeys(grid.impact for grid in grids))
+    block = Block("", ("configuration",), (members.size,), members)
+    return names, Grid(laws, {}, {}, (block,), float(m_eff))
 
 
 def _given(configurations) -> dict:
     return {name: dict(config) for name, config in configurations.items()}
 
 
-def _dataset(names, grids, members, contact, rec, rec_name, result, dt, every, building,
+def _dataset(names, grid, contact, rec, rec_name, result, dt, every, building,
              m_eff, duration, arguments) -> xr.Dataset:
     hist = result.history
     config = "configuration"
@@ -275,7 +278,8 @@ def _dataset(names, grids, members, contact, rec, rec_name, result, dt, every, b
                  for q in HISTORIES}
     data_vars.update(peak_variables(result.peaks(), (config,)))
 
-    laws = [grid.impact for grid in grids]
+    members = grid.members
+    laws = [str(law) for law in members["law"]]  # each configuration's
     # One record: its coordinates are scalars (xr.concat over records stacks them).
     coords = {key: var[0] for key, var in record_coords([rec], [rec_name]).items()}
     coords.update(level_coords(building.n_levels))

@@ -9,9 +9,9 @@ but a table, the same for every record or one per record.
 A design search's candidates (bumpers of different thickness, count and wall), or gaps that
 depend on each record (the plan study's fractions of each record's own peak), are such tables.
 Column "law" names each member's wall law (engine.impact.LAWS, or "none" for no wall); every
-other column is a sweep parameter (pipeline.grid.DIMENSIONS: the wall's, the excitation's
+other column is a sweep parameter (pipeline.members.DIMENSIONS: the wall's, the excitation's
 level, angle and mu_wall), a law's parameter that grids keep at its default
-(pipeline.grid.LISTED_PARAMS: a bumper's area, say) or m_eff, in SI units. A column is (K,),
+(pipeline.members.LISTED_PARAMS: a bumper's area, say) or m_eff, in SI units. A column is (K,),
 the same for every record,
 or (R, K), one row per record (the records' order). NaN where a member's law does not take the
 parameter; a parameter its law takes and the table leaves out (or NaN) takes the law's
@@ -31,20 +31,21 @@ from engine.impact import LAWS, M_EFF, NO_WALL
 
 from .checks import checked_values, plausible
 from .errors import SweepError
-from .grid import (
+from .grid import Block, Grid
+from .members import (
+    EXCITATION,
     EXCITATION_PARAMETERS,
     EXCITATION_PARAMS,
     LISTED_PARAMS,
     MEMBER_DTYPE,
     PARAMS,
-    PLAN_PARAMS,
-    TORSION_PARAMS,
-    Block,
-    Grid,
+    excitation_carried,
+    names,
 )
 
-COLUMNS = ("law", *EXCITATION_PARAMS, *PARAMS, *LISTED_PARAMS, "m_eff")
-"""What a table of members may hold."""
+TABLE_COLUMNS = ("law", *names(*EXCITATION, "wall", "listed", "mass"))
+"""What a table of members may hold: the law's name and the members' numbers
+(pipeline.grid.COLUMNS) but the isolator's."""
 
 
 def listed_grid(table: Mapping, *, isolator: str = "bilinear", plan: bool = False,
@@ -55,17 +56,17 @@ def listed_grid(table: Mapping, *, isolator: str = "bilinear", plan: bool = Fals
     if not isinstance(table, Mapping) or "law" not in table:
         raise SweepError("members must be a table: a dict of columns with 'law' (the wall law "
                          "of each member) and the parameters by name")
-    unknown = [name for name in table if name not in COLUMNS]
+    unknown = [name for name in table if name not in TABLE_COLUMNS]
     if unknown:
         raise SweepError(f"members: {unknown[0]!r} is no member column; the columns are "
-                         f"{', '.join(COLUMNS)}")
+                         f"{', '.join(TABLE_COLUMNS)}")
     laws = np.asarray(table["law"], dtype=str)
     if laws.ndim not in (1, 2) or laws.size == 0:
         raise SweepError(f"members: law must be (K,) or (R, K) names, got shape {laws.shape}")
     columns = {name: _column(name, table[name], laws.shape) for name in table if name != "law"}
     shape = np.broadcast_shapes(laws.shape, *(c.shape for c in columns.values()))
     rows = np.zeros(shape, dtype=MEMBER_DTYPE)
-    for name in MEMBER_DTYPE.names[1:]:
+    for name in MEMBER_DTYPE.names[1:]:  # every number; the law's name set below
         rows[name] = np.nan
     rows["law"] = np.broadcast_to(laws, shape)
     rows["m_eff"] = M_EFF.default
@@ -153,14 +154,12 @@ def _excitation(rows: np.ndarray, plan: bool, intensity: bool) -> None:
     for name, param in EXCITATION_PARAMETERS.items():
         values = rows[name]
         given = ~np.isnan(values)
-        if name in (*PLAN_PARAMS, *TORSION_PARAMS) and not plan:
-            if np.any(given):
-                raise SweepError(f"members: {name} applies to runs in plan, under record "
-                                 "pairs (moat='rectangular' or 'circular')")
-            continue
-        if (name == "level" and not intensity or name in TORSION_PARAMS) \
-                and not np.any(given):
-            continue
+        try:
+            if not excitation_carried(name, bool(np.any(given)), plan=plan,
+                                      intensity=intensity):
+                continue
+        except SweepError as err:
+            raise SweepError(f"members: {err}") from None
         values = np.where(given, values, param.default)
         plausible(name, param, checked_values(param, values, name))
         rows[name] = values

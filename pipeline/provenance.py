@@ -29,7 +29,8 @@ import numpy as np
 import engine
 from engine.impact import LAWS
 
-from .grid import BASELINE, BASELINE_LAW, ISOLATOR_PARAMS, Grid, baseline_text
+from .grid import BASELINE, BASELINE_LAW, Grid, baseline_text
+from .members import ISOLATOR_PARAMS
 from .records.record import samples_digest
 
 ARCHIVE_VERSION = "1"

@@ -152,7 +152,8 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
     quantities."""
     from pipeline.archive import labelled_dataset, variable
     from pipeline.assess.validity import Limits, any_flag, code_story_capacity, flags_of
-    from pipeline.motions.code_suite import archive_variables, describe
+    from pipeline.motions.code_suite import describe
+    from pipeline.suite_labels import archive_variables
 
     building = suite.building
     n_b, n_g = 2 + len(counts), gaps.size

@@ -23,8 +23,8 @@ from engine import DEFAULT_DT
 from engine.impact import M_EFF
 from engine.units import CM, KN_PER_MM
 from pipeline.cluster import add_tls_options
-from pipeline.grid import (
-    BASELINE,
+from pipeline.grid import BASELINE
+from pipeline.members import (
     EXCITATION_PARAMS,
     IMPACT_LAWS,
     ISOLATOR_PARAMS,
@@ -83,7 +83,7 @@ def paper_unit(name: str):
 
 
 def add_parameters(p: argparse.ArgumentParser) -> None:
-    """One option per sweep parameter (pipeline.grid.PARAMS, ISOLATOR_PARAMS and
+    """One option per sweep parameter (pipeline.members.PARAMS, ISOLATOR_PARAMS and
     EXCITATION_PARAMS, from their declarations), with a paper-unit variant (-cm, -kn-mm) where
     one applies."""
     isolator = p.add_argument_group(

@@ -1,5 +1,6 @@
-"""The code's layout, kept true: data flows one way (engine <- pipeline <- studies), no import
-circle (imports inside functions counted), no private name imported from another module, no
+"""The code's layout, kept true: data flows one way (engine <- pipeline <- studies), and inside
+pipeline/ through its packages in order (PIPELINE_LEVELS), no import circle (imports inside
+functions counted), no private name imported from another module, no
 constant written twice, no module over 500 lines, and the map of the code in docs/model.md the
 one the packages' docstrings give (tools/code_map.py writes it)."""
 import ast
@@ -70,6 +71,63 @@ def test_data_flows_one_way():
              for line, target, _ in edges
              if order[target.split(".")[0]] > order[name.split(".")[0]]]
     assert not wrong, "\n".join(wrong)
+
+
+PIPELINE_LEVELS = (
+    ("records and the shared leaves", ("pipeline.records", "pipeline.errors", "pipeline.checks",
+                                       "pipeline.writing", "pipeline.building_file",
+                                       "pipeline.progress")),
+    ("motions", ("pipeline.motions",)),
+    ("grid and execute", ("pipeline.members", "pipeline.grid", "pipeline.listed",
+                          "pipeline.provenance", "pipeline.cluster", "pipeline.execute")),
+    ("archive", ("pipeline.archive", "pipeline.suite_labels",
+                 # the stores write the archive (its labels given what assess computes)
+                 "pipeline.execute.netcdf_store", "pipeline.execute.zarr_store")),
+    ("assess", ("pipeline.assess",)),
+    ("orchestration", ("pipeline", "pipeline.orchestration", "pipeline.histories")),
+)
+"""The packages of pipeline/ in the order data flows through them, level by level: a module
+imports only from its own level or those before it (what a result means, assess, never reaches
+back into the motions; the archive labels what assess computes without importing it). A
+module is placed by its longest entry (a package's entry places its modules, the package
+`pipeline` itself only its own face)."""
+
+
+def pipeline_level(name: str) -> tuple[int, str]:
+    """(rank, level name) of pipeline module `name` in PIPELINE_LEVELS; (-1, "") when no entry
+    places it."""
+    found = [(len(entry), rank, level) for rank, (level, entries) in enumerate(PIPELINE_LEVELS)
+             for entry in entries
+             if name == entry or (entry != "pipeline" and name.startswith(entry + "."))]
+    if not found:
+        return -1, ""
+    _, rank, level = max(found)
+    return rank, level
+
+
+def test_every_pipeline_module_has_a_level():
+    unplaced = [name for name in MODULES
+                if name.split(".")[0] == "pipeline" and pipeline_level(name)[0] < 0]
+    assert not unplaced, ("pipeline modules missing from PIPELINE_LEVELS (place each at the "
+                          "level of what it holds): " + ", ".join(unplaced))
+
+
+def test_pipeline_packages_import_in_order():
+    wrong = []
+    for name, edges in EDGES.items():
+        if name.split(".")[0] != "pipeline":
+            continue
+        rank, level = pipeline_level(name)
+        for line, target, _ in edges:
+            if target.split(".")[0] != "pipeline":
+                continue
+            target_rank, target_level = pipeline_level(target)
+            if target_rank > rank:
+                wrong.append(f"{name}:{line} ({level}) imports {target} ({target_level}), a "
+                             "later level")
+    assert not wrong, ("pipeline's order is " + " -> ".join(level for level, _ in
+                                                         PIPELINE_LEVELS) + "\n"
+                       + "\n".join(wrong))
 
 
 def test_no_import_circle():

@@ -28,8 +28,17 @@ from dataclasses import dataclass
 import numpy as np
 
 
+def labelled(values) -> bool:
+    """Whether `values` is a labelled array (an xarray DataArray: an archive's variable, lazy
+    when the archive is), which the responses keep as it is instead of reading into NumPy."""
+    return hasattr(values, "dims") and hasattr(values, "variable")
+
+
 def largest_floor_accel(peak_total_accel) -> np.ndarray:
-    """(...,) m/s^2: the largest of peak_total_accel (..., levels) m/s^2 over its levels."""
+    """(...,) m/s^2: the largest of peak_total_accel (..., levels) m/s^2 over its levels (a
+    labelled array: over its `floor` dimension, lazily when it is lazy)."""
+    if labelled(peak_total_accel):
+        return peak_total_accel.max("floor")
     return np.asarray(peak_total_accel).max(axis=-1)
 
 
@@ -40,9 +49,11 @@ def largest_story_drift(peak_interstory_drift) -> np.ndarray:
 
 def bumper_stress(max_impact_force, n_bumpers, area) -> np.ndarray:
     """Mean contact stress (Pa) on each bumper at the largest impact force (N): force / (n A),
-    n bumpers of contact area A (m^2) sharing it. Broadcast over arrays."""
-    return np.asarray(max_impact_force, float) / (np.asarray(n_bumpers, float)
-                                                 * np.asarray(area, float))
+    n bumpers of contact area A (m^2) sharing it. Broadcast over arrays (labelled arrays
+    stay labelled, and lazy when they are)."""
+    force, n, a = (x if labelled(x) else np.asarray(x, float)
+                   for x in (max_impact_force, n_bumpers, area))
+    return force / (n * a)
 
 
 def crushed(max_indentation, delta_u) -> np.ndarray:

@@ -1,13 +1,18 @@
 """Fragility fits from what the runs say: per-record boolean outcomes over intensity levels
-(`fit_outcomes`, stripes or IDA, through pipeline.assess.fragility's fits) and the record weights
-that keep one earthquake from dominating them (`event_weights`). Pure functions of arrays."""
+(`fit_outcomes`, stripes or IDA, through pipeline.assess.fragility's fits), weighted by the
+records' weights that keep one earthquake from dominating them (`event_weights`, declared in
+pipeline.motions.weights with the suites that carry them). Pure functions of arrays."""
 from __future__ import annotations
 
 from dataclasses import replace
 
 import numpy as np
 
+from pipeline.motions.weights import event_weights
+
 from .fragility import Fragility, fit_ida, fit_stripes
+
+__all__ = ["bootstrap", "event_weights", "fit_outcomes"]
 
 
 def fit_outcomes(levels, outcomes, weights=None, method: str = "stripes") -> Fragility:
@@ -77,24 +82,6 @@ def _fit_outcomes_ida(x, hit, ran, w) -> Fragility:
     cap = np.where(cens, x[last_run], x[first])
     fit = fit_ida(cap[any_run], w[any_run], censored=cens[any_run], min_level=x[0])
     return replace(fit, n_levels=int(x.size))
-
-
-def event_weights(event_ids) -> np.ndarray:
-    """(R,) record weights so that every earthquake counts equally, from event_ids (R,) (any
-    hashable labels, e.g. earthquake names or ids; records of one earthquake share one).
-
-    w_i = 1 / (records sharing record i's earthquake), normalised to sum to R: each of the E
-    earthquakes weighs R / E in total, and the weights keep the scale of unit weights (the
-    counts of fit_stripes stay comparable to numbers of records). FEMA P695 limits its record
-    sets to two records per earthquake so that no event dominates; weighting keeps all the
-    records instead. The fits are then weighted pseudo-likelihoods (see fit_stripes).
-    """
-    ids = np.asarray(event_ids)
-    if ids.ndim != 1:
-        raise ValueError(f"event_ids must be 1-D, got shape {ids.shape}")
-    _, inverse, counts = np.unique(ids, return_inverse=True, return_counts=True)
-    w = 1.0 / counts[inverse.ravel()]
-    return w * (ids.size / np.sum(w))
 
 
 BOOTSTRAP_QUANTILES = (0.05, 0.95)

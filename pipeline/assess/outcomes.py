@@ -94,7 +94,7 @@ def where_contact(impacts_with, impacts_without) -> np.ndarray:
 
 
 def tally(effects, counted, weights=None) -> dict:
-    """Counts (weighted if given: e.g. pipeline.assess.fragility.event_weights per record) of
+    """Counts (weighted if given: e.g. pipeline.motions.weights.event_weights per record) of
     helped,
     neutral and hurt among the counted points, with their total and the points not counted
     ("no contact")."""
@@ -217,7 +217,7 @@ def count(quantifier: str, holds, applies, changed=None, weights=None, events=No
         if events is None:
             weights = np.ones(n_pairs)
         else:
-            from .fragility_outcomes import event_weights
+            from pipeline.motions.weights import event_weights
 
             weights = event_weights(np.asarray(events))
     w = np.broadcast_to(np.asarray(weights, float), (n_pairs,))

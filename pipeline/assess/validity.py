@@ -101,6 +101,25 @@ class Limits:
         return "; ".join(parts)
 
 
+def floor_accel_exceeds(largest_floor_accel, limit: float = ACCEL_LIMIT):
+    """The rule of invalid_floor_accel: the largest floor acceleration (m/s^2, any shape;
+    derived.largest_floor_accel) above the rigid-floor model's limit (m/s^2)."""
+    return largest_floor_accel > limit
+
+
+def bumper_stress_exceeds(stress, limit: float = RUBBER_STRESS_LIMIT):
+    """The rule of invalid_bumper_stress: the bumpers' (or a pad's) mean contact stress (Pa,
+    any shape; derived.bumper_stress) above the rubber's limit (Pa)."""
+    return stress > limit
+
+
+def bumper_strain_exceeds(max_indentation, thickness, limit: float = RUBBER_STRAIN_LIMIT):
+    """The rule of invalid_bumper_strain: the peak indentation (m) beyond `limit` (-) times
+    the bumpers' thickness (m), as `crushed` compares with delta_u = strain t (broadcast;
+    thickness inf where a member has no bumpers)."""
+    return max_indentation > limit * thickness
+
+
 FLAGS = {
     "invalid_bumper_stress": "the bumpers' contact stress exceeds the rubber's limit",
     "invalid_bumper_strain": "the bumpers' peak strain exceeds the rubber's calibration",
@@ -128,18 +147,18 @@ def flags(peak_total_accel, peak_interstory_drift, max_impact_force, story_k, li
     """
     accel = np.asarray(peak_total_accel, float)
     force = np.asarray(max_impact_force, float)
-    out = {"invalid_floor_accel": largest_floor_accel(accel) > limits.floor_accel}
+    out = {"invalid_floor_accel": floor_accel_exceeds(largest_floor_accel(accel),
+                                                      limits.floor_accel)}
     if n_bumpers is None:
         out["invalid_bumper_stress"] = np.zeros(force.shape, dtype=bool)
     else:
-        out["invalid_bumper_stress"] = bumper_stress(force, n_bumpers, area) \
-            > limits.bumper_stress
+        out["invalid_bumper_stress"] = bumper_stress_exceeds(
+            bumper_stress(force, n_bumpers, area), limits.bumper_stress)
     if n_bumpers is None or max_indentation is None or thickness is None:
         out["invalid_bumper_strain"] = np.zeros(force.shape, dtype=bool)
     else:
-        # indentation > strain x t, as `crushed` compares with delta_u = strain t
-        strained = np.asarray(max_indentation, float) \
-            > limits.bumper_strain * np.asarray(thickness, float)
+        strained = bumper_strain_exceeds(np.asarray(max_indentation, float),
+                                         np.asarray(thickness, float), limits.bumper_strain)
         out["invalid_bumper_strain"] = np.broadcast_to(
             strained & np.isfinite(np.asarray(n_bumpers, float)), force.shape).copy()
     shear = np.asarray(peak_interstory_drift, float) * np.asarray(story_k, float)

@@ -1,7 +1,7 @@
 """Running a sweep's simulations: one executor, two stores.
 
 executor.py runs batches (batches.py: one engine call each) in this process or on dask
-(dask_client.py), with a progress line (progress.py) and Ctrl-C turned into
+(dask_client.py), with a progress line (pipeline.progress) and Ctrl-C turned into
 pipeline.errors.Interrupted. Where the results go is a store's business, behind one small
 interface (executor.Store): netcdf_store.py gathers peaks here, keeps finished batches in a
 resumable work folder and writes one NetCDF archive at the end; zarr_store.py has workers

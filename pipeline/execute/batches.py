@@ -8,9 +8,9 @@ from dataclasses import dataclass
 import numpy as np
 
 import engine
-from engine.results import run_quantities
 
 from ..grid import buildings_for, contact_for
+from .run import run_model
 
 
 @dataclass(frozen=True)
@@ -34,15 +34,15 @@ def simulate_batch(accel: np.ndarray, accel_dt: float, members: np.ndarray,
                    building: engine.Building, dt: float, moat: str | None = None,
                    factor: float | None = None, bumper_positions=None, progress=None,
                    report: tuple[str, str] | None = None) -> dict[str, np.ndarray]:
-    """Peaks of (b,) members (grid.MEMBER_DTYPE) under one record (m/s^2 every accel_dt s):
-    peak name -> (b, ...) array (engine.results.run_quantities: PEAKS, with collapsed and
-    collapse_time for a building that can collapse). building: the sweep's; a member's
-    isolator parameters replace its own (grid.buildings_for). moat: None for a planar run
-    (accel (N,)), else the moat of a run in plan under a record pair (accel (N, 2), each
-    member at its angle): PEAKS as resultants, then PLAN_PEAKS. factor: the record's
-    intensity factor (None: 1); members carrying a level run at factor x level (engine's
-    scale), those without (NaN) at the record as it is. A building that twists (its
-    torsion) adds TORSION_PEAKS, its bumpers at bumper_positions (engine.simulate's).
+    """Peaks of (b,) members (members.MEMBER_DTYPE) under one record (m/s^2 every accel_dt s):
+    peak name -> (b, ...) array, the run's model's quantities (engine.model.Model.quantities:
+    its peaks, with collapsed and collapse_time for a building that can collapse). building:
+    the sweep's; a member's isolator parameters replace its own (grid.buildings_for). moat:
+    None for a planar run (accel (N,)), else the moat of a run in plan under a record pair
+    (accel (N, 2), each member at its angle): PEAKS as resultants, then PLAN_PEAKS (and
+    TORSION_PEAKS for a building that twists, its bumpers at bumper_positions). factor: the
+    record's intensity factor (None: 1); members carrying a level run at factor x level
+    (engine's scale), those without (NaN) at the record as it is.
 
     progress(step, n_steps) is called as the engine goes; on a dask worker, report =
     (topic, tag) sends [tag, step / n_steps] to the client's event topic instead.
@@ -55,10 +55,11 @@ def simulate_batch(accel: np.ndarray, accel_dt: float, members: np.ndarray,
         def progress(step, n_steps):
             worker.log_event(topic, [tag, step / n_steps])
 
-    twists = building.twists
-    plan = {} if moat is None else {
+    model = run_model(moat, building)
+    plan = {} if not model.in_plan else {
         "moat": engine.Moat(moat, mu_wall=members["mu_wall"],
-                            bumper_positions=bumper_positions if twists else None),
+                            bumper_positions=bumper_positions
+                            if model.takes("bumper_positions") else None),
         "angle": members["angle"]}
     result = engine.simulate(accel, accel_dt, contact_for(members),
                              building=buildings_for(members, building), dt=dt,
@@ -72,7 +73,7 @@ def simulate_batch(accel: np.ndarray, accel_dt: float, members: np.ndarray,
             f"(its state was no longer finite); give the building a collapse_drift_ratio to "
             f"count such runs as collapses")
     return {q.name: np.asarray(getattr(result, q.name), dtype=q.dtype)
-            for q in run_quantities(moat, building.can_collapse, twists)}
+            for q in model.quantities(building.can_collapse)}
 
 
 def member_scale(members: np.ndarray, factor: float | None) -> np.ndarray | None:

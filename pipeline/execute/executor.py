@@ -37,9 +37,9 @@ from typing import Protocol
 import numpy as np
 
 from ..errors import Interrupted
+from ..progress import Progress
 from .batches import Batch, record_batch_sizes
 from .dask_client import client, silence_dask
-from .progress import Progress
 
 # A batch that raises is run again this many times before its error reaches the user: it is a
 # pure function of its inputs, so a retry gives the same numbers, and an error with a lasting

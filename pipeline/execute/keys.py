@@ -1,6 +1,6 @@
 """Every key of a resumable run, made here and nowhere else.
 
-- context_key: what besides a member's own record (grid.MEMBER_DTYPE) decides its result: the
+- context_key: what besides a member's own record (members.MEMBER_DTYPE) decides its result: the
   record's content and intensity factor, dt, the building, the moat in plan, the engine (its
   fingerprint) and CACHE_FORMAT;
 - batch_key: one batch of members under one context (a work folder's file name; NetCDF);

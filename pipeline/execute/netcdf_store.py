@@ -3,7 +3,7 @@ finished batches kept meanwhile in a work folder, so that a run can resume.
 
 Workers return peak arrays and this process alone writes them (no races on shared files).
 Finished batches are kept in the work folder as .npz files holding their context key and
-members (grid.MEMBER_DTYPE) with their peaks, so a killed sweep rerun with the same arguments
+members (members.MEMBER_DTYPE) with their peaks, so a killed sweep rerun with the same arguments
 computes only the members it is missing. Every member is looked up by its context key and its
 member record (pipeline.execute.keys): batch sizes and worker counts may change between runs.
 """
@@ -21,7 +21,7 @@ from engine.results import empty_peaks
 
 from ..archive import build_dataset, write_netcdf
 from ..errors import SweepError
-from ..grid import MEMBER_DTYPE
+from ..members import MEMBER_DTYPE
 from ..writing import KEY_ATTRIBUTE, check_writable_folder
 from . import batches
 from .keys import batch_key, sweep_key
@@ -132,11 +132,13 @@ class NetCDFStore:
     path, or None (the Dataset is only returned); work_dir: the work folder (None: `<out>.work`
     when out is given, removed once out is written; an explicit one is kept, and may be shared
     by several sweeps; no out and no work_dir: nothing is kept). key: the sweep's resume key
-    (keys.sweep_key), stored as the archive's configuration_key.
+    (keys.sweep_key), stored as the archive's configuration_key. derive: what the peaks mean,
+    added to the archive (pipeline.archive.build_dataset's; None: peaks only).
     """
 
-    def __init__(self, grid, run, out=None, work_dir=None):
+    def __init__(self, grid, run, out=None, work_dir=None, derive=None):
         self.grid, self.run, self.records, self.out = grid, run, run.records, out
+        self.derive = derive
         self.own_work_dir = work_dir is None and out is not None
         if self.own_work_dir:
             work_dir = out.with_name(out.name + ".work")
@@ -200,7 +202,7 @@ class NetCDFStore:
 
     def finish(self):
         """The labelled Dataset, written to out when given (the own work folder then goes)."""
-        ds = build_dataset(self.grid, self.run, self.results)
+        ds = build_dataset(self.grid, self.run, self.results, derive=self.derive)
         ds.attrs[KEY_ATTRIBUTE] = self.key
         if self.out is not None:
             write_netcdf(ds, self.out)

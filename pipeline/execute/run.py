@@ -10,6 +10,27 @@ import numpy as np
 from .keys import context_key
 
 
+def run_model(moat: str | None, building):
+    """The run's model (engine.model: planar, plan, twisting), derived once from a sweep's
+    moat (None: planar, one record component) and its building (a torsion component: it
+    twists); SweepError quoting engine.model.SUPPORTS for a moat the model does not take."""
+    from engine.errors import EngineError
+    from engine.model import TWISTING, model_of
+
+    from ..errors import SweepError
+
+    if moat is None and building.twists:
+        raise SweepError(f"a building that twists runs in plan ({TWISTING.meaning}): give "
+                         "moat='rectangular' (--moat rectangular) and record pairs")
+    model = model_of(1 if moat is None else 2, building.twists)
+    try:
+        if moat is not None:
+            model.check("moat", moat)
+    except EngineError as err:
+        raise SweepError(str(err)) from None
+    return model
+
+
 @dataclass(frozen=True)
 class Run:
     """records: the Record objects run (RecordPair in plan); names (R,): their labels in the
@@ -28,6 +49,11 @@ class Run:
     factors: np.ndarray | None = None
     arguments: dict = field(default_factory=dict)
     bumper_positions: tuple | None = None
+
+    @property
+    def model(self):
+        """The run's model (engine.model.Model; run_model)."""
+        return run_model(self.moat, self.building)
 
     def factor(self, r: int) -> float | None:
         """Record r's intensity factor (None: the record as it is)."""

@@ -116,12 +116,12 @@ def write_template(path: Path, grid, run, key, n_batches: int, target: int) -> N
     zarr.open_group(str(path), mode="r+")["batch_done"][:] = 0
 
 
-def write_batch(accel, accel_dt, members, building, dt, path: str, prefix: str, region,
-                index: int, moat: str | None = None, factor: float | None = None,
+def write_batch(accel, accel_dt, members, building, dt, path: str, place: Region,
+                moat: str | None = None, factor: float | None = None,
                 bumper_positions=None, progress=None, report=None) -> int:
     """A worker's task: simulate one batch (batches.simulate_batch; in plan under a record
     pair when `moat` is given, at the record's intensity factor) and write its peaks into its
-    chunk region, then mark it done; returns its size."""
+    chunk region `place` of the store at `path`, then mark it done; returns its size."""
     import zarr
 
     peaks = batches.simulate_batch(accel, accel_dt, members, building, dt, moat=moat,
@@ -129,10 +129,10 @@ def write_batch(accel, accel_dt, members, building, dt, path: str, prefix: str, 
                                    bumper_positions=bumper_positions)
     group = zarr.open_group(path, mode="r+")
     for name, values in peaks.items():
-        target = group[prefix + name]
-        shape = tuple(s.stop - s.start for s in region) + values.shape[1:]
-        target[region] = values.reshape(shape)
-    group["batch_done"][index] = 1
+        target = group[place.prefix + name]
+        shape = tuple(s.stop - s.start for s in place.region) + values.shape[1:]
+        target[place.region] = values.reshape(shape)
+    group["batch_done"][place.index] = 1
     return members.size
 
 
@@ -142,16 +142,19 @@ class ZarrStore:
     sweep (SweepError when it holds another); `finish` completes it and opens it lazily.
 
     batch_size: members per chunk (at most TARGET_CHUNK) of a new store; a store being resumed
-    keeps its own chunks.
+    keeps its own chunks. derive: what the peaks mean, added by `finish` (as
+    pipeline.archive.build_dataset's; None: peaks only).
     """
 
-    def __init__(self, grid, run, out: Path, batch_size: int, force: bool = False):
+    def __init__(self, grid, run, out: Path, batch_size: int, force: bool = False,
+                 derive=None):
         import shutil
 
         import zarr
 
         self.grid, self.run, self.records = grid, run, run.records
         self.out = self.kept_in = out
+        self.derive = derive
         self.total = len(run.records) * grid.n_members
         self.key = sweep_key(grid.every_member, run.contexts())
         target = max(1, min(batch_size, TARGET_CHUNK))
@@ -189,8 +192,8 @@ class ZarrStore:
         r, run = batch.place, self.run
         return write_batch, (self.records[batch.record].dt,
                              self.grid.members_of(batch.record)[batch.members],
-                             run.building, run.dt, str(self.out), r.prefix, r.region,
-                             r.index, run.moat, run.factor(batch.record),
+                             run.building, run.dt, str(self.out), r, run.moat,
+                             run.factor(batch.record),
                              run.bumper_positions)
 
     def accept(self, batch: batches.Batch, size: int) -> None:
@@ -202,11 +205,10 @@ class ZarrStore:
         import xarray as xr
         import zarr
 
-        from ..archive import derived_variables
-
         ds = xr.open_zarr(self.out, consolidated=False)
-        derived = {name: pair for name, pair in
-                   derived_variables(ds, self.run.building, self.grid).items() if name not in ds}
+        derived = {} if self.derive is None else {
+            name: pair for name, pair in self.derive(ds, self.run.building, self.grid).items()
+            if name not in ds}
         if derived:
             variables = {}
             for name, (value, peak) in derived.items():

@@ -1,6 +1,6 @@
 """Record pairs at code intensities, shared by the studies beyond the paper (fragility, suite,
 design): a site's target spectrum, the isolated building's code quantities, and the pairs
-scaled by a code's rule, with the archive variables that say how.
+scaled by a code's rule (pipeline.suite_labels: the archive variables that say how).
 
 The default site is a high-seismicity one: S_MS = 1.5 g, S_M1 = 0.9 g, T_L = 8 s (ASCE 7's
 two-period spectrum, e.g. site class D in coastal California; any site by --sms-g, --sm1-g,
@@ -18,7 +18,7 @@ T_M), "p695" (FEMA P695: PGV normalisation, the median anchored at T_M) and "dis
 option, labelled as removing the record-to-record scatter).
 
 Pairs that share an earthquake are weighted 1 / (their number) in every statistic
-(pipeline.assess.fragility.event_weights): no event dominates, every pair still runs.
+(pipeline.motions.weights.event_weights): no event dominates, every pair still runs.
 
 The building's code quantities are its design basis (pipeline.motions.bounds): T_M, D_M, D_TM
 from the isolators' hysteresis (the model's isolation dashpot shown beside, not counted) at
@@ -96,9 +96,9 @@ def code_suite(pairs, names, building, rule: str = DEFAULT_RULE, s_ms: float = S
     docstring), for the building (engine.Building, at nominal properties) run at `bound`
     (pipeline.motions.bounds.BOUND_NAMES; factors: its PropertyFactors, default the module's).
     Pairs the rule excludes (factor limits) are dropped and listed in .scaled.excluded."""
-    from pipeline.assess.fragility_outcomes import event_weights
-    from pipeline.motions.bounds import design_basis
-    from pipeline.motions.target import asce7_target
+    from .bounds import design_basis
+    from .target import asce7_target
+    from .weights import event_weights
 
     scaling = scaling_rules.rule(rule)  # ValueError listing the rules for another name
     # D_M and T_M from the isolators' hysteresis at each bound (ASCE 7-22 17.2.8.4, 17.5.3):
@@ -112,48 +112,6 @@ def code_suite(pairs, names, building, rule: str = DEFAULT_RULE, s_ms: float = S
     events = [str(p.event) for p in pairs]
     return CodeSuite(pairs, names, kept, event_weights(events), events, target, basis.design,
                      scaled, rule, {"s_ms": s_ms, "s_m1": s_m1, "t_long": t_long}, basis)
-
-
-def archive_variables(suite: CodeSuite) -> tuple[dict, dict, dict]:
-    """(data variables, coordinates, attributes) saying how the suite was scaled: each
-    record's MCE_R factor and weight, the target and the suite's scaled spectrum over
-    `period`, the rule, its clause and period range, the building's T_M, D_M, D_TM at the
-    bound run (and at every bound, with the dashpot beside: DesignBasis.attributes)."""
-    from pipeline.archive import variable
-
-    data = {
-        "scale_factor": variable("record", suite.factors, "1",
-                                 "the pair's factor at the MCE_R (both components)"),
-        "record_weight": variable("record", suite.weights, "1",
-                                  "1 / the number of pairs of the same earthquake, normalised "
-                                  "to sum to the number of pairs (no event dominates)"),
-    }
-    coords = {"record_event": variable("record", np.array(suite.events), "1",
-                                       "the pair's earthquake")}
-    attrs = {"scaling_rule": suite.rule, "scaling_rule_text": RULE_TEXT[suite.rule],
-             "target": suite.target.source, "T_M": suite.design.t_m,
-             "D_M": suite.design.d_m, "D_TM": suite.design.d_tm,
-             "beta_M": suite.design.beta_m, "S_MS_g": suite.site["s_ms"],
-             "S_M1_g": suite.site["s_m1"], "T_L": suite.site["t_long"],
-             "levels": ", ".join(f"{k} {v:.4g} x MCE_R" for k, v in LEVELS.items()),
-             **suite.basis.attributes(),
-             **({"superstructure": "the building's own stories (linear: the paper's model)"}
-                if suite.superstructure is None else suite.superstructure.attributes())}
-    if suite.scaled is not None:
-        s = suite.scaled
-        data["target_sa"] = variable("period", s.target, "m s-2",
-                                     f"MCE_R target spectral acceleration, "
-                                     f"{suite.target.component} (5% damping)")
-        data["suite_sa"] = variable("period", s.suite, "m s-2",
-                                    f"the scaled suite's {s.statistic} {s.spectrum} spectrum "
-                                    "(5% damping)")
-        coords["period"] = variable("period", s.periods, "s", "oscillator period")
-        attrs.update({"scaling_clause": s.clause, "scaling_period_range_s": list(s.period_range),
-                      "scaling_fraction": s.fraction, "scaling_worst_ratio": s.worst_ratio,
-                      "scaling_enough_pairs": int(s.enough_pairs),
-                      "scaling_excluded": "; ".join(f"{n}: {r}" for n, _, r in s.excluded)
-                      or "none"})
-    return data, coords, attrs
 
 
 def describe(suite: CodeSuite) -> str:

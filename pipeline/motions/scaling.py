@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..execute.progress import Progress
+from ..progress import Progress
 
 FIRST_PASS = 33  # geometric grid over the limits: neighbours ~10% apart for limits 0.2-5
 REFINE = 17  # trial factors per refining pass, inside the current bracket

@@ -18,7 +18,7 @@ import pandas as pd
 import xarray as xr
 
 from engine.results import COLLAPSE, PEAKS, PLAN_PEAKS
-from pipeline.archive import AMPLIFICATION, STORY_DUCTILITY
+from pipeline.assess.sweep_variables import AMPLIFICATION, STORY_DUCTILITY
 
 TRAILING = ("floor", "story", "wall", "direction")
 """The axes of a run's own results: one column each in a table, never a run."""

@@ -146,7 +146,8 @@ def dataset(suite, levels, fractions, gaps, counts, collapsed, intensity, args):
     configuration the assessment (pipeline.assess.collapse.assess)."""
     from pipeline.archive import labelled_dataset, variable
     from pipeline.assess.collapse import assess
-    from pipeline.motions.code_suite import archive_variables, describe
+    from pipeline.motions.code_suite import describe
+    from pipeline.suite_labels import archive_variables
 
     censored = np.isnan(intensity)  # (R, barrier, gap)
     names = BARRIER_NAMES[:2] + tuple(f"{n} bumpers" for n in counts)

@@ -200,7 +200,7 @@ def scaled_suite(args, pairs, names):
     building as given) on the superstructure of --stories (without add_stories: the
     building's own stories), the site options checked first; SweepError, one line, for what the
     rule refuses. The study runs the suite's `building` (CodeSuite.building); its archive
-    says the design basis (pipeline.motions.code_suite.archive_variables), which the recipe
+    says the design basis (pipeline.suite_labels.archive_variables), which the recipe
     prints."""
     from pipeline.errors import SweepError
     from pipeline.motions.code_suite import code_suite

@@ -30,7 +30,9 @@ def gaps(quick: bool) -> np.ndarray:
 
 def accel_g(ds, prefix: str = ""):
     """Peak total floor acceleration in g, the largest over the floors."""
-    return ds[prefix + "peak_total_accel"].max("floor") / G
+    from pipeline.assess.derived import largest_floor_accel
+
+    return largest_floor_accel(ds[prefix + "peak_total_accel"]) / G
 
 
 def drift_cm(ds, prefix: str = ""):

@@ -21,8 +21,8 @@ def dataset(search: Search, references: dict, rounds: int, args):
     """The archive: every candidate and reference, per pair and level, with the statistics,
     the constraints, the ranking and the optimum's nature."""
     from pipeline.archive import labelled_dataset, variable
-    from pipeline.motions.code_suite import archive_variables
     from pipeline.provenance import common_attributes, plan_attributes, run_attributes
+    from pipeline.suite_labels import archive_variables
 
     problem, suite = search.problem, search.problem.suite
     judged = search.judged()

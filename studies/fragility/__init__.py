@@ -36,7 +36,8 @@ from engine.units import CM, G
 from pipeline.assess import derived
 from pipeline.assess.collapse import RATINGS
 from pipeline.assess.thresholds import ACCELERATION, DRIFT, Threshold
-from pipeline.motions.code_suite import archive_variables, describe
+from pipeline.motions.code_suite import describe
+from pipeline.suite_labels import archive_variables
 
 from ..common.options import (
     QUICK_PAIRS,

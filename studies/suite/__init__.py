@@ -62,7 +62,8 @@ from pipeline.assess.outcomes import (
     weighted_quantiles,
     with_collapse,
 )
-from pipeline.motions.code_suite import LEVELS, archive_variables, describe
+from pipeline.motions.code_suite import LEVELS, describe
+from pipeline.suite_labels import archive_variables
 
 from ..common.options import (
     QUICK_PAIRS,

@@ -140,9 +140,9 @@ def dataset(swept, code, suite, thetas, eccs, positions, gaps, fractions, args):
     pads' and corners' forces), the code's D_M and D_TM per eccentricity, the suite."""
     from engine.results import PEAKS, PLAN_PEAKS, TORSION_PEAKS
     from pipeline.archive import labelled_dataset, variable
-    from pipeline.assess.derived import bumper_stress, crushed
-    from pipeline.assess.validity import RUBBER_STRESS_LIMIT
-    from pipeline.motions.code_suite import archive_variables
+    from pipeline.assess.derived import bumper_stress, crushed, largest_floor_accel
+    from pipeline.assess.validity import RUBBER_STRESS_LIMIT, bumper_stress_exceeds
+    from pipeline.suite_labels import archive_variables
 
     n_r, n_e, n_a, n_g = len(suite.pairs), eccs.size, thetas.size, len(gaps)
     per_angle = 1 + 2 * n_g
@@ -160,7 +160,7 @@ def dataset(swept, code, suite, thetas, eccs, positions, gaps, fractions, args):
         q = declared[name]
         stack = blocks(name)
         if name == "peak_total_accel":  # the largest over the floors
-            stack = stack.max(axis=-1)
+            stack = largest_floor_accel(stack)
         free = stack[:, :, :, 0]
         walls = stack[:, :, :, 1:].reshape(n_r, n_e, n_a, n_g, 2)
         what = "the largest over the floors" if name == "peak_total_accel" else ""
@@ -181,7 +181,7 @@ def dataset(swept, code, suite, thetas, eccs, positions, gaps, fractions, args):
         crushed(data["max_point_indentation"].values[..., 1, :], DELTA_U).astype(np.int8), "1",
         "1 where the pad is crushed beyond delta_u (its rubber's ultimate strain)")
     data["invalid_pad_stress"] = variable(
-        dims_wall[:-1], (bumper_stress(pads, 1, AREA) > RUBBER_STRESS_LIMIT).any(axis=-1)
+        dims_wall[:-1], bumper_stress_exceeds(bumper_stress(pads, 1, AREA)).any(axis=-1)
         .astype(np.int8), "1", "1 where a pad's stress passes the rubber tests' largest, "
         f"{RUBBER_STRESS_LIMIT / 1e6:.3g} MPa (pipeline.assess.validity): outside the law's "
         "range, counted apart in every summary")

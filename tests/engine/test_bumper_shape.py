@@ -85,7 +85,8 @@ def test_shape_corrected_pad_realises_the_same_cor(backend):
 
 def test_listed_members_carry_the_shape_to_the_engine():
     """pipeline.listed's columns (LISTED_PARAMS: shape_k, shape_factor_cal) reach the law."""
-    from pipeline.grid import LISTED_PARAMS, MEMBER_DTYPE, contact_for
+    from pipeline.grid import contact_for
+    from pipeline.members import LISTED_PARAMS, MEMBER_DTYPE
 
     assert {"shape_k", "shape_factor_cal"} <= set(LISTED_PARAMS)
     members = np.zeros(3, dtype=MEMBER_DTYPE)

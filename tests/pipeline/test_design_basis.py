@@ -16,7 +16,8 @@ import engine
 from engine.units import G
 from pipeline.motions import bounds
 from pipeline.motions import target as tg
-from pipeline.motions.code_suite import archive_variables, code_suite, describe
+from pipeline.motions.code_suite import code_suite, describe
+from pipeline.suite_labels import archive_variables
 
 S_M1 = 0.9  # g: the studies' default site
 M, K1, K2 = 1530e3, 200e6, 25e6  # the paper's building: kg, N/m, N/m; Fy = 0.1 W

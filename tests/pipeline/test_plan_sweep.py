@@ -66,7 +66,8 @@ def test_labels_units_and_conventions(plan_sweep):
 
 @pytest.mark.parametrize("kwargs, match", [
     ({"angle": [0, 30]}, "angle applies to runs in plan"),
-    ({"moat": "hexagonal"}, "moat must be one of"),
+    ({"moat": "hexagonal"}, "moat 'hexagonal': the plan model takes 'rectangular' or "
+                            "'circular'"),
     ({"moat": "circular", "records": ["RSN953", "RSN953"]}, "each pair must appear once"),
 ])
 def test_bad_plan_sweeps_fail_before_compute(kwargs, match, tmp_path, monkeypatch):
@@ -108,8 +109,8 @@ def test_wall_friction_and_stories_along_y_sweep_like_the_angle(tmp_path):
     assert ds.mu_wall.attrs["units"] == "1" and "friction" in ds.mu_wall.attrs["long_name"]
     acc, dt = pair_accel(*load_pair("RSN953"))
     run = engine.simulate(acc, dt, engine.Contact.bumper([0.12] * 4), building,
-                          moat="circular", angle=[0.0, 0.0, 60.0, 60.0],
-                          mu_wall=[0.0, 0.4, 0.0, 0.4])
+                          moat=engine.Moat("circular", mu_wall=[0.0, 0.4, 0.0, 0.4]),
+                          angle=[0.0, 0.0, 60.0, 60.0])
     for peak, value in {**run.peaks(), **run.plan_peaks()}.items():
         got = ds[peak].isel(record=0).transpose("angle", "mu_wall", ...)
         np.testing.assert_array_equal(got.values.reshape(value.shape), value, err_msg=peak)

@@ -16,10 +16,10 @@ import pytest
 import xarray as xr
 
 import pipeline
+from pipeline import progress as progress_module
 from pipeline.errors import SweepError
 from pipeline.execute import batches as batches_module
 from pipeline.execute import netcdf_store
-from pipeline.execute import progress as progress_module
 from pipeline.records import Record
 from tests.helpers import assert_udunits
 

@@ -69,10 +69,12 @@ def test_bumpers_where_they_stand(tmp_path):
     np.testing.assert_array_equal(ds.max_point_force.isel(record=0).values,
                                   alone.max_point_force)
     assert (alone.max_point_force > 0).any()
-    with pytest.raises(SweepError, match="torsion"):
+    with pytest.raises(SweepError, match="bumper_positions: the plan model takes none.*"
+                                          "twisting model takes it: a building with a torsion"):
         pipeline.sweep([pair], gap=0.10, moat="rectangular", bumper_positions=PADS, quiet=True)
-    for moat in (None, "circular"):  # refused before any compute
-        with pytest.raises(SweepError, match="rectangular moat"):
+    for moat in (None, "circular"):  # refused before any compute, quoting the model's table
+        with pytest.raises(SweepError, match="give moat='rectangular'|the twisting model "
+                                             "takes 'rectangular'"):
             pipeline.sweep(["RSN953"] if moat is None else [pair], gap=0.10, moat=moat,
                            building=BUILDING, quiet=True)
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 import io
 import re
 
-from pipeline.execute.progress import Progress
+from pipeline.progress import Progress
 
 LINE = re.compile(r"sweep: +(\d+)% done \((\d+) of 10 simulations finished"
                   r"(?:, others under way)?\), \S+ elapsed, (.*)")

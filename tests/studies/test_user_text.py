@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 from engine.parameters import unit_text, user_text
-from pipeline.execute.progress import Progress, percent, progress_line
+from pipeline.progress import Progress, percent, progress_line
 from studies import cli
 
 PROJECT = Path(__file__).resolve().parents[2]
