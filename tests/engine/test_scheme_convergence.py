@@ -1,7 +1,7 @@
 """dt convergence on the paper's practical example (section 4, SPEC section 4): halving the
 default step moves every peak by less than 0.5%. This is how DEFAULT_DT was chosen. On the
-compiled loop: the NumPy loop gives its numbers to 1e-9 (tests/engine/test_kernel.py), so its
-convergence is the same."""
+compiled loop: the NumPy loop gives its numbers to 1e-9 (tests/engine/loops/test_numba_loop.py),
+so its convergence is the same."""
 import numpy as np
 import pytest
 

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-PROJECT = Path(__file__).resolve().parents[2]
+PROJECT = Path(__file__).resolve().parents[3]
 # Three short pairs, the quick grid (3 levels x (no wall + 3 gaps x (bare wall, 4 and 32
 # bumpers)) = 30 members a pair) at a fine step so that each pair's batch takes half a second
 # or more: long enough to be stopped, short enough for five runs of the recipe.

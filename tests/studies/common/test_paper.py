@@ -13,7 +13,7 @@ from engine.units import KN_PER_MM
 from pipeline.grid import BASELINE
 from studies.common import paper
 
-STUDIES = Path(__file__).resolve().parents[2] / "studies"
+STUDIES = Path(__file__).resolve().parents[3] / "studies"
 NOT_RECIPES = {"__init__", "cli", "common", "__pycache__"}
 
 

@@ -4,7 +4,7 @@ Same building, real records: no pounding, elastic contact (ElasticPPGap vs the l
 COR = 1), JankowskiImpact (vs the Jankowski law) and Hertzdamp (vs the Hertzdamp law). These
 must run in CI, never skip. Tolerances (opensees_reference.AGREEMENT, which the benchmark
 quotes too): the worst deviation measured plus a margin. The compiled loop is checked here;
-the NumPy loop gives its numbers to 1e-9 on every law (tests/engine/test_kernel.py).
+the NumPy loop gives its numbers to 1e-9 on every law (tests/engine/loops/test_numba_loop.py).
 """
 import numpy as np
 import pytest

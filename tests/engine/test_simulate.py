@@ -94,7 +94,7 @@ def test_history_matches_peaks(short_record, backend):
 
 
 # The compiled loop: the NumPy loop gives its impact energies to 1e-9 with linear walls of
-# COR 0.3 to 1 (tests/engine/test_kernel.py::test_backends_agree_on_every_peak).
+# COR 0.3 to 1 (tests/engine/loops/test_numba_loop.py::test_backends_agree_on_every_peak).
 @pytest.mark.parametrize("backend", ["numba"])
 def test_energy_balance_of_an_elastic_wall(short_record, backend):
     """With COR = 1 the wall dissipates nothing: the work done on it over the record is zero

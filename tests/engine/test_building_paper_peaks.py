@@ -1,5 +1,5 @@
 """The paper's unconstrained peak isolator displacements (sections 4 and 5.6), on the compiled
-loop (the NumPy loop gives its numbers to 1e-9: tests/engine/test_kernel.py)."""
+loop (the NumPy loop gives its numbers to 1e-9: tests/engine/loops/test_numba_loop.py)."""
 import pytest
 
 import engine

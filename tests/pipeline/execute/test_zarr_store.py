@@ -18,7 +18,7 @@ import pipeline
 from pipeline.errors import SweepError
 from pipeline.execute.zarr_store import block_chunks
 
-PROJECT = Path(__file__).resolve().parents[2]
+PROJECT = Path(__file__).resolve().parents[3]
 GRID = dict(gap=[0.10, 0.15, 0.20], n_bumpers=[4, 8, 16, 32], strain=[0.7, 0.8],
             baseline=True, unconstrained=True, quiet=True)
 

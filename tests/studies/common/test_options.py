@@ -14,7 +14,7 @@ import xarray as xr
 
 from studies import sweep as sweep_cli
 
-PROJECT = Path(__file__).resolve().parents[2]
+PROJECT = Path(__file__).resolve().parents[3]
 RECIPES = ["impact_validation", "damping_calibration", "practical_example", "gap_size",
            "thickness", "strain", "n_bumpers", "wall_stiffness", "restitution", "suite",
            "design"]
