@@ -91,8 +91,8 @@ def test_figures_and_replot(run):
 
 
 # the panels' rows of Figs. 16, 18-21: (y label, the archive's peak as plotted, with baseline)
-ROWS = [("Peak floor\nacceleration (g)", lambda ds, p="": ds[p + "peak_total_accel"].max("floor") / G,
-         True),
+ROWS = [("Peak floor\nacceleration (g)",
+         lambda ds, p="": ds[p + "peak_total_accel"].max("floor") / G, True),
         ("Peak interstory\ndeflection (cm)",
          lambda ds, p="": ds[p + "peak_interstory_drift"].max("story") / CM, True),
         ("Maximum\nindentation (cm)", lambda ds, p="": ds[p + "max_indentation"] / CM, False)]
