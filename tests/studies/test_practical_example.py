@@ -4,8 +4,10 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from engine.units import CM, KN, G
 from studies import practical_example
-from tests.helpers import assert_udunits
+from studies.common.plot import plt, record_label
+from tests.helpers import assert_figure_files, assert_udunits, drawn
 
 PEAKS = ("peak_total_accel", "peak_interstory_drift", "peak_isolator_disp", "max_indentation",
          "max_impact_force", "n_impacts")
@@ -76,10 +78,58 @@ def test_archive_is_labelled_and_complete(quick_run):
 
 def test_figure_files_and_replot(quick_run):
     png, pdf = quick_run / "practical_example.png", quick_run / "practical_example.pdf"
-    assert png.stat().st_size > 10_000 and pdf.stat().st_size > 10_000
+    assert_figure_files(png, pdf)
     png.unlink()
     assert practical_example.main(["--replot", "--out", str(quick_run)]) == 0
     assert png.exists()
+
+
+def test_figure_shows_the_archive(quick_run):
+    """Figs. 9-13, per record: the base's total acceleration in time with each configuration's
+    peak in its label, the impact force against the indentation, and the peak floor
+    accelerations and interstory deflections up the building."""
+    ds = xr.load_dataset(quick_run / "practical_example.nc")
+    fig = practical_example.plot(ds)
+    assert fig._suptitle.get_text() == "Practical example (paper section 4)"
+    labels = practical_example.CONFIG_LABELS
+    shown = [str(c) for c in ds.configuration.values if c in labels]
+    assert len(fig.axes) == 4 * ds.sizes["record"]
+    for i, record in enumerate(ds.record.values):
+        base, force, accel, drift = fig.axes[4 * i:4 * i + 4]
+        sel = ds.sel(record=record)
+        keep = sel.time.values <= float(sel.history_end)
+        assert base.get_title(loc="left").startswith(
+            f"Fig. {9 + i}: {record_label(ds, str(record))}, ")
+        assert base.get_xlabel() == "Time (s)"
+        assert base.get_ylabel() == "Base total\nacceleration (g)"
+        lines = drawn(base)
+        drawn_in = ["no_bumpers", "bumpers", "no_pounding"]
+        base_peak = sel.peak_total_accel.sel(floor=0) / G
+        assert [label for label, _, _ in lines] == [
+            f"{labels[c]} (peak {float(base_peak.sel(configuration=c)):.2f} g)"
+            for c in drawn_in]
+        for (_, x, y), config in zip(lines, drawn_in, strict=True):
+            np.testing.assert_array_equal(x, sel.time.values[keep])
+            np.testing.assert_array_equal(
+                y, sel.base_total_accel.sel(configuration=config).values[keep] / G)
+        *loops, (_, crush, _) = drawn(force)
+        np.testing.assert_array_equal(  # the crush indentation's line
+            crush, float(sel.crush_indentation.sel(configuration="bumpers")) / CM)
+        for (label, x, y), config in zip(loops, ["no_bumpers", "bumpers"], strict=True):
+            c = sel.sel(configuration=config)
+            touching = np.isfinite(x)
+            assert label == labels[config] and touching.any()
+            np.testing.assert_array_equal(x[touching], c.indentation.values[touching] / CM)
+            np.testing.assert_array_equal(y[touching], c.impact_force.values[touching] / KN)
+            assert np.nanmax(y) <= float(c.max_impact_force) / KN  # the history is sampled
+        for ax, name, unit, level in ((accel, "peak_total_accel", G, "floor"),
+                                      (drift, "peak_interstory_drift", CM, "story")):
+            for (_, x, y), config in zip(drawn(ax), shown, strict=True):
+                np.testing.assert_array_equal(x, sel[name].sel(configuration=config) / unit)
+                np.testing.assert_array_equal(y, ds[level].values)
+        assert accel.get_xlabel() == "Peak floor acceleration (g)"
+        assert drift.get_xlabel() == "Peak interstory\ndeflection (cm)"
+    plt.close(fig)
 
 
 def test_help_and_bad_input(tmp_path, capsys):
