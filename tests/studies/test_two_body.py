@@ -4,8 +4,10 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from engine.units import KN, MM
 from studies import damping_calibration, impact_validation
-from tests.helpers import assert_udunits
+from studies.common.plot import plt
+from tests.helpers import assert_figure_files, assert_udunits, drawn
 
 # --- the recipes ----------------------------------------------------------------------------
 
@@ -66,10 +68,68 @@ def test_damping_calibration_numbers(quick_runs):
 @pytest.mark.parametrize("name", RECIPES)
 def test_figure_files_and_replot(quick_runs, name):
     png, pdf = quick_runs / f"{name}.png", quick_runs / f"{name}.pdf"
-    assert png.stat().st_size > 10_000 and pdf.stat().st_size > 10_000
+    assert_figure_files(png, pdf)
     png.unlink()
     assert RECIPES[name].main(["--replot", "--out", str(quick_runs), "--quiet"]) == 0
     assert png.exists()
+
+
+def test_impact_validation_figure_shows_the_archive(quick_runs):
+    """Fig. 6: the static test curve, then per impact velocity each model's force against its
+    indentation while in contact, over the static curve."""
+    ds = xr.load_dataset(quick_runs / "impact_validation.nc")
+    fig = impact_validation.plot(ds)
+    assert fig._suptitle.get_text() == "Fig. 6: impact tests of a 10 mm rubber bumper"
+    static, *impacts = fig.axes
+    assert static.get_title() == "Static test curve"
+    assert [ax.get_title() for ax in impacts] == [f"$v_{{imp}}$ = {v:.2g} m/s"
+                                                 for v in ds.velocity.values]
+    assert [ax.get_xlabel() for ax in fig.axes[2:]] == ["Indentation (mm)"] * 2
+    assert [ax.get_ylabel() for ax in fig.axes[::2]] == ["Impact force (kN)"] * 2
+    (_, grid, curve), *_ = drawn(static)
+    for ax, v in zip(impacts, ds.velocity.values, strict=True):
+        *models, (label, x, y) = drawn(ax)
+        assert label == "Static curve"
+        np.testing.assert_array_equal(x, grid)
+        np.testing.assert_array_equal(y, curve)
+        for (label, x, y), model in zip(models, ds.model.values, strict=True):
+            case = ds.sel(model=model, velocity=v)
+            end = int(case.n_contact_steps)
+            assert label == impact_validation.MODEL_LABELS[str(model)]
+            np.testing.assert_array_equal(x, case.indentation.values[:end] / MM)
+            np.testing.assert_array_equal(y, case.force.values[:end] / KN)
+    plt.close(fig)
+
+
+def test_damping_calibration_figure_shows_the_archive(quick_runs):
+    """Eq. 9's figure: the damping coefficient found at each impact velocity and mass (one
+    series of points per COR and mass), and each realised COR's error against its target."""
+    ds = xr.load_dataset(quick_runs / "damping_calibration.nc")
+    fig = damping_calibration.plot(ds)
+    assert fig._suptitle.get_text() == \
+        "Eq. 9 re-derived by energy equilibrium (paper section 3.2)"
+    coefficient, realised = fig.axes
+    assert coefficient.get_title() == "Impact damping coefficient"
+    assert coefficient.get_xlabel() == "Impact velocity $v_{imp}$ (m/s)"
+    assert realised.get_xlabel() == "Target COR"
+    assert realised.get_ylabel() == "Realised COR / target - 1 (%)"
+    lines = iter(drawn(coefficient))
+    for cor in ds.cor.values:
+        found = (ds.c_imp_found.sel(cor=cor) / (1 - cor**2)).values  # (m_eff, v_imp)
+        for row in found:
+            _, x, y = next(lines)
+            np.testing.assert_array_equal(x, ds.v_imp.values)
+            np.testing.assert_array_equal(y, row)
+        next(lines), next(lines)  # the refit's law and Eq. 9's
+    points = iter(drawn(realised))
+    for name, shift in (("cor_eq9", -0.012), ("cor_fit", 0.012)):
+        error = (ds[name] / ds.cor - 1).values.reshape(ds.sizes["cor"], -1) * 100
+        for target, values in zip(ds.cor.values, error, strict=True):
+            _, x, y = next(points)
+            np.testing.assert_allclose(x, target + shift)
+            np.testing.assert_array_equal(y, values)
+        next(points)  # its legend entry
+    plt.close(fig)
 
 
 @pytest.mark.parametrize("name", RECIPES)
