@@ -12,7 +12,7 @@ import pytest
 from pipeline import records as R
 from pipeline.records import G, RecordError
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 
 NGA_HEAD = ("PEER NGA STRONG MOTION DATABASE RECORD",
             "Kobe Japan, 1/16/1995, KJMA, 0",
