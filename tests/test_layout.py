@@ -236,12 +236,8 @@ TESTED_IN = {
         ("studies.suite.archive", "studies.suite.figure", "studies.suite.verdicts",
          "pipeline.motions.superstructure")),
     "tests/studies/test_design.py": (
-        "the design search's quick run, its optimum on hand-made tables, its constraints",
-        ("studies.design.archive", "studies.design.optimum", "studies.design.search",
-         "studies.design.space", "studies.design.verdicts")),
-    "tests/studies/test_plan.py": (
-        "the plan recipe's quick run and its verdicts counted on a hand-made dataset",
-        ("studies.plan.verdicts",)),
+        "the design search's quick run: its archive and the verdicts it reports",
+        ("studies.design.archive", "studies.design.verdicts")),
     "tests/studies/test_torsion.py": (
         "the torsion recipe's quick run, its figure and its verdicts",
         ("studies.torsion.figure", "studies.torsion.verdicts")),
