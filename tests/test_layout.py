@@ -205,12 +205,20 @@ TESTED_IN = {
         "the registries' declarations, read by the engine, the grid and the archive",
         ("engine.registry",)),
     "tests/pipeline/test_sweep.py": (
-        "pipeline.sweep (the package's own function) and the command that runs it; "
-        "test_sweep_*.py its excitations and parameters: through it the grid, the executor "
-        "and its stores, every member checked as the engine's run, resumed and interrupted",
-        ("pipeline", "studies.sweep", "pipeline.grid", "pipeline.checks", "pipeline.errors",
-         "pipeline.writing", "pipeline.execute.batches", "pipeline.execute.dask_client",
-         "pipeline.execute.keys", "pipeline.execute.netcdf_store", "pipeline.execute.run")),
+        "pipeline.sweep, the package's own function, and test_sweep_*.py its excitations and "
+        "parameters: through it the grid and its checks, every member checked as the "
+        "engine's run, and bad input refused in one line before compute",
+        ("pipeline", "pipeline.grid", "pipeline.checks", "pipeline.errors",
+         "pipeline.execute.run")),
+    "tests/pipeline/test_archive.py": (
+        "the atomic replacement an archive is written with",
+        ("pipeline.writing",)),
+    "tests/pipeline/execute/test_executor.py": (
+        "the dask scheduler's client, as the executor connects to it",
+        ("pipeline.execute.dask_client",)),
+    "tests/pipeline/execute/test_netcdf_store.py": (
+        "the keys that keep a work folder's results from another sweep's",
+        ("pipeline.execute.keys",)),
     "tests/pipeline/test_archive_hygiene.py": (
         "what every archive stores: its global attributes",
         ("pipeline.provenance",)),

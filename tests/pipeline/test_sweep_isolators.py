@@ -8,7 +8,7 @@ import engine
 import pipeline
 from pipeline.errors import SweepError
 from tests.helpers import assert_udunits
-from tests.pipeline.test_sweep import RECORDS, synthetic
+from tests.pipeline.small_sweep import RECORDS, synthetic
 
 DT = 0.002  # s
 GAPS = [0.04, 0.08]  # m: the pulses reach both walls at each (asserted below)

@@ -10,7 +10,7 @@ import pytest
 import engine
 import pipeline
 from pipeline.errors import SweepError
-from tests.pipeline.test_sweep import DT, RECORDS
+from tests.pipeline.small_sweep import DT, RECORDS
 
 LEVELS = [0.5, 1.0, 1.5]
 GAPS = [0.06, 0.10]

@@ -17,7 +17,7 @@ import xarray as xr
 import pipeline
 from pipeline.errors import SweepError
 from studies.common.recipe import Recipe
-from tests.pipeline.test_sweep import RECORDS
+from tests.pipeline.small_sweep import RECORDS
 
 
 def toy_compute(args):
