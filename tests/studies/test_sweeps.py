@@ -1,6 +1,7 @@
 """The parametric recipes of sections 5.2-5.6 (Figs. 16, 18-22), each run once in --quick form:
 archive dimensions and units, finite peaks, the paper check, what the figure shows, --replot,
---help.
+--help. A group file (TESTED_IN of tests/test_layout.py): thickness, strain, n_bumpers,
+wall_stiffness and restitution, checked alike.
 """
 
 import numpy as np

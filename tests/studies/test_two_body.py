@@ -1,5 +1,6 @@
 """The two-body recipes together (impact_validation, Fig. 6; damping_calibration, Eq. 9): one
-quick run of each, checked alike. (engine.damping_fit: tests/engine/test_damping_fit.py.)"""
+quick run of each, checked alike: a group file (TESTED_IN of tests/test_layout.py).
+(engine.damping_fit: tests/engine/test_damping_fit.py.)"""
 import numpy as np
 import pytest
 import xarray as xr
