@@ -206,10 +206,9 @@ TESTED_IN = {
         ("engine.registry",)),
     "tests/pipeline/test_sweep.py": (
         "pipeline.sweep, the package's own function, and test_sweep_*.py its excitations and "
-        "parameters: through it the grid and its checks, every member checked as the "
-        "engine's run, and bad input refused in one line before compute",
-        ("pipeline", "pipeline.grid", "pipeline.checks", "pipeline.errors",
-         "pipeline.execute.run")),
+        "parameters: through it the shared input checks, what a run is, every member "
+        "checked as the engine's run, and errors in one line",
+        ("pipeline", "pipeline.checks", "pipeline.errors", "pipeline.execute.run")),
     "tests/pipeline/test_archive.py": (
         "the atomic replacement an archive is written with",
         ("pipeline.writing",)),
@@ -219,9 +218,6 @@ TESTED_IN = {
     "tests/pipeline/execute/test_netcdf_store.py": (
         "the keys that keep a work folder's results from another sweep's",
         ("pipeline.execute.keys",)),
-    "tests/pipeline/test_archive_hygiene.py": (
-        "what every archive stores: its global attributes",
-        ("pipeline.provenance",)),
     "tests/pipeline/assess/test_fragility.py": (
         "the fits from outcomes, bootstrap and event weights, with the fits they feed",
         ("pipeline.assess.fragility_outcomes",)),
@@ -260,9 +256,6 @@ TESTED_IN = {
         "bumpers export and bumpers plot on one small sweep archive, and their shared table",
         ("studies.archive_tools.export", "studies.archive_tools.plot",
          "studies.archive_tools.table")),
-    "tests/studies/test_cli_user_text.py": (
-        "the program named as it was run, in every command's help",
-        ("studies.common.program",)),
     # groups: one file, several modules checked alike
     "tests/studies/test_figures.py": (
         "a group: the figures of several recipes read right without the paper (labels, "

@@ -3,6 +3,7 @@ coarse, stable dt keep it to about a second; archives compared bar their creatio
 import numpy as np
 import xarray as xr
 
+from pipeline.execute import batches as batches_module
 from pipeline.records import Record
 
 DT = 0.004  # s: stable for every law used here, 4x coarser than needed for accuracy
@@ -33,3 +34,11 @@ def assert_same_archive(a: xr.Dataset, b: xr.Dataset):
 
 class Killed(Exception):
     """Stands in for the process dying."""
+
+
+def no_compute(monkeypatch):
+    """Make any simulation fail the test: bad input must be refused before compute."""
+    def fail(*args, **kwargs):
+        raise AssertionError("simulated despite bad input")
+
+    monkeypatch.setattr(batches_module, "simulate_batch", fail)

@@ -1,8 +1,9 @@
 """pipeline.sweep: grids -> batched, parallel engine runs -> labelled Dataset -> NetCDF; its
-labels and units, other laws, bad input refused before compute, real records' provenance,
-stand-ins announced. The small sweep of tests/pipeline/small_sweep.py keeps every sweep to
-about a second. (Its batches, executor and work folder: tests/pipeline/execute/; the atomic
-archive: test_archive.py; its command: tests/studies/test_sweep.py.)
+labels and units, other laws, an unwritable output refused before compute, stand-ins
+announced. The small sweep of tests/pipeline/small_sweep.py keeps every sweep to
+about a second. (Its bad input: test_grid.py; its batches, executor and work folder:
+tests/pipeline/execute/; the atomic archive: test_archive.py; real records' provenance:
+test_provenance.py; its command: tests/studies/test_sweep.py.)
 """
 import subprocess
 import sys
@@ -22,6 +23,7 @@ from tests.pipeline.small_sweep import (
     GAPS,
     RECORDS,
     SMALL,
+    no_compute,
 )
 
 PROJECT = Path(__file__).resolve().parents[2]
@@ -110,48 +112,6 @@ def test_other_impact_laws(impact, wall_k, units):
     assert ds.n_impacts.min() > 0
 
 
-# --------------------------------------------------------------------------- bad input
-
-
-def no_compute(monkeypatch):
-    def fail(*args, **kwargs):
-        raise AssertionError("simulated despite bad input")
-
-    monkeypatch.setattr(batches_module, "simulate_batch", fail)
-
-
-@pytest.mark.parametrize("change, match", [
-    ({"gap": [0.1, -0.05]}, "gap"),
-    ({"gap": 0.0}, "gap"),
-    ({"thickness": 0.06}, "thickness"),
-    ({"thickness": [0.03, 0.2]}, "thickness"),
-    ({"strain": 0.0}, "strain"),
-    ({"strain": [0.5, 1.2]}, "strain"),
-    ({"cor": 0.0}, "cor"),
-    ({"cor": 1.5}, "cor"),
-    ({"wall_k": 0.0}, "wall_k"),
-    ({"wall_k": -1e9}, "wall_k"),
-    ({"n_bumpers": 0}, "n_bumpers"),
-    ({"n_bumpers": [4, 2.5]}, "n_bumpers"),
-    ({"dt": 0.05}, "dt"),
-    ({"dt": -0.001}, "dt"),
-    ({"impact": "elastic"}, "impact"),
-    ({"impact": "linear"}, "thickness"),  # bumper-only parameter given to another law
-    ({"impact": "jankowski", "thickness": None, "n_bumpers": None}, "wall_k"),  # required
-    ({"impact": "linear", "thickness": None, "n_bumpers": None, "baseline": True}, "baseline"),
-    ({"gap": [0.1, 0.1]}, "gap"),
-    ({"records": ["no-such-record-anywhere"]}, "records"),
-    ({"records": [RECORDS[0], RECORDS[0]]}, "records"),
-    ({"workers": -1}, "workers"),
-    ({"batch_size": 0}, "batch_size"),
-])
-def test_bad_input_fails_fast_naming_the_parameter(change, match, monkeypatch):
-    no_compute(monkeypatch)
-    kwargs = {"records": RECORDS, **SMALL, "workers": 1, "quiet": True, **change}
-    with pytest.raises(SweepError, match=match):
-        pipeline.sweep(**kwargs)
-
-
 def test_unwritable_output_fails_fast(tmp_path, monkeypatch):
     no_compute(monkeypatch)
     blocker = tmp_path / "a-file"
@@ -166,23 +126,6 @@ def test_records_entry_point_stays_light():
     code = "import sys, pipeline, pipeline.records; " \
            "assert not {'dask', 'distributed', 'xarray'} & set(sys.modules), sys.modules.keys()"
     subprocess.run([sys.executable, "-c", code], cwd=PROJECT, check=True)
-
-
-def test_paper_records_keep_their_provenance(paper_record):
-    """Real records, truncated to 8 s around their peak, named by their paper keys."""
-    import dataclasses
-
-    recs = []
-    for key in ("kobe", "pacoima"):
-        rec = paper_record(key)
-        n = int(8 / rec.dt)
-        start = max(0, int(np.argmax(np.abs(rec.accel))) - n // 2)
-        recs.append(dataclasses.replace(rec, accel=rec.accel[start:start + n]))
-    ds = pipeline.sweep(recs, gap=0.15, dt=DT, workers=1, quiet=True)
-    assert list(ds.record.values) == ["kobe", "pacoima"]
-    assert ds.gap.dims == () and ds.peak_isolator_disp.dims == ("record",)
-    assert ds.attrs["record_kobe_found_in"] == recs[0].found_in
-    assert ds.attrs["record_kobe_note"] == recs[0].note
 
 
 # --------------------------------------------------------------------------- stand-ins
