@@ -252,10 +252,6 @@ TESTED_IN = {
         "the loss study runs on the quick collapse archive this file makes once; the IDA "
         "both collapse studies run",
         ("studies.loss", "studies.common.collapse_ida")),
-    "tests/studies/test_archive_tools.py": (
-        "bumpers export and bumpers plot on one small sweep archive, and their shared table",
-        ("studies.archive_tools.export", "studies.archive_tools.plot",
-         "studies.archive_tools.table")),
     # groups: one file, several modules checked alike
     "tests/studies/test_figures.py": (
         "a group: the figures of several recipes read right without the paper (labels, "
