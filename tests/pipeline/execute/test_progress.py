@@ -1,5 +1,7 @@
-"""The progress line (pipeline.execute.progress, issue 30): within 0-100%, never a negative time
-left, one line a run (a log a line every 10%, a terminal one line redrawn in place).
+"""The progress line (pipeline.execute.progress, issue 30): counts and time left, a running
+batch's partial work, nothing guessed before a batch finished, silence when quiet; within
+0-100%, never a negative time left, one line a run (a log a line every 10%, a terminal one
+line redrawn in place).
 (A lost dask worker's reports: test_progress_worker_loss.py.)"""
 from __future__ import annotations
 
@@ -8,6 +10,7 @@ import re
 
 import pytest
 
+from pipeline.execute import progress as progress_module
 from pipeline.execute.progress import Progress, percent, progress_line
 
 LINE = re.compile(r"(\w+): +(\d+)% done \((\d+) of (\d+) (.+) finished(, others under way)?\), "
@@ -71,3 +74,26 @@ def test_a_terminal_gets_one_line_redrawn_in_place():
     text = stream.getvalue()
     assert text.count("\n") == 1 and text.endswith("\n") and text.count("\r") > 10
     assert text.rsplit("\r", 1)[1].startswith("sweep: 100% done (10 of 10")
+
+
+def test_progress_bar_shows_counts_and_time_left():
+    stream = io.StringIO()
+    progress = progress_module.Progress(total=10, done=2, stream=stream, delay=0.0)
+    progress.advance(3)
+    progress.close()
+    text = stream.getvalue()
+    assert " 50% done (5 of 10 simulations finished)" in text and "left" in text
+    # a running batch's partial work moves the percentage, never the count of finished ones
+    partial = io.StringIO()
+    progress = progress_module.Progress(total=10, stream=partial, delay=0.0)
+    progress.running("batch", 1.4)
+    progress.close()
+    assert " 14% done (0 of 10 simulations finished, others under way)" in partial.getvalue()
+    # no time left is guessed before anything finished (the kernel may be compiling)
+    assert "time left: once the first finishes" in partial.getvalue()
+    assert "~" not in partial.getvalue()
+    # a log file gets whole lines, never a carriage return
+    assert "\r" not in text + partial.getvalue() and text.endswith("\n")
+    quiet = io.StringIO()
+    progress_module.Progress(total=10, quiet=True, stream=quiet, delay=0.0).close()
+    assert quiet.getvalue() == ""
