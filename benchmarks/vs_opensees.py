@@ -177,7 +177,7 @@ def main(argv=None) -> int:
     from tests.reference.opensees_reference import AGREEMENT
 
     reference = opensees_reference(accel, accel_dt, DT)
-    tolerance = AGREEMENT[CONTACT["name"]]  # what tests/engine/test_opensees.py asserts
+    tolerance = AGREEMENT[CONTACT["name"]]  # what tests/engine/test_simulate_opensees.py asserts
     agreement = {}
     for backend in ("numba", "numpy"):
         res = engine_run(accel, accel_dt, 1, DT, backend)

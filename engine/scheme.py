@@ -27,7 +27,8 @@ from .errors import EngineError
 from .impact import Contact
 
 # s: the coarsest step at which halving dt moves every peak of the paper's practical example
-# by less than 0.5% (0.35% at most; 1 ms moves them up to 0.9%): tests/engine/test_convergence.py.
+# by less than 0.5% (0.35% at most; 1 ms moves them up to 0.9%):
+# tests/engine/test_scheme_convergence.py.
 DEFAULT_DT = 5e-4
 # Indentation assumed reachable by laws without a crush limit (Jankowski, Hertzdamp) when
 # bounding their tangent stiffness for the stability limit.

@@ -392,7 +392,7 @@ def check_dt(grid: Grid, dt: float, building: engine.Building) -> float:
         warnings.warn(PlausibilityWarning(
             f"dt = {dt:g} s is {dt / engine.DEFAULT_DT:.3g} x the converged step "
             f"{engine.DEFAULT_DT:g} s (halving that one moves no peak by 0.5%; "
-            "tests/engine/test_convergence.py): peaks and verdicts may not have converged"),
+            "tests/engine/test_scheme_convergence.py): peaks and verdicts may not have converged"),
             stacklevel=2)
     return dt
 

@@ -65,35 +65,35 @@ def backend(request) -> str:
 # with a long file at the end. Files that run commands in subprocesses are ordered like the
 # rest: put last, the longest of them (the documentation's examples, the interrupted recipe,
 # the dask clusters) ran on one worker while the others had finished.
-LONG_FIRST = ("tests/engine/test_plan_references.py",        # 79
-              "tests/test_readme.py",                        # 77
-              "tests/engine/test_torsion.py",                # 25 (warm: 14)
-              "tests/engine/test_plan.py",                   # 68
-              "tests/engine/test_stories.py",                # 65
-              "tests/reference/test_opensees_pdelta.py",     # 51
-              "tests/reference/test_references.py",          # 50
-              "tests/engine/test_opensees.py",               # 45
-              "tests/studies/test_collapse_study.py",        # 44
-              "tests/engine/test_model_edges.py",            # 39
-              "tests/reference/test_opensees_imk.py",        # 37
-              "tests/pipeline/test_interrupt.py",            # 37
-              "tests/studies/test_sweeps.py",                # 36
-              "tests/pipeline/test_cluster.py",              # 34
-              "tests/engine/test_isolators.py",              # 32
-              "tests/studies/test_paper_conclusions.py",     # 29
-              "tests/pipeline/test_zarr.py",                 # 24
-              "tests/pipeline/test_loss.py",                 # 23
-              "tests/engine/test_kernel.py",                 # 23
-              "tests/pipeline/test_sweep.py",                # 22
-              "tests/engine/test_plan_friction.py",          # 21
-              "tests/studies/test_cli.py",                   # 20
-              "tests/engine/test_collapse.py",               # 19
-              "tests/studies/test_design.py",                # 19
-              "tests/engine/test_batch.py",                  # 18
-              "tests/engine/test_torsion_references.py",     # 18 (warm: 8)
-              "tests/studies/test_torsion_study.py",         # 16 (warm: 12)
-              "tests/studies/test_suite.py",                 # 15
-              "tests/engine/test_impact_laws.py")            # 14
+LONG_FIRST = ("tests/engine/test_plan_references.py",                  # 79
+              "tests/test_readme.py",                                  # 77
+              "tests/engine/test_torsion.py",                          # 25 (warm: 14)
+              "tests/engine/test_plan.py",                             # 68
+              "tests/engine/test_stories.py",                          # 65
+              "tests/reference/test_opensees_pdelta.py",               # 51
+              "tests/reference/test_references.py",                    # 50
+              "tests/engine/test_simulate_opensees.py",                # 45
+              "tests/studies/test_collapse.py",                        # 44
+              "tests/engine/impact/test_contact.py",                   # 39
+              "tests/reference/test_opensees_imk.py",                  # 37
+              "tests/pipeline/execute/test_executor_interrupt.py",     # 37
+              "tests/studies/test_sweeps.py",                          # 36
+              "tests/pipeline/test_cluster.py",                        # 34
+              "tests/engine/test_isolators.py",                        # 32
+              "tests/studies/test_paper_conclusions.py",               # 29
+              "tests/pipeline/execute/test_zarr_store.py",             # 24
+              "tests/pipeline/assess/test_loss.py",                    # 23
+              "tests/engine/loops/test_numba_loop.py",                 # 23
+              "tests/pipeline/test_sweep.py",                          # 22
+              "tests/engine/test_plan_friction.py",                    # 21
+              "tests/studies/common/test_options.py",                  # 20
+              "tests/engine/test_building_collapse.py",                # 19
+              "tests/studies/test_design.py",                          # 19
+              "tests/engine/test_simulate.py",                         # 18
+              "tests/engine/test_torsion_references.py",               # 18 (warm: 8)
+              "tests/studies/test_torsion.py",                         # 16 (warm: 12)
+              "tests/studies/test_suite.py",                           # 15
+              "tests/engine/test_impact.py")                           # 14
 
 
 def pytest_configure(config):

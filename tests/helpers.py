@@ -78,3 +78,20 @@ def run_recipe(module, argv: list[str], out: Path):
         out = out / "quick"
     with xr.open_dataset(out / f"{module.recipe.name}.nc") as ds:
         return ds.load()
+
+
+PNG_SIGNATURE, PDF_SIGNATURE = b"\x89PNG\r\n\x1a\n", b"%PDF-"
+
+
+def assert_figure_files(png: Path, pdf: Path) -> None:
+    """A recipe's figure written as a PNG and a PDF (what it shows is checked on the Figure
+    the recipe's plot(ds) returns: drawn(ax) below)."""
+    assert png.read_bytes().startswith(PNG_SIGNATURE), png
+    assert pdf.read_bytes().startswith(PDF_SIGNATURE), pdf
+
+
+def drawn(ax) -> list[tuple[str, np.ndarray, np.ndarray]]:
+    """(label, x, y) of every line drawn on a matplotlib Axes, in drawing order (reference
+    lines such as axhline included: their x is in axes coordinates)."""
+    return [(line.get_label(), np.asarray(line.get_xdata(), float),
+             np.asarray(line.get_ydata(), float)) for line in ax.get_lines()]

@@ -1,8 +1,11 @@
 """The code's layout, kept true: data flows one way (engine <- pipeline <- studies), and inside
 pipeline/ through its packages in order (PIPELINE_LEVELS), no import circle (imports inside
-functions counted), no private name imported from another module, no
-constant written twice, no module over 500 lines, and the map of the code in docs/model.md the
-one the packages' docstrings give (tools/code_map.py writes it)."""
+functions counted), no private name imported from another module, no constant written twice,
+no module over 500 lines, the map of the code in docs/model.md the one the packages'
+docstrings give (tools/code_map.py writes it); and the tests where one looks for them: tests/
+mirrors the packages (engine/loops/numba_loop.py is tested in
+tests/engine/loops/test_numba_loop.py), every module has its test file there or is in the one
+table of exceptions, TESTED_IN, and every test file mirrors a module or is in that table."""
 import ast
 import importlib.util
 import sys
@@ -207,3 +210,204 @@ def test_the_map_of_the_code_is_the_packages_own():
     if expected not in text:
         pytest.fail("docs/model.md's map of the code is out of date with the packages' "
                     "docstrings: run `python tools/code_map.py --write`")
+
+
+# --------------------------------------------------------------------------- where the tests are
+
+TESTS = PROJECT / "tests"
+
+
+def mirror(name: str) -> Path:
+    """The test file of a module, by the mirror rule: engine.loops.numba_loop ->
+    tests/engine/loops/test_numba_loop.py; a package by its own name beside its folder
+    (studies.plan -> tests/studies/test_plan.py)."""
+    *folders, last = name.split(".")
+    return TESTS.joinpath(*folders, f"test_{last}.py")
+
+
+TESTED_IN = {
+    # test file: (why it holds these modules' tests, the modules)
+    "tests/engine/loops/test_numba_loop.py": (
+        "the compiled loop against the NumPy loop peak for peak and history for history, the "
+        "fallback without numba, the compile cache of the physics both loops share",
+        ("engine.loops.numpy_loop", "engine.loops.compiled", "engine.loops.numba_contacts",
+         "engine.backends")),
+    "tests/engine/test_plan.py": (
+        "the run in plan: its two loops against each other and against the planar run",
+        ("engine.loops.numpy_plan", "engine.loops.numba_plan")),
+    "tests/engine/test_torsion.py": (
+        "a building that twists: its two loops against each other and against the plan run",
+        ("engine.loops.numpy_torsion", "engine.loops.numba_torsion")),
+    "tests/engine/test_impact.py": (
+        "every impact law through the two-body simulator: realised COR, energy, the "
+        "calibration rules, against an independent solution",
+        ("engine.impact.laws.hertzdamp", "engine.impact.laws.jankowski",
+         "engine.impact.laws.linear_viscoelastic", "engine.impact.calibration")),
+    "tests/engine/test_isolators.py": (
+        "the isolator laws together: declarations, hysteresis loops against closed forms, "
+        "limit cases, the registry",
+        ("engine.isolators.hysteresis", "engine.isolators.isolator",
+         "engine.isolators.laws.bilinear", "engine.isolators.laws.friction_pendulum",
+         "engine.isolators.registry")),
+    "tests/engine/test_stories.py": (
+        "the story laws and the stories of any height against the references",
+        ("engine.stories.stories", "engine.stories.laws.bilinear",
+         "engine.stories.laws.linear")),
+    "tests/engine/test_simulate.py": (
+        "what a run returns: histories whose maxima are the peaks, in any batch",
+        ("engine.results",)),
+    "tests/engine/test_building.py": (
+        "the chain of stories' matrices, through the building's exact linear response",
+        ("engine.chain",)),
+    "tests/engine/test_parameters.py": (
+        "the registries' declarations, read by the engine, the grid and the archive",
+        ("engine.registry",)),
+    "tests/pipeline/test_sweep.py": (
+        "pipeline.sweep, the package's own function, and test_sweep_*.py its excitations and "
+        "parameters: through it the shared input checks, what a run is, every member "
+        "checked as the engine's run, and errors in one line",
+        ("pipeline", "pipeline.checks", "pipeline.errors", "pipeline.execute.run",
+         "pipeline.orchestration", "pipeline.assess.sweep_variables")),
+    "tests/pipeline/test_grid.py": (
+        "the members' table (pipeline.members: its columns and the excitation rule) as the "
+        "grid lays it out",
+        ("pipeline.members",)),
+    "tests/pipeline/test_archive.py": (
+        "the atomic replacement an archive is written with",
+        ("pipeline.writing",)),
+    "tests/pipeline/execute/test_executor.py": (
+        "the dask scheduler's client, as the executor connects to it",
+        ("pipeline.execute.dask_client",)),
+    "tests/pipeline/execute/test_netcdf_store.py": (
+        "the keys that keep a work folder's results from another sweep's",
+        ("pipeline.execute.keys",)),
+    "tests/pipeline/assess/test_fragility.py": (
+        "the fits from outcomes, bootstrap and event weights, with the fits they feed",
+        ("pipeline.assess.fragility_outcomes", "pipeline.motions.weights")),
+    "tests/pipeline/motions/test_bounds.py": (
+        "the code suites at the design basis' bounds, their archive variables",
+        ("pipeline.motions.code_suite", "pipeline.suite_labels")),
+    "tests/pipeline/motions/test_rules.py": (
+        "each rule module found by the registry and keeping the pairs its scaling keeps",
+        ("pipeline.motions.rules.asce7", "pipeline.motions.rules.displacement",
+         "pipeline.motions.rules.p695")),
+    "tests/pipeline/records/test_at2.py": (
+        "the units of a record's values, converted as the readers read them",
+        ("pipeline.records.basics",)),
+    "tests/pipeline/records/test_pair.py": (
+        "record pairs, as the pair readers make them",
+        ("pipeline.records.record_pair",)),
+    "tests/studies/test_suite.py": (
+        "the suite's quick archive, its verdicts on hand-made peaks, its maps; the "
+        "superstructure of the design basis it runs",
+        ("studies.suite.archive", "studies.suite.figure", "studies.suite.verdicts",
+         "pipeline.motions.superstructure")),
+    "tests/studies/test_design.py": (
+        "the design search's quick run: its archive and the verdicts it reports",
+        ("studies.design.archive", "studies.design.verdicts")),
+    "tests/studies/test_torsion.py": (
+        "the torsion recipe's quick run, its figure and its verdicts",
+        ("studies.torsion.figure", "studies.torsion.verdicts")),
+    "tests/studies/test_fragility.py": (
+        "the fragility recipe's quick run and its figure",
+        ("studies.fragility.figure",)),
+    "tests/studies/test_collapse.py": (
+        "the loss study runs on the quick collapse archive this file makes once; the IDA "
+        "both collapse studies run",
+        ("studies.loss", "studies.common.collapse_ida")),
+    # groups: one file, several modules checked alike
+    "tests/studies/test_figures.py": (
+        "a group: the figures of several recipes read right without the paper (labels, "
+        "captions, panel letters, shared limits), with the drawing helpers they share",
+        ("studies.common.plot", "studies.common.peaks_vs_gap")),
+    "tests/studies/test_sweeps.py": (
+        "a group: the parametric recipes of sections 5.2-5.6, each run once alike",
+        ("studies.thickness", "studies.strain", "studies.n_bumpers", "studies.wall_stiffness",
+         "studies.restitution")),
+    "tests/studies/test_two_body.py": (
+        "a group: the two two-body recipes, each run once alike",
+        ("studies.impact_validation", "studies.damping_calibration")),
+    "tests/studies/test_paper_conclusions.py": (
+        "a group: every paper recipe at full resolution, its verdict on each conclusion",
+        ()),
+    # the project's own files, outside the three packages
+    "tests/test_layout.py": ("the layout of the code and of its tests (this file)", ()),
+    "tests/test_readme.py": ("the README's and the documentation's examples and links", ()),
+    "tests/test_compare_archives.py": ("tools/compare_archives.py", ()),
+}
+"""The one table of exceptions to the mirror rule: a module tested through another module's
+tests (a loop through the loop it is compared with, a law through its registry's tests, a
+helper through the recipe that calls it), a group file, or a file testing what is outside the
+packages."""
+
+
+def defines_code(tree: ast.Module) -> bool:
+    """Whether a module holds a function (a module of declarations only, re-exports or a
+    `__main__` that calls another's main, has nothing of its own to test)."""
+    return any(isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef))
+               for node in ast.walk(tree))
+
+
+def files_of_tests() -> list[Path]:
+    """Every test file but the independent references' (tests/reference/ is not code under
+    test: its models are what the engine is checked against)."""
+    return [path for path in sorted(TESTS.rglob("test_*.py"))
+            if "reference" not in path.relative_to(TESTS).parts]
+
+
+def mirrored(path: Path) -> str | None:
+    """The module a test file is the test of: its mirror, or an aspect of it named
+    test_<module>_<aspect>.py beside the module's own (test_building_collapse.py); else the
+    file of TESTED_IN it is, or is an aspect of (test_sweep_plan.py: pipeline.sweep in plan)."""
+    stems, stem = [], path.stem
+    while True:
+        stems.append(stem)
+        if "_" not in stem.removeprefix("test_"):
+            break
+        stem = stem.rpartition("_")[0]
+    modules = {mirror(name): name for name in MODULES}
+    table = {PROJECT / file: file for file in TESTED_IN}
+    for by_file in (modules, table):
+        for stem in stems:
+            if found := by_file.get(path.with_name(f"{stem}.py")):
+                return found
+    return None
+
+
+def test_every_module_has_its_tests_where_the_mirror_says():
+    listed = {name for _, names in TESTED_IN.values() for name in names}
+    covered = {mirrored(path) for path in files_of_tests()}
+    missing = [f"{name}: no {mirror(name).relative_to(PROJECT)}" for name, tree in TREES.items()
+               if defines_code(tree) and name not in covered and name not in listed]
+    assert not missing, "\n".join(missing)
+
+
+def test_every_test_file_mirrors_a_module():
+    stray = [str(path.relative_to(PROJECT)) for path in files_of_tests() if not mirrored(path)]
+    assert not stray, "test files that mirror no module and are not in TESTED_IN:\n" + \
+        "\n".join(stray)
+
+
+def test_the_table_of_exceptions_is_true():
+    wrong = [f"{file}: no such file" for file in TESTED_IN if not (PROJECT / file).is_file()]
+    wrong += [f"{file}: {name} is no module" for file, (_, names) in TESTED_IN.items()
+              for name in names if name not in MODULES]
+    wrong += [f"{file}: {name} has its own {mirror(name).relative_to(PROJECT)}"
+              for file, (_, names) in TESTED_IN.items() for name in names
+              if mirror(name).is_file() and str(mirror(name).relative_to(PROJECT)) != file]
+    assert not wrong, "\n".join(wrong)
+
+
+def test_every_folder_of_tests_is_a_package():
+    """tests.pipeline.records.test_paper and tests.studies.common.test_paper: two files of one
+    name, told apart by their packages."""
+    loose = sorted({str(path.parent.relative_to(PROJECT)) for path in TESTS.rglob("test_*.py")
+                    if not (path.parent / "__init__.py").is_file()})
+    assert not loose, loose
+
+
+def test_the_longest_first_order_names_existing_files():
+    from tests.conftest import LONG_FIRST
+
+    gone = [file for file in LONG_FIRST if not (PROJECT / file).is_file()]
+    assert not gone, gone

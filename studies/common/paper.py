@@ -9,7 +9,7 @@ engine.impact.laws.rubber_bumper, and read there.
 The practical bumper coincides with the bumper law's declared defaults
 (engine.impact.LAWS["bumper"].PARAMETERS: thickness, strain, n_bumpers, k_w), which the law
 took from the same section 4. The recipes mean "the paper's bumper", not "whatever the law
-defaults to", so they read it here; tests/studies/test_paper.py checks that the two agree.
+defaults to", so they read it here; tests/studies/common/test_paper.py checks that the two agree.
 """
 from __future__ import annotations
 

@@ -51,7 +51,7 @@ def _exact_linear_peaks(building, ag, dt):
 
 
 # The compiled loop: the NumPy loop gives its peaks to 1e-9 with either damping rule
-# (tests/engine/test_kernel.py::test_backends_agree_on_every_peak, "paper" and "modal"
+# (tests/engine/loops/test_numba_loop.py::test_backends_agree_on_every_peak, "paper" and "modal"
 # buildings, with and without walls).
 @pytest.mark.parametrize("backend", ["numba"])
 @pytest.mark.parametrize("damping", ["paper", "modal"])

@@ -156,7 +156,7 @@ def _assert_close(a, b, rtol):
 
 # Limit cases on the compiled loop: the NumPy loop gives its numbers with friction pendulums
 # and bilinear stories, yielding or not (test_both_loops_agree_on_any_height below, to 1e-9),
-# with the bilinear isolator and linear stories (tests/engine/test_kernel.py::
+# with the bilinear isolator and linear stories (tests/engine/loops/test_numba_loop.py::
 # test_backends_agree_on_every_peak, to 1e-9).
 @pytest.mark.parametrize("backend", ["numba"])
 def test_rate_independent_friction_pendulum_is_the_equivalent_bilinear(backend):

@@ -1,5 +1,5 @@
 """Each impact law declares its parameters once; the engine, the grid, the archive and the
-command line read that declaration. And the units module's conversions."""
+command line read that declaration. (engine.units: test_units.py.)"""
 import dataclasses
 import inspect
 import json
@@ -9,7 +9,7 @@ import pytest
 
 import engine
 import pipeline
-from engine import Contact, units
+from engine import Contact
 from engine.impact import LAWS, parameters
 from engine.impact.laws import rubber_bumper
 from pipeline.errors import SweepError
@@ -95,22 +95,3 @@ def test_the_archive_reports_what_the_engine_used(monkeypatch, paper_record):
     assert np.all(direct.n_impacts > 0)  # the defaults matter here
     np.testing.assert_array_equal(ds.peak_total_accel.isel(record=0), direct.peak_total_accel)
     np.testing.assert_array_equal(ds.max_indentation.isel(record=0), direct.max_indentation)
-
-
-def test_units_conversions():
-    assert 15 * units.CM == pytest.approx(0.15, rel=1e-15)
-    assert 4 * units.MM == pytest.approx(0.004, rel=1e-15)
-    assert units.G == 9.81  # SPEC's value, not the standard 9.80665
-    assert 2500 * units.KN_PER_MM == 2.5e9
-    assert 320 * units.TONNE == 320e3
-    assert 3 * units.KN == 3000.0
-    # kN/mm^n: n = 1 is kN/mm, n = 0 is kN; one paper bumper is 0.089 kN/mm^2.65 (SPEC 2).
-    assert units.kn_per_mm_n(1.0) == units.KN_PER_MM
-    assert units.kn_per_mm_n(0.0) == units.KN
-    np.testing.assert_allclose(units.kn_per_mm_n([1.5, 2.65]), [1e3 * 1e3**1.5, 1e3 * 1e3**2.65],
-                               rtol=1e-15)
-    one = rubber_bumper.impact_stiffness(rubber_bumper.PARAMETERS.area.default, 5 * units.CM)
-    assert one / units.kn_per_mm_n(2.65) == pytest.approx(0.089, abs=5e-4)
-    # The record layer converts g with the same G.
-    from pipeline.records import G as records_g
-    assert records_g == units.G

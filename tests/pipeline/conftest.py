@@ -1,7 +1,9 @@
 """Fixtures of the pipeline's tests."""
 import pytest
 
+import pipeline
 from pipeline.execute import batches as batches_module
+from tests.pipeline.small_sweep import RECORDS, SMALL
 
 
 @pytest.fixture
@@ -16,3 +18,11 @@ def count_simulated(monkeypatch):
 
     monkeypatch.setattr(batches_module, "simulate_batch", counting)
     return calls
+
+
+@pytest.fixture(scope="module")
+def reference():
+    """The small sweep (small_sweep.py), run in this process in one batch per record: what the
+    sweeps run otherwise (in batches, on workers, resumed) must equal; once per module."""
+    return pipeline.sweep(RECORDS, **SMALL, workers=1, baseline=True, unconstrained=True,
+                          quiet=True)

@@ -1,7 +1,8 @@
 """Sweeps on a real dask.distributed cluster on localhost: a scheduler and worker processes
 started as a user would (`dask scheduler`, `dask worker`), the same numbers as a local run,
 workers killed mid-run, and each way a cluster can be unfit failing in one clear line.
-The helpers starting the processes serve tests/pipeline/test_tls.py too (with TLS options)."""
+The helpers starting the processes serve tests/pipeline/test_cluster_tls.py too (with TLS
+options)."""
 from __future__ import annotations
 
 import os
@@ -213,7 +214,7 @@ def test_workers_killed_mid_run(cluster, record, tmp_path, monkeypatch):
 
 
 def test_nothing_listening(record):
-    """Connection refused: said at once (more address mistakes: test_tls.py)."""
+    """Connection refused: said at once (more address mistakes: test_cluster_tls.py)."""
     start = time.monotonic()
     with pytest.raises(ClusterError, match="nothing listens there \\(connection refused\\)"):
         pipeline.sweep([record], gap=0.2, scheduler=f"tcp://127.0.0.1:{_free_port()}",

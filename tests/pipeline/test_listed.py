@@ -6,7 +6,7 @@ import pytest
 import engine
 import pipeline
 from pipeline.errors import SweepError
-from tests.pipeline.test_sweep import DT, RECORDS
+from tests.pipeline.small_sweep import DT, RECORDS
 
 NAN = np.nan
 SHARED = {"law": ["none", "linear", "bumper"], "gap": [NAN, 0.10, 0.10],

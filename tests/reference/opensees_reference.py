@@ -122,7 +122,7 @@ import scipy.linalg
 AGREEMENT = {"none": 2e-4, "elastic": 1e-3, "jankowski": 0.015, "hertzdamp": 1e-3}
 """Relative tolerance of the engine's peaks against this model, per contact: the worst deviation
 measured on the paper's records plus a margin (measured: none 0.01%, elastic 0.04%, Jankowski
-0.8%, Hertzdamp 0.04%). tests/engine/test_opensees.py asserts it; benchmarks/vs_opensees.py
+0.8%, Hertzdamp 0.04%). tests/engine/test_simulate_opensees.py asserts it; benchmarks/vs_opensees.py
 quotes it."""
 
 G = 9.81

@@ -1,222 +1,115 @@
-"""Command lines that behave: implausible inputs refused before compute, negative numbers,
-one meaning of --out, common options on every recipe, --replot's report, unguarded scripts."""
-from __future__ import annotations
-
+"""The `bumpers` console command (studies/cli.py): it lists every command found on disk, runs
+one with its arguments and exit status, and refuses an unknown one in one line."""
 import importlib
+import shutil
 import subprocess
 import sys
-import textwrap
 from pathlib import Path
 
-import numpy as np
 import pytest
-import xarray as xr
 
-from studies import sweep as sweep_cli
+from studies import cli
 
-PROJECT = Path(__file__).resolve().parents[2]
-RECIPES = ["impact_validation", "damping_calibration", "practical_example", "gap_size",
-           "thickness", "strain", "n_bumpers", "wall_stiffness", "restitution", "suite",
-           "design"]
-
-
-@pytest.mark.parametrize("option, value, hint", [
-    ("--gap", "20", "--gap-cm 20"), ("--thickness", "5", "--thickness-cm 5"),
-    ("--cavity", "2.5", "--cavity-cm 2.5")])
-def test_lengths_in_cm_given_as_m_are_refused(option, value, hint, tmp_path, capsys):
-    argv = ["--records", "pacoima", "--out", str(tmp_path / "x.nc")]
-    if option != "--gap":
-        argv += ["--gap", "0.3"]
-    assert sweep_cli.main([*argv, option, value]) == 2
-    err = capsys.readouterr().err
-    assert "implausible (outside" in err and hint in err and len(err.splitlines()) == 1
-    assert not (tmp_path / "x.nc").exists() and not (tmp_path / "x.nc.work").exists()
+ROOT = Path(__file__).resolve().parents[2]
+RECIPES = sorted([p.stem for p in (ROOT / "studies").glob("*.py")
+                  if not p.stem.startswith("_") and p.stem not in ("cli", "sweep")]
+                 + [p.parent.name for p in (ROOT / "studies").glob("*/__main__.py")])
+"""The recipes on disk, modules and packages run with `python -m` (a package has a
+__main__.py), found here independently of cli's pkgutil discovery."""
 
 
-@pytest.mark.parametrize("argv, line", [
-    (["--gap-cm", "20", "--thickness-cm", "0.05"], "error: --thickness-cm 0.05 cm is 0.0005 m, "
-     "implausible for thickness (outside [0.005, 2] m); did you mean --thickness-cm 5 (0.05 m)?"),
-    (["--gap-cm", "20", "--strain", "80"], "error: strain must be in (0, 1], got [80.]: a ratio, "
-                                           "not a percentage (80% is 0.8)"),
-    (["--gap-cm", "0.2"], "error: --gap-cm 0.2 cm is 0.002 m, implausible for gap (outside "
-                          "[0.01, 2] m); did you mean --gap-cm 20 (0.2 m)?"),
-])
-def test_slips_in_the_paper_units_and_percentages_say_what_was_meant(argv, line, tmp_path,
-                                                                     capsys):
-    assert sweep_cli.main(["--records", "pacoima", *argv, "--out", str(tmp_path / "x")]) == 2
-    assert capsys.readouterr().err.strip() == line
-    assert not (tmp_path / "x").exists()
+def listed(text: str) -> list[str]:
+    """The command names of a listing: the first word of each entry line."""
+    lines = text[text.index("commands:"):].splitlines()[1:]
+    return [line.split()[0] for line in lines if line.startswith("  ") and line[2] != " "]
 
 
-@pytest.mark.parametrize("argv, hint", [
-    (["--wall-k", "1500"], "1500 kN/mm is 1.5e+09 N m-1), or --wall-k-kn-mm 1500"),
-    (["--m-eff", "320"], "320 t is 320000 kg), or --m-eff-t 320"),
-    (["--k2", "25"], "25 kN/mm is 2.5e+07 N m-1), or --k2-kn-mm 25"),
-    (["--impact", "linear", "--wall-k", "2.5e15"], "outside [1e6, 1e13] N m-1"),
-])
-def test_values_in_the_paper_units_given_as_si_are_refused(argv, hint, tmp_path, capsys):
-    assert sweep_cli.main(["--records", "pacoima", "--gap", "0.3", *argv,
-                           "--out", str(tmp_path / "x")]) == 2
-    err = capsys.readouterr().err
-    assert "implausible" in err and hint in err and len(err.splitlines()) == 1
-    assert not (tmp_path / "x").exists()
+def installed_bumpers() -> str:
+    """The console script pip installed beside this Python (else the one on PATH)."""
+    found = shutil.which("bumpers", path=str(Path(sys.executable).parent)) \
+        or shutil.which("bumpers")
+    assert found, "no `bumpers` script: run pip install -e . again"
+    return found
 
 
-@pytest.mark.parametrize("setting, hint", [
-    ("masses=320,320,320,320,250", "masses 320 kg is implausible (outside [1e3, 1e9] kg): give "
-                                   "kg (320 t is 320000 kg)"),
-    ("story_stiffness=600,600,600,600", "600 kN/mm is 6e+08 N m-1"),
-    ("k2=25", "building isolator k2 25 N m-1 is implausible"),
-])
-def test_implausible_building_is_refused(setting, hint, tmp_path, capsys):
-    assert sweep_cli.main(["--records", "pacoima", "--gap", "0.3", "--building", setting,
-                           "--out", str(tmp_path / "x")]) == 2
-    err = capsys.readouterr().err
-    assert hint in err and len(err.splitlines()) == 1
+def test_recipes_are_found_on_disk():
+    assert len(RECIPES) >= 11 and "gap_size" in RECIPES
+    assert cli.recipe_names() == RECIPES
 
 
-def test_step_coarser_than_the_converged_one_is_announced(tmp_path, capsys):
-    assert sweep_cli.main(["--records", "pacoima", "--gap", "0.3", "--dt", "0.004", "--quiet",
-                           "--out", str(tmp_path)]) == 0
-    err = capsys.readouterr().err
-    assert "warning: dt = 0.004 s is 8 x the converged step 0.0005 s" in err
-    assert len(err.splitlines()) == 1
+@pytest.mark.parametrize("argv", [["--help"], ["-h"], []])
+def test_help_lists_every_recipe_then_sweep_and_records(argv, capsys):
+    assert cli.main(argv) == 0
+    names = listed(capsys.readouterr().out)
+    assert sorted(names[:-4]) == RECIPES
+    assert names[-4:] == ["sweep", "export", "plot", "records"]
+    assert names[0] == "impact_validation"  # the paper's order: Fig. 6 first
 
 
-@pytest.mark.parametrize("value", ["-1e9", "-5", "-0.5", "-.5E+3"])
-def test_negative_numbers_reach_the_range_check(value, tmp_path, capsys):
-    assert sweep_cli.main(["--records", "pacoima", "--gap", "0.3", "--wall-k", value,
-                           "--out", str(tmp_path)]) == 2
-    err = capsys.readouterr().err
-    assert "wall_k must be in (0, inf)" in err and "expected" not in err
+def test_listing_reads_what_the_recipes_declare():
+    """The summaries read from the sources are those of the imported recipes."""
+    for command in cli.commands()[:-4]:
+        recipe = importlib.import_module(command.module).recipe
+        assert (command.name, command.figure, command.summary) == \
+               (recipe.name, recipe.figure, recipe.summary)
 
 
-def test_out_is_a_file_or_a_folder_in_every_command(tmp_path, capsys):
-    argv = ["--records", "pacoima", "--gap-cm", "25", "--dt", "1e-3", "--quiet"]
-    assert sweep_cli.main([*argv, "--out", str(tmp_path / "mine.nc")]) == 0
-    assert sweep_cli.main([*argv, "--out", str(tmp_path / "folder")]) == 0
-    with xr.open_dataset(tmp_path / "mine.nc") as a, \
-            xr.open_dataset(tmp_path / "folder" / "sweep.nc") as b:
-        np.testing.assert_array_equal(a.peak_total_accel, b.peak_total_accel)
-    strain = importlib.import_module("studies.strain")
-    assert strain.main(["--quick", "--quiet", "--records", "pacoima", "--dt", "1e-3",
-                        "--out", str(tmp_path / "fig18.nc")]) == 0
-    quick = tmp_path / "quick"  # beside the full run's outputs, never over them
-    assert {p.name for p in quick.glob("fig18*")} == {"fig18.nc", "fig18.png", "fig18.pdf"}
-    assert not list(quick.glob("*.work"))  # work folders go once the archive is written
-    capsys.readouterr()
-    assert strain.main(["--replot", "--quick", "--out", str(tmp_path / "fig18.nc")]) == 0
-    out = capsys.readouterr().out
-    assert f"redrew {quick / 'fig18.png'} {quick / 'fig18.pdf'} from " in out
-    assert "wrote" not in out
+def test_a_recipe_that_is_not_literal_is_imported():
+    assert cli.literal_recipe("recipe = Recipe(figure='Fig. 1', summary=f'{X} cm')") is None
+    assert cli.literal_recipe("recipe = Recipe(figure='Fig. 1', summary='a' 'b')") == \
+           {"figure": "Fig. 1", "summary": "ab"}
 
 
-@pytest.mark.parametrize("name", RECIPES)
-def test_every_recipe_takes_the_common_options(name, tmp_path):
-    parser = importlib.import_module(f"studies.{name}").recipe.parser()
-    args = parser.parse_args(["--records-dir", str(tmp_path), "--workers", "1", "--scheduler",
-                              "tcp://127.0.0.1:1", "--dt", "5e-4", "--out", str(tmp_path),
-                              "--quick", "--quiet"])
-    assert args.workers == 1 and args.out == tmp_path
+def test_listing_imports_no_recipe():
+    """`bumpers --help` stays fast: no recipe, matplotlib, numba or xarray imported."""
+    code = ("import sys; from studies.cli import main; main(['--help']); "
+            "print(sorted(m for m in sys.modules if m.split('.')[0] in "
+            "('matplotlib', 'numba', 'xarray', 'engine') or m.startswith('studies.g')))")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=60, check=True)
+    assert done.stdout.splitlines()[-1] == "[]"
 
 
-def test_output_folder_that_cannot_be_written_fails_before_compute(tmp_path, capsys):
-    """A folder under a plain file cannot be made (permissions would not bind for root)."""
-    blocker = tmp_path / "a_file"
-    blocker.write_text("")
-    gap_size = importlib.import_module("studies.gap_size")
-    assert gap_size.main(["--quick", "--records", "pacoima", "--out",
-                          str(blocker / "out")]) == 2
-    err = capsys.readouterr().err
-    assert "cannot write" in err and len(err.splitlines()) == 1
+def test_unknown_command_is_one_line_naming_the_commands(capsys):
+    assert cli.main(["gap_sizes", "--quick"]) == 2
+    captured = capsys.readouterr()
+    assert captured.out == ""
+    assert len(captured.err.strip().splitlines()) == 1
+    assert "'gap_sizes'" in captured.err
+    assert all(name in captured.err for name in [*RECIPES, "sweep", "records"])
 
 
-def test_unguarded_script_with_worker_processes(tmp_path):
-    """A script without `if __name__ == "__main__":` that starts 2 local workers runs once,
-    and gives the numbers of an in-process run."""
-    script = tmp_path / "unguarded.py"
-    script.write_text(textwrap.dedent("""
-        import pipeline
-        ds = pipeline.sweep(["pacoima"], gap=[0.2, 0.3], workers=2, dt=1e-3, quiet=True)
-        print("peaks", repr(ds.peak_isolator_disp.values.tolist()))
-    """))
-    done = subprocess.run([sys.executable, str(script)], cwd=tmp_path, capture_output=True,
-                          text=True, timeout=300)
-    assert done.returncode == 0, done.stderr[-2000:]
-    lines = [line for line in done.stdout.splitlines() if line.startswith("peaks")]
-    assert len(lines) == 1  # the workers did not run the script again
-    import pipeline
+@pytest.mark.parametrize("name, module", [("gap_size", "studies.gap_size"),
+                                          ("sweep", "studies.sweep"),
+                                          ("records", "pipeline.records.cli")])
+def test_arguments_and_status_pass_through(name, module, monkeypatch):
+    seen = []
 
-    local = pipeline.sweep(["pacoima"], gap=[0.2, 0.3], dt=1e-3, quiet=True)
-    assert lines[0] == "peaks " + repr(local.peak_isolator_disp.values.tolist())
+    def fake_main(argv=None):
+        seen.append(argv)
+        return 7
+
+    monkeypatch.setattr(importlib.import_module(module), "main", fake_main)
+    assert cli.main([name, "--quick", "--out", "/tmp/x"]) == 7
+    assert seen == [["--quick", "--out", "/tmp/x"]]
 
 
-def _text_records(folder: Path) -> None:
-    """rec1.txt (one column, g, 0.01 s) and rec2.txt (time, g): the same 10 s pulse."""
-    t = np.arange(0.0, 10.0, 0.01)
-    accel = 0.3 * np.sin(2 * np.pi * t / 1.5) * np.sin(np.pi * t / 10) ** 2
-    folder.mkdir(exist_ok=True)
-    np.savetxt(folder / "rec1.txt", accel)
-    np.savetxt(folder / "rec2.txt", np.column_stack([t, accel]))
+def test_command_help_is_the_commands_own(capsys):
+    assert cli.main(["gap_size", "--help"]) == 0
+    assert "usage: bumpers gap_size" in capsys.readouterr().out
 
 
-def test_text_records_run_from_the_command_line(tmp_path, capsys):
-    _text_records(tmp_path / "recs")
-    common = ["--records-dir", str(tmp_path / "recs"), "--gap-cm", "10", "--quiet"]
-    assert sweep_cli.main(["--records", "rec1.txt", "rec2.txt", "--record-units", "g",
-                           "--record-dt", "0.01", *common, "--out", str(tmp_path)]) == 0
-    with xr.open_dataset(tmp_path / "sweep.nc") as ds:
-        assert list(ds.record.values) == ["rec1", "rec2"]
-        np.testing.assert_allclose(ds.record_pga, 0.3 * 9.81 * np.max(np.abs(
-            np.sin(2 * np.pi * np.arange(0, 10, 0.01) / 1.5)
-            * np.sin(np.pi * np.arange(0, 10, 0.01) / 10) ** 2)), rtol=1e-12)
-        # one column or two, the same record: the same numbers
-        np.testing.assert_array_equal(ds.peak_total_accel[0], ds.peak_total_accel[1])
-    capsys.readouterr()
-    assert sweep_cli.main(["--records", "rec1.txt", *common, "--out", str(tmp_path / "x")]) == 2
-    err = capsys.readouterr().err
-    assert "--record-units" in err and len(err.splitlines()) == 1
-    assert sweep_cli.main(["--records", "pacoima", "--record-units", "g", *common,
-                           "--out", str(tmp_path / "x")]) == 2
-    assert "apply to text records" in capsys.readouterr().err
-    strain = importlib.import_module("studies.strain")
-    assert strain.main(["--quick", "--records", str(tmp_path / "recs" / "rec2.txt"),
-                        "--record-units", "g", "--dt", "1e-3", "--quiet",
-                        "--out", str(tmp_path / "fig")]) == 0
-    with xr.open_dataset(tmp_path / "fig" / "quick" / "strain.nc") as ds:
-        assert list(ds.record.values) == ["rec2"]
+def test_usage_error_of_a_command_is_status_2(capsys):
+    assert cli.main(["records", "--no-such-option"]) == 2
+    assert "unrecognized arguments" in capsys.readouterr().err
 
 
-@pytest.mark.parametrize("name", ["suite", "fragility", "design"])
-@pytest.mark.parametrize("argv, words", [
-    (["--sms-g", "-1"], "--sms-g: S_MS must be positive (g), got -1"),
-    (["--sm1-g", "90"], "--sm1-g 90 g is implausible for S_M1 (above 4 g): give g (90% g is "
-                        "0.9 g)"),
-    (["--tl", "80"], "--tl 80 s is implausible for T_L (above 20 s)"),
-])
-def test_a_site_no_real_site_has_is_refused_in_one_line(name, argv, words, tmp_path, capsys):
-    module = importlib.import_module(f"studies.{name}")
-    assert module.main(["--quick", "--quiet", "--out", str(tmp_path), *argv]) == 2
-    (line,) = capsys.readouterr().err.strip().splitlines()
-    assert line == f"{name}: error: {words}"
-    assert not list(tmp_path.iterdir())  # refused before any compute: nothing written
-
-
-def test_a_malformed_option_is_one_line_and_an_unwritable_output_is_refused(tmp_path, capsys):
-    import os
-
-    from studies import fragility, sweep
-
-    with pytest.raises(SystemExit) as stop:
-        sweep.main(["--records", "kobe", "--gap-cm", "20", "--n-bumpers", "2.5",
-                    "--out", str(tmp_path / "x.nc")])
-    assert stop.value.code == 2
-    (line,) = capsys.readouterr().err.strip().splitlines()
-    assert "--n-bumpers: invalid int value: '2.5'" in line and "--help" in line
-    if not os.path.ismount("/sys"):
-        pytest.skip("no /sys here: a folder that says writable but takes no file")
-    # a folder the permission bits allow root but no file can be created in (sysfs)
-    assert fragility.main(["--quick", "--quiet", "--out", "/sys/x.nc"]) == 2
-    (line,) = capsys.readouterr().err.strip().splitlines()
-    assert line.startswith("fragility: error: out: cannot write to /sys")
-    assert not list(tmp_path.iterdir())
+def test_the_installed_console_script_runs_a_command():
+    script = installed_bumpers()
+    done = subprocess.run([script, "records", "--help"], capture_output=True, text=True,
+                          timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert "usage: bumpers records" in done.stdout
+    unknown = subprocess.run([script, "nope"], capture_output=True, text=True, timeout=60)
+    assert unknown.returncode == 2
+    assert unknown.stderr.count("\n") == 1 and unknown.stdout == ""

@@ -1,5 +1,6 @@
-"""studies.design: the optimum's nature on hand-made candidate tables, the constraints on known
-numbers, and the quick run's archive, its choice, and its numbers against direct engine runs."""
+"""studies.design: the quick run's archive, its choice, and its numbers against direct engine
+runs. (The optimum's nature, the space's bounds and the search's constraints on hand-made
+numbers: tests/studies/design/.)"""
 from __future__ import annotations
 
 import numpy as np
@@ -9,154 +10,10 @@ from pipeline.assess import validity
 from pipeline.assess.outcomes import weighted_quantiles
 from studies import design
 from studies.common.recipe import verdicts
-from studies.design import optimum, search, space
+from studies.design import search, space
 from tests.helpers import assert_udunits, run_recipe
 
-# --------------------------------------------------------------------- hand-made tables
-
-BOUNDS = space.Bounds(gap=0.20, clearance=0.10, usable_strain=0.6, wall_length=100.0)
 """Loose bounds for the tables below: the bumpers may protrude 10 cm, c/t up to 0.4."""
-AXES = {"thickness": (0.04, 0.06, 0.08), "cavity_ratio": (0.0, 0.1, 0.2),
-        "n_bumpers": (4, 8, 16), "shape_factor": (0.6, 0.8, 1.0), "wall_k": (5e8, 1e9, 2e9)}
-
-
-def table_of(axes=AXES) -> dict:
-    mesh = np.meshgrid(*(np.asarray(axes[v], float) for v in space.VARIABLES), indexing="ij")
-    return {v: m.ravel() for v, m in zip(space.VARIABLES, mesh, strict=True)}
-
-
-def at(table, **config) -> int:
-    same = np.ones(table["thickness"].size, dtype=bool)
-    for name, value in config.items():
-        same &= np.isclose(table[name], value)
-    return int(np.flatnonzero(same)[0])
-
-
-def centre(axes=AXES) -> dict:
-    return {v: axes[v][1] for v in space.VARIABLES}
-
-
-def test_an_optimum_inside_the_grid_is_interior():
-    table = table_of()
-    found = optimum.nature(table, at(table, **centre()), BOUNDS)
-    assert found.interior and not found.bounds
-    assert found.text().startswith("interior")
-
-
-def test_an_optimum_at_the_grids_edge_is_named_and_may_lie_beyond():
-    table = table_of()
-    found = optimum.nature(table, at(table, **{**centre(), "thickness": 0.08}), BOUNDS)
-    assert not found.interior
-    (bound,) = found.bounds
-    assert (bound["variable"], bound["side"], bound["kind"]) == ("thickness", "upper", "grid")
-    assert "thickness at its upper bound 0.08 m" in found.text()
-    assert "the optimum may lie beyond the grid" in found.text()
-
-
-def test_an_optimum_on_a_physical_bound_names_it():
-    # 8 cm bumpers without cavity protrude 8 cm: the most a 14 cm gap leaves beyond 6 cm
-    tight = space.Bounds(gap=0.14, clearance=0.06, usable_strain=0.6, wall_length=100.0)
-    table = table_of()
-    best = at(table, **{**centre(), "thickness": 0.08, "cavity_ratio": 0.0})
-    found = optimum.nature(table, best, tight)
-    kinds = {(b["variable"], b["side"]): b["kind"] for b in found.bounds}
-    assert kinds == {("thickness", "upper"): "physical", ("cavity_ratio", "lower"): "physical"}
-    assert "(physical: the clearance: thickness - cavity <= gap - D_S" in found.text()
-
-
-def test_a_tie_at_a_bound_is_indifferent_and_a_failing_neighbour_an_active_constraint():
-    table = table_of()
-    best = at(table, **{**centre(), "wall_k": 2e9})
-    scores = np.column_stack([np.arange(table["thickness"].size, dtype=float)] * 2)
-    scores[at(table, **{**centre(), "wall_k": 1e9})] = scores[best]  # k_w plays no part
-    fails = [[] for _ in scores]
-    fails[at(table, **{**centre(), "wall_k": 2e9, "thickness": 0.04})] = ["within_limits"]
-    found = optimum.nature(table, best, BOUNDS, fails=fails, scores=scores)
-    assert found.interior and found.bounds[0]["indifferent"]
-    assert found.active == ({"variable": "thickness", "side": "lower", "neighbour": 0.04,
-                             "fails": ["within_limits"]},)
-    assert "indifferent: wall_k" in found.text() and "thickness 0.04 m fails within_limits" \
-        in found.text()
-    # without the tie, the wall's bound holds the optimum
-    distinct = np.column_stack([np.arange(table["thickness"].size, dtype=float)] * 2)
-    assert not optimum.nature(table, best, BOUNDS, scores=distinct).interior
-
-
-def test_bounds_from_physical_limits():
-    b = space.Bounds(gap=0.131, clearance=0.048, usable_strain=0.589, wall_length=18.0)
-    limits = b.limits({"thickness": 0.10, "cavity_ratio": 0.2, "n_bumpers": 8,
-                       "shape_factor": 0.5, "wall_k": 1.5e9})
-    assert limits["thickness"][1][0] == pytest.approx(0.083 / 0.8)  # t (1 - c/t) <= room
-    assert limits["cavity_ratio"][1][0] == pytest.approx(0.411)
-    assert limits["n_bumpers"][1][0] == pytest.approx(18.0 / (2 * 4 * 0.5 * 0.10))
-    # the neighbours stop at a bound, exactly on it
-    config = {"thickness": 0.10, "cavity_ratio": 0.4, "n_bumpers": 8, "shape_factor": 0.5,
-              "wall_k": 2.5e9}
-    near = space.neighbours(config, 0, b)
-    up = near["cavity_ratio"] > 0.4
-    assert near["cavity_ratio"][up].tolist() == [pytest.approx(0.411)]
-    assert not np.any(near["wall_k"] > 2.5e9) and not np.any(near["shape_factor"] < 0.5)
-    assert all(b.allows(space.row(near, i)) for i in range(near["thickness"].size))
-    assert space.usable_strain(0.8, None) == 0.8
-    assert space.usable_strain(0.8, 30.9e6) == pytest.approx(0.589, abs=1e-3)
-
-
-# ---------------------------------------------------------------- constraints, ranking
-
-
-def stats_of(**columns) -> dict:
-    """Statistics (L = 3 levels, K candidates) from (K,) columns per level name."""
-    k = len(next(iter(columns.values()))[0])
-    out = {name: np.zeros((3, k)) for name in search.STAT_TEXT}
-    for name, rows in columns.items():
-        out[name] = np.asarray(rows, float)
-    return out
-
-
-def test_constraints_filter_known_numbers():
-    zero = [0.0] * 4
-    stats = stats_of(
-        median_peak_floor_accel=[zero, zero, [5.0, 4.0, 3.0, 2.0]],
-        p84_peak_floor_accel=[zero, zero, [6.0, 5.0, 4.0, 3.0]],
-        fraction_within_limits=[zero, zero, [0.9, 0.9, 0.8, 0.5]],
-        fraction_uncrushed=[zero, zero, [1.0, 1.0, 0.9, 0.6]],
-        fraction_contact=[[0.0, 0.1, 0.0, 0.0], zero, zero],
-        fraction_hurt=[zero, [0.0, 0.0, 0.3, 0.0], zero],
-        fraction_valid=[zero, zero, [1.0] * 4])
-    new = search.judge(stats, space.Criteria(), [4] * 4, [1.5e9] * 4)
-    # 1: contact at the service level; 2 and 3: within limits under < 84%
-    assert new["feasible"].tolist() == [True, False, False, False]
-    assert new["rank"].tolist() == [1, 0, 0, 0]
-    assert new["margins"]["within_limits"] == pytest.approx([0.06, 0.06, -0.04, -0.34])
-    # the old criteria (uncrushed only, the service level free) admit 2 as well: it wins
-    old = search.judge(stats, space.Criteria("median", stress_limit=False, service_contact=1.0),
-                       [4] * 4, [1.5e9] * 4)
-    assert old["rank"].tolist() == [3, 2, 1, 0]
-    # hurt at the design level under at most 20%: 2 is out again; p84 as the objective
-    capped = search.judge(stats, space.Criteria(stress_limit=False, service_contact=1.0,
-                                                 hurt_design=0.2, objective="p84"),
-                          [4] * 4, [1.5e9] * 4)
-    assert capped["rank"].tolist() == [2, 1, 0, 0]
-    assert capped["objective"].tolist() == [6.0, 5.0, 4.0, 3.0]
-
-
-def test_ties_go_to_fewer_bumpers_then_the_stiffer_wall():
-    rank = search.ranking([1.0, 1.0, 1.0, 0.5], [2.0] * 4, [8, 4, 4, 4],
-                          [2.5e9, 5e8, 2.5e9, 1e9], [True, True, True, False])
-    assert rank.tolist() == [3, 2, 1, 0]
-
-
-def test_weighted_statistics():
-    values = np.array([[1.0], [2.0], [3.0], [4.0]])
-    # equal weights: Hazen's plotting positions (i - 1/2) / n, interpolated
-    assert weighted_quantiles(values, np.ones(4), [0.5])[0, 0] == 2.5
-    assert weighted_quantiles(values, np.ones(4), [0.125, 0.875])[:, 0].tolist() == \
-        [1.0, 4.0]
-    # weights 1, 3, 1, 1: the steps' midpoints 0.5/6, 2.5/6, 4.5/6, 5.5/6, interpolated
-    assert weighted_quantiles(values, [1, 3, 1, 1], [2.5 / 6, 0.5])[:, 0] == \
-        pytest.approx([2.0, 2.25])
-    assert search.weighted_fraction([[True], [False], [True], [False]],
-                                    [1, 3, 1, 1])[0] == pytest.approx(2 / 6)
 
 
 # --------------------------------------------------------------------- the quick run

@@ -4,7 +4,9 @@ line styles the lines are drawn with, gap_size's caption says what is plotted; a
 journal would print (issue 30): a one-line title at most (the rest in the recipe's
 caption(ds), kept as the archive's figure_caption), panel letters on every multi-panel
 figure, one y-scale across the panels compared. Each figure is drawn from a small Dataset
-built here (no simulation), and checked through its artists."""
+built here (no simulation), and checked through its artists. A group file (TESTED_IN of
+tests/test_layout.py): several recipes' figures, and the drawing helpers they share
+(studies.common.plot, studies.common.peaks_vs_gap)."""
 from __future__ import annotations
 
 import numpy as np

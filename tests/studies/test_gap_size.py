@@ -3,9 +3,11 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from engine.units import CM
 from studies import gap_size
+from studies.common.plot import plt, record_label
 from studies.common.recipe import verdicts
-from tests.helpers import assert_udunits
+from tests.helpers import assert_figure_files, assert_udunits, drawn
 
 
 @pytest.fixture(scope="module")
@@ -38,10 +40,39 @@ def test_archive_is_labelled_and_complete(quick_run):
 
 def test_figure_files_and_replot(quick_run):
     png, pdf = quick_run / "gap_size.png", quick_run / "gap_size.pdf"
-    assert png.stat().st_size > 10_000 and pdf.stat().st_size > 10_000
+    assert_figure_files(png, pdf)
     png.unlink()
     assert gap_size.main(["--replot", "--out", str(quick_run)]) == 0
     assert png.exists()
+
+
+def test_figure_shows_the_archive(quick_run):
+    """Figs. 14-15: a panel per floor (top row) and per story (bottom row), a line per record
+    of its amplification against the gap in cm, the no-change line at 1."""
+    ds = xr.load_dataset(quick_run / "gap_size.nc")
+    fig = gap_size.plot(ds)
+    assert fig._suptitle.get_text() == ("Amplification by rubber bumpers against the seismic "
+                                        "gap (paper Figs. 14-15)")
+    axes = np.reshape(fig.axes, (2, 5))
+    rows = [("amplification_total_accel", "floor", ["Base (isolation level)", "1st floor",
+                                                    "2nd floor", "3rd floor", "Roof"]),
+            ("amplification_interstory_drift", "story", ["1st story", "2nd story",
+                                                         "3rd story", "4th story"])]
+    for row, (name, dim, titles) in zip(axes, rows, strict=True):
+        assert [ax.get_title() for ax in row[:len(titles)]] == titles
+        for ax, index in zip(row, ds[dim].values, strict=False):
+            lines = drawn(ax)
+            assert [label for label, _, _ in lines[:-1]] == \
+                [record_label(ds, str(r)) for r in ds.record.values]
+            for (_, x, y), record in zip(lines, ds.record.values, strict=False):
+                np.testing.assert_allclose(x, ds.gap.values / CM)
+                np.testing.assert_array_equal(y, ds[name].sel(record=record, **{dim: index}))
+            assert np.all(lines[-1][2] == 1.0)  # the no-change line
+    assert axes[0, 0].get_ylabel() == "Amplification of peak\nfloor acceleration"
+    assert axes[1, 0].get_ylabel() == "Amplification of peak\ninterstory deflection"
+    assert [ax.get_xlabel() for ax in axes[1, :4]] == ["Seismic gap (cm)"] * 4
+    assert not axes[1, 4].axison  # the legend's place
+    plt.close(fig)
 
 
 def test_help_and_bad_input(tmp_path, capsys):

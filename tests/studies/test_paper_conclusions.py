@@ -3,7 +3,8 @@
 Every recipe runs once with its default (full) grid on the paper's records; its archive holds
 one verdict per conclusion it covers (attribute `paper_verdicts`). A conclusion the project
 reproduces must read "agrees"; where the project differs, the test pins the numbers and the
-mechanism that explain it, so that a change in either shows.
+mechanism that explain it, so that a change in either shows. A group file (TESTED_IN of
+tests/test_layout.py): every paper recipe, each also tested in its own file.
 """
 import json
 

@@ -1,14 +1,18 @@
 """The parametric recipes of sections 5.2-5.6 (Figs. 16, 18-22), each run once in --quick form:
-archive dimensions and units, finite peaks, the paper check, the figure files, --replot, --help.
+archive dimensions and units, finite peaks, the paper check, what the figure shows, --replot,
+--help. A group file (TESTED_IN of tests/test_layout.py): thickness, strain, n_bumpers,
+wall_stiffness and restitution, checked alike.
 """
 
 import numpy as np
 import pytest
 import xarray as xr
 
+from engine.units import CM, G
 from studies import n_bumpers, restitution, strain, thickness, wall_stiffness
+from studies.common.plot import floor_labels, plt, record_label, story_labels
 from studies.common.recipe import verdicts
-from tests.helpers import SHARED_RECORDS, assert_udunits
+from tests.helpers import SHARED_RECORDS, assert_figure_files, assert_udunits, drawn
 
 RECORDS_DIR = ["--records-dir", str(SHARED_RECORDS)] if SHARED_RECORDS.is_dir() else []
 QUICK_GAPS = [0.15, 0.25, 0.35, 0.45]  # m
@@ -81,10 +85,77 @@ def check_restitution_gap(ds):
 def test_figures_and_replot(run):
     name, out = run
     png, pdf = out / f"{name}.png", out / f"{name}.pdf"
-    assert png.stat().st_size > 10_000 and pdf.stat().st_size > 10_000
+    assert_figure_files(png, pdf)
     png.unlink()
     assert RECIPES[name][0].main(["--replot", "--out", str(out)]) == 0
     assert png.exists()
+
+
+# the panels' rows of Figs. 16, 18-21: (y label, the archive's peak as plotted, with baseline)
+ROWS = [("Peak floor\nacceleration (g)",
+         lambda ds, p="": ds[p + "peak_total_accel"].max("floor") / G, True),
+        ("Peak interstory\ndeflection (cm)",
+         lambda ds, p="": ds[p + "peak_interstory_drift"].max("story") / CM, True),
+        ("Maximum\nindentation (cm)", lambda ds, p="": ds[p + "max_indentation"] / CM, False)]
+DIMS = {"thickness": "thickness", "strain": "strain", "n_bumpers": "n_bumpers",
+        "wall_stiffness": "wall_k"}
+
+
+def test_figure_shows_the_archive(run):
+    """Figs. 16, 18-21: a column per record, a row per peak, a line per value of the swept
+    parameter against the gap in cm (the no-bumper baseline dashed); Fig. 22: a line per level
+    and gap against the COR."""
+    name, out = run
+    module = RECIPES[name][0]
+    ds = xr.load_dataset(out / f"{name}.nc")
+    fig = module.plot(ds)
+    assert fig._suptitle.get_text() == (
+        module.TITLE if name != "restitution"
+        else "Fig. 22: peak responses vs the bumpers' coefficient of restitution")
+    if name == "restitution":
+        check_restitution_figure(ds, fig)
+    else:
+        records, dim = list(ds.record.values), DIMS[name]
+        rows = ROWS if name == "n_bumpers" else ROWS[:2]
+        axes = np.reshape(fig.axes, (len(rows), len(records)))
+        assert [ax.get_title() for ax in axes[0]] == [record_label(ds, str(r)) for r in records]
+        assert [ax.get_ylabel() for ax in axes[:, 0]] == [ylabel for ylabel, _, _ in rows]
+        assert [ax.get_xlabel() for ax in axes[-1]] == ["Seismic gap (cm)"] * len(records)
+        for row, (_, peak, with_baseline) in zip(axes, rows, strict=True):
+            for ax, record in zip(row, records, strict=True):
+                lines = drawn(ax)
+                assert len(lines) == ds.sizes[dim] + 1
+                for (_, x, y), value in zip(lines, ds[dim].values, strict=False):
+                    np.testing.assert_allclose(x, ds.gap.values / CM)
+                    np.testing.assert_array_equal(y, peak(ds).sel(record=record, **{dim: value}))
+                label, x, y = lines[-1]
+                if with_baseline:
+                    assert label == "No bumpers"
+                    np.testing.assert_array_equal(y, peak(ds, "baseline_").sel(record=record))
+                else:  # the crush limit
+                    assert label.startswith("Limit") and np.all(y == n_bumpers.LIMIT / CM)
+    plt.close(fig)
+
+
+def check_restitution_figure(ds, fig):
+    left, right = fig.axes
+    assert left.get_ylabel() == "Peak floor acceleration (g)"
+    assert right.get_ylabel() == "Peak interstory deflection (cm)"
+    assert left.get_xlabel() == right.get_xlabel() == "Coefficient of restitution of the bumpers"
+    record = ds.record.values[0]
+    for ax, peak, dim, labels in ((left, ds.peak_total_accel / G, "floor",
+                                   floor_labels(ds.sizes["floor"])),
+                                  (right, ds.peak_interstory_drift / CM, "story",
+                                   story_labels(ds.sizes["story"]))):
+        lines = iter(drawn(ax))
+        for level, level_label in zip(ds[dim].values, labels, strict=True):
+            for k, gap in enumerate(sorted(ds.gap.values, reverse=True)):
+                label, x, y = next(lines)
+                assert label == (level_label if k == 0 else "_nolegend_")
+                np.testing.assert_array_equal(x, ds.cor.values)
+                np.testing.assert_array_equal(
+                    y, peak.sel(record=record, gap=gap, **{dim: level}))
+        assert next(lines, None) is None
 
 
 @pytest.mark.parametrize("name", list(RECIPES))

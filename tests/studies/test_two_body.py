@@ -1,64 +1,14 @@
-"""The two-body recipes (impact_validation, Fig. 6; damping_calibration, Eq. 9) and
-engine.damping_fit, the energy-equilibrium procedure of section 3.2."""
+"""The two-body recipes together (impact_validation, Fig. 6; damping_calibration, Eq. 9): one
+quick run of each, checked alike: a group file (TESTED_IN of tests/test_layout.py).
+(engine.damping_fit: tests/engine/test_damping_fit.py.)"""
 import numpy as np
 import pytest
 import xarray as xr
 
-from engine import EngineError, damping_fit
-from engine.impact.calibration import hunt_crossley_chi
+from engine.units import KN, MM
 from studies import damping_calibration, impact_validation
-from tests.helpers import assert_udunits
-
-KAJITA = dict(thickness=0.010, area=0.040**2, strain=0.8, n_bumpers=1)  # 0.45 kN/mm^2.65
-
-
-# --- engine.damping_fit ---------------------------------------------------------------------
-
-def test_energy_equilibrium_a1_balances_eq5():
-    """At the a1 found, the measured hysteresis area equals Delta E of Eq. 5 (within 0.5%),
-    and C_imp v_imp is the damping factor the independent COR table of calibration.py gives."""
-    cor, m_eff, v = 0.45, 150.0, 1.0
-    found = damping_fit.find_a1(cor, m_eff, v, KAJITA, rtol=1e-4)
-    delta_e = 0.5 * m_eff * (1 - cor**2) * v**2
-    assert found.energy_loss[0] == pytest.approx(delta_e)
-    assert found.hysteresis_area[0] == pytest.approx(delta_e, rel=5e-3)
-    assert found.cor_realised[0] == pytest.approx(cor, rel=5e-3)
-    assert not found.crushed[0]
-    assert found.c_imp[0] == pytest.approx(found.a1[0] * (1 - cor**2))
-    chi = hunt_crossley_chi(cor, 2.65, restitution_only=True)[0]
-    assert found.c_imp[0] * v == pytest.approx(chi, rel=2e-3)
-    # Eq. 9 at this point, for scale: the paper's law is within a few percent.
-    assert found.c_imp[0] == pytest.approx(
-        damping_fit.power_law_c_imp(cor, m_eff, v, 1.55, 0.7076, 0.0025, 0.9755), rel=0.05)
-
-
-def test_a1_is_independent_of_mass_and_inverse_in_velocity():
-    """Pure power law: the realised COR depends on C_imp v_imp and n only."""
-    found = damping_fit.find_a1(0.6, [10.0, 1e5, 10.0], [1.0, 1.0, 2.0],
-                                dict(thickness=0.2, area=1.0, strain=1.0), rtol=1e-6)
-    assert found.a1[1] == pytest.approx(found.a1[0], rel=1e-5)
-    assert found.a1[2] == pytest.approx(found.a1[0] / 2, rel=1e-5)
-
-
-def test_find_a1_rejects_a_bracket_without_the_root():
-    with pytest.raises(EngineError, match="bracket"):
-        damping_fit.find_a1(0.45, 150.0, 1.0, KAJITA, bracket=(1e-3, 1e-2))
-    with pytest.raises(EngineError, match="cor"):
-        damping_fit.find_a1(1.0, 150.0, 1.0, KAJITA)
-
-
-def test_power_law_fit_recovers_known_exponents():
-    cor, m_eff, v = (a.ravel() for a in np.meshgrid([0.3, 0.5, 0.9], [10.0, 1e3, 3e5],
-                                                     [0.5, 1.0, 4.0], indexing="ij"))
-    c_imp = damping_fit.power_law_c_imp(cor, m_eff, v, 1.55, 0.7076, 0.0025, 0.9755)
-    fit = damping_fit.fit_power_law(cor, m_eff, v, c_imp)
-    np.testing.assert_allclose([fit.c0, fit.p1, fit.p2, fit.p3],
-                               [1.55, 0.7076, 0.0025, 0.9755], rtol=1e-10)
-    assert fit.rms_log_error < 1e-12
-    np.testing.assert_allclose(fit.c_imp(cor, m_eff, v), c_imp, rtol=1e-10)
-    with pytest.raises(EngineError, match="two values"):
-        damping_fit.fit_power_law(cor, np.full_like(cor, 150.0), v, c_imp)
-
+from studies.common.plot import plt
+from tests.helpers import assert_figure_files, assert_udunits, drawn
 
 # --- the recipes ----------------------------------------------------------------------------
 
@@ -119,10 +69,68 @@ def test_damping_calibration_numbers(quick_runs):
 @pytest.mark.parametrize("name", RECIPES)
 def test_figure_files_and_replot(quick_runs, name):
     png, pdf = quick_runs / f"{name}.png", quick_runs / f"{name}.pdf"
-    assert png.stat().st_size > 10_000 and pdf.stat().st_size > 10_000
+    assert_figure_files(png, pdf)
     png.unlink()
     assert RECIPES[name].main(["--replot", "--out", str(quick_runs), "--quiet"]) == 0
     assert png.exists()
+
+
+def test_impact_validation_figure_shows_the_archive(quick_runs):
+    """Fig. 6: the static test curve, then per impact velocity each model's force against its
+    indentation while in contact, over the static curve."""
+    ds = xr.load_dataset(quick_runs / "impact_validation.nc")
+    fig = impact_validation.plot(ds)
+    assert fig._suptitle.get_text() == "Fig. 6: impact tests of a 10 mm rubber bumper"
+    static, *impacts = fig.axes
+    assert static.get_title() == "Static test curve"
+    assert [ax.get_title() for ax in impacts] == [f"$v_{{imp}}$ = {v:.2g} m/s"
+                                                 for v in ds.velocity.values]
+    assert [ax.get_xlabel() for ax in fig.axes[2:]] == ["Indentation (mm)"] * 2
+    assert [ax.get_ylabel() for ax in fig.axes[::2]] == ["Impact force (kN)"] * 2
+    (_, grid, curve), *_ = drawn(static)
+    for ax, v in zip(impacts, ds.velocity.values, strict=True):
+        *models, (label, x, y) = drawn(ax)
+        assert label == "Static curve"
+        np.testing.assert_array_equal(x, grid)
+        np.testing.assert_array_equal(y, curve)
+        for (label, x, y), model in zip(models, ds.model.values, strict=True):
+            case = ds.sel(model=model, velocity=v)
+            end = int(case.n_contact_steps)
+            assert label == impact_validation.MODEL_LABELS[str(model)]
+            np.testing.assert_array_equal(x, case.indentation.values[:end] / MM)
+            np.testing.assert_array_equal(y, case.force.values[:end] / KN)
+    plt.close(fig)
+
+
+def test_damping_calibration_figure_shows_the_archive(quick_runs):
+    """Eq. 9's figure: the damping coefficient found at each impact velocity and mass (one
+    series of points per COR and mass), and each realised COR's error against its target."""
+    ds = xr.load_dataset(quick_runs / "damping_calibration.nc")
+    fig = damping_calibration.plot(ds)
+    assert fig._suptitle.get_text() == \
+        "Eq. 9 re-derived by energy equilibrium (paper section 3.2)"
+    coefficient, realised = fig.axes
+    assert coefficient.get_title() == "Impact damping coefficient"
+    assert coefficient.get_xlabel() == "Impact velocity $v_{imp}$ (m/s)"
+    assert realised.get_xlabel() == "Target COR"
+    assert realised.get_ylabel() == "Realised COR / target - 1 (%)"
+    lines = iter(drawn(coefficient))
+    for cor in ds.cor.values:
+        found = (ds.c_imp_found.sel(cor=cor) / (1 - cor**2)).values  # (m_eff, v_imp)
+        for row in found:
+            _, x, y = next(lines)
+            np.testing.assert_array_equal(x, ds.v_imp.values)
+            np.testing.assert_array_equal(y, row)
+        next(lines), next(lines)  # the refit's law and Eq. 9's
+    points = iter(drawn(realised))
+    for name, shift in (("cor_eq9", -0.012), ("cor_fit", 0.012)):
+        error = (ds[name] / ds.cor - 1).values.reshape(ds.sizes["cor"], -1) * 100
+        for target, values in zip(ds.cor.values, error, strict=True):
+            _, x, y = next(points)
+            np.testing.assert_allclose(x, target + shift)
+            np.testing.assert_array_equal(y, values)
+        next(points)  # its legend entry
+    plt.close(fig)
 
 
 @pytest.mark.parametrize("name", RECIPES)

@@ -10,7 +10,7 @@ Two rules give chi from the coefficient of restitution:
 Grazing contacts (v_imp -> 0): the dashpot k delta^n chi / v_imp grows without bound; the
 engine solves it implicitly on the central velocity, so the force stays finite (at most what
 stops the approach within one step) and, in the tested 0.1 mm graze at v_imp 0.036 m/s,
-below k delta^n (1 + chi) and dt-convergent (tests/engine/test_model_edges.py). Unlike the bumper
+below k delta^n (1 + chi) and dt-convergent (tests/engine/impact/test_contact.py). Unlike the bumper
 law it has no intrinsic bound: a slab pushed faster into the wall than it touched it meets a
 dashpot of k delta^n chi / v_imp.
 """

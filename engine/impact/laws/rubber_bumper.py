@@ -50,7 +50,7 @@ depth c_d (0 by default), so they protrude t - c_d and the clear gap is gap - (t
 are crushed at delta_u = min(strain t, t - c_d), past which the slab bears on the wall (k_w).
 
 Decisions where the paper is silent (each checked against an independent solution in
-tests/engine/test_model_edges.py):
+tests/engine/impact/test_contact.py):
 - Past the crush limit, restitution damps the whole F_A, the wall term k_w (delta - delta_u)
   included: Eq. 6 multiplies F_A, and Eq. 14 defines F_A past delta_u. The realised COR then
   does not depend on crushing or k_w at all (a closed-form solve of the restitution phase

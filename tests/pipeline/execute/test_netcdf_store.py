@@ -1,0 +1,77 @@
+"""The NetCDF store's work folder (pipeline/execute/netcdf_store.py): an interrupted sweep
+resumes with only the rest, changed arguments never reuse stale results, a damaged work file
+is recomputed."""
+
+import pytest
+import xarray as xr
+
+import pipeline
+from pipeline.execute import netcdf_store
+from tests.pipeline.small_sweep import (
+    RECORDS,
+    SMALL,
+    Killed,
+    assert_same_archive,
+)
+
+# --------------------------------------------------------------------------- resuming
+
+
+def test_interrupted_sweep_resumes_with_only_the_rest(reference, tmp_path, monkeypatch,
+                                                      count_simulated):
+    out = tmp_path / "resume.nc"
+    work = tmp_path / "resume.nc.work"
+    kwargs = dict(**SMALL, workers=1, baseline=True, unconstrained=True, batch_size=2,
+                  quiet=True, out=out)
+    real_save = netcdf_store.WorkFolder.save
+    saved = []
+
+    def dying_save(self, *args):
+        real_save(self, *args)
+        saved.append(1)
+        if len(saved) == 3:
+            raise Killed
+
+    monkeypatch.setattr(netcdf_store.WorkFolder, "save", dying_save)
+    with pytest.raises(Killed):
+        pipeline.sweep(RECORDS, **kwargs)
+    assert not out.exists() and len(list(work.glob("*.npz"))) == 3
+    monkeypatch.setattr(netcdf_store.WorkFolder, "save", real_save)
+
+    count_simulated.clear()
+    ds = pipeline.sweep(RECORDS, **kwargs)
+    total = 2 * (6 + 3 + 1)
+    assert sum(count_simulated) == total - 3 * 2  # three batches of two were kept
+    assert len(count_simulated) == 7
+    assert_same_archive(ds, reference)
+    with xr.open_dataset(out) as back:
+        assert_same_archive(back.load(), reference)
+    assert not work.exists()  # removed once the archive is written
+
+
+def test_changed_arguments_never_reuse_stale_results(tmp_path, monkeypatch, count_simulated):
+    out = tmp_path / "stale.nc"
+    real_save = netcdf_store.WorkFolder.save
+
+    def dying_save(self, *args):
+        real_save(self, *args)
+        raise Killed
+
+    monkeypatch.setattr(netcdf_store.WorkFolder, "save", dying_save)
+    with pytest.raises(Killed):
+        pipeline.sweep(RECORDS, **SMALL, workers=1, batch_size=6, quiet=True, out=out)
+    monkeypatch.setattr(netcdf_store.WorkFolder, "save", real_save)
+    count_simulated.clear()
+    changed = {**SMALL, "thickness": 0.04}
+    ds = pipeline.sweep(RECORDS, **changed, workers=1, batch_size=6, quiet=True, out=out)
+    assert sum(count_simulated) == 12  # the first record's batch was not reused
+    fresh = pipeline.sweep(RECORDS, **changed, workers=1, quiet=True)
+    assert_same_archive(ds, fresh)
+
+
+def test_damaged_work_file_is_recomputed(tmp_path, count_simulated):
+    work = tmp_path / "w.nc.work"
+    work.mkdir()
+    (work / "0123.npz").write_bytes(b"PK\x03\x04 truncated")
+    pipeline.sweep(RECORDS[:1], **SMALL, workers=1, quiet=True, out=tmp_path / "w.nc")
+    assert sum(count_simulated) == 6

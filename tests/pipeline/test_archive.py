@@ -1,0 +1,74 @@
+"""Archives written atomically (pipeline/archive.py's write_netcdf): a failed write leaves no
+archive, a writer killed before the rename never leaves a partial one."""
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import pytest
+import xarray as xr
+
+from tests.pipeline.small_sweep import (
+    Killed,
+)
+
+PROJECT = Path(__file__).resolve().parents[2]
+
+
+# --------------------------------------------------------------------------- atomic archive
+
+
+def test_failed_write_leaves_no_archive(reference, tmp_path, monkeypatch):
+    from pipeline import archive
+
+    out = tmp_path / "fail.nc"
+    real = xr.Dataset.to_netcdf
+
+    def half_then_die(self, path, *args, **kwargs):
+        real(self, path, *args, **kwargs)
+        with open(path, "r+b") as f:  # a half-written file
+            f.truncate(os.path.getsize(path) // 2)
+        raise Killed
+
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", half_then_die)
+    with pytest.raises(Killed):
+        archive.write_netcdf(reference, out)
+    assert list(tmp_path.iterdir()) == []  # neither the archive nor a temporary file
+
+
+@pytest.mark.parametrize("existing", [False, True])
+def test_killed_writer_never_leaves_a_partial_archive(reference, tmp_path, existing):
+    """SIGKILL a writer process after its bytes are written but before the rename."""
+    out = tmp_path / "killed.nc"
+    src = tmp_path / "src.nc"
+    from pipeline.archive import write_netcdf
+
+    write_netcdf(reference, src)
+    if existing:
+        write_netcdf(reference.isel(gap=[0]), out)
+    script = textwrap.dedent(f"""
+        import os, signal
+        import xarray as xr
+        from pipeline import archive
+        ds = xr.open_dataset({str(src)!r}).load()
+        real = xr.Dataset.to_netcdf
+        def write_then_die(self, path, *args, **kwargs):
+            real(self, path, *args, **kwargs)
+            os.kill(os.getpid(), signal.SIGKILL)
+        xr.Dataset.to_netcdf = write_then_die
+        archive.write_netcdf(ds, {str(out)!r})
+    """)
+    proc = subprocess.run([sys.executable, "-c", script], cwd=PROJECT, capture_output=True,
+                          env={**os.environ, "PYTHONPATH": str(PROJECT)})
+    assert proc.returncode == -signal.SIGKILL, proc.stderr.decode()
+    if existing:
+        with xr.open_dataset(out) as back:  # the old archive, whole
+            assert back.sizes["gap"] == 1
+    else:
+        assert not out.exists()
+    leftovers = list(tmp_path.glob(".killed.nc.*.tmp"))
+    assert len(leftovers) == 1  # hidden, never under the archive's name
+    write_netcdf(reference, out)  # the next successful write sweeps it away
+    assert not leftovers[0].exists()

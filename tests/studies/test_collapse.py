@@ -1,0 +1,143 @@
+"""studies.collapse: FEMA P695 chapter 7 for the code-designed isolated building and its moat: the
+quick archive's S_CT and P(collapse | MCE_R) recomputed from its per-pair collapse intensities.
+And studies.loss on the quick collapse run's fragilities: its archive holds the repair cost and
+time per stripe and configuration with their quantiles, the expected annual loss and the annual
+rates per configuration, pelicun's version; its expected annual loss and annual rates recompute
+from its own conditional values and hazard curve (FEMA P-58-1 chapter 8), and its collapse rate
+from the collapse fragility. (studies.loss is tested here, on the quick collapse run made once;
+the assessment's functions on hand-made data: tests/pipeline/assess/test_collapse.py.)"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.stats import norm
+
+from pipeline.assess import collapse as pc
+from studies import collapse
+from tests.helpers import assert_udunits, run_recipe
+
+
+@pytest.fixture(scope="module")
+def quick_path(tmp_path_factory):
+    """The quick collapse run's folder (its archive: quick/collapse.nc), which the loss
+    study's quick run below reads too (the collapse study then runs once)."""
+    out = tmp_path_factory.mktemp("collapse")
+    run_recipe(collapse, ["--quick"], out)
+    return out
+
+
+@pytest.fixture(scope="module")
+def quick(quick_path):
+    import xarray as xr
+
+    with xr.open_dataset(quick_path / "quick" / "collapse.nc") as ds:
+        return ds.load()
+
+
+def test_the_archive_recomputes_from_its_pairs(quick):
+    ds = quick
+    assert_udunits(ds)
+    assert ds.attrs["scaling_rule"] == "p695" and ds.attrs["isolator_bound"] == "lower"
+    assert "imk" in ds.attrs["story_law"] and ds.attrs["p_delta"] == 1
+    weights = ds.record_weight.values
+    for barrier in ds.barrier.values:
+        for g in range(ds.gap_fraction.size):
+            cell = ds.sel(barrier=barrier).isel(gap_fraction=g)
+            intensity = cell.collapse_intensity.values
+            censored = cell.collapse_censored.values.astype(bool)
+            # the first level at which the pair collapses, from the stored runs
+            fell = cell.collapsed.values.astype(bool)  # (record, level)
+            first = [ds.level.values[np.argmax(f)] if f.any() else np.nan for f in fell]
+            np.testing.assert_array_equal(intensity, first)
+            s_ct, known = pc.median_collapse(intensity, censored, weights)
+            acmr = cell.ssf.item() * (s_ct if known else ds.level.values[-1])
+            assert cell.acmr.item() == acmr
+            p = norm.cdf(-math.log(acmr) / cell.beta_total.item())
+            assert cell.collapse_probability.item() == pytest.approx(p, rel=1e-12)
+    table = ds.attrs["paper_verdicts"]
+    assert "Kitayama & Constantinou" in table and "Masroor & Mosqueda" in table
+
+
+def test_refinement_bisects_between_the_last_standing_and_the_first_collapse(quick,
+                                                                             tmp_path):
+    ds = run_recipe(collapse, ["--quick", "--refinements", "2"], tmp_path)
+    assert ds.attrs["refinements"] == 2
+    coarse, fine = quick.collapse_intensity.values, ds.collapse_intensity.values
+    np.testing.assert_array_equal(np.isnan(coarse), np.isnan(fine))
+    levels = list(ds.level.values)
+    known = ~np.isnan(coarse)
+    below = np.array([levels[levels.index(c) - 1] if levels.index(c) else 0.5 * levels[0]
+                      for c in coarse[known]])
+    assert np.all((fine[known] <= coarse[known]) & (fine[known] > below))
+    # two bisections: a quarter of the step, on the grid of quarters
+    quarters = (fine[known] - below) / ((coarse[known] - below) / 4)
+    np.testing.assert_allclose(quarters, np.round(quarters), atol=1e-9)
+    assert np.any(fine[known] < coarse[known])
+
+
+def test_other_rules_and_a_ductility_below_one_are_refused(tmp_path, capsys):
+    for argv, line in ((["--rule", "asce7"], "run it with --rule p695"),
+                       (["--mu-t", "0.5"], "--mu-t must be >= 1"),
+                       (["--refinements", "-1"], "--refinements must be 0 to 10")):
+        assert collapse.main([*argv, "--quick", "--out", str(tmp_path)]) == 2
+        err = capsys.readouterr().err
+        assert line in err and len(err.strip().splitlines()) == 1
+    assert not any(tmp_path.iterdir())
+
+
+@pytest.fixture(scope="module")
+def loss_quick(quick_path, tmp_path_factory):
+    """studies.loss --quick on the quick collapse run's fragilities."""
+    pytest.importorskip("pelicun")
+    from studies import loss
+
+    return run_recipe(loss, ["--quick", "--collapse", str(quick_path / "quick" / "collapse.nc")],
+                      tmp_path_factory.mktemp("loss"))
+
+
+def test_the_loss_archive_holds_the_decision(loss_quick):
+    ds = loss_quick
+    assert_udunits(ds)
+    for name in ("repair_cost", "repair_time", "repair_cost_quantile", "repair_time_quantile",
+                 "expected_annual_loss", "annual_rate_contact", "annual_rate_crushed",
+                 "annual_rate_collapse", "collapse_probability", "median_repair_cost_mce",
+                 "runs_used", "runs_outside_range"):
+        assert name in ds, name
+    assert ds.repair_cost.dims == ("level", "barrier", "gap_fraction")
+    assert ds.attrs["pelicun_version"]
+    # every run is counted once: used, collapsed or outside the model's range
+    runs = ds.runs_used + ds.runs_collapsed + ds.runs_outside_range
+    assert (runs == ds.record.size).all()
+    # the quantiles are ordered and the median lies within them
+    q = ds.repair_cost_quantile
+    assert (q.diff("quantile").fillna(0) >= 0).all()
+    # no bumpers: nothing crushed
+    assert np.isnan(ds.annual_rate_crushed.sel(barrier=["no wall", "bare wall"])).all()
+    assert (ds.annual_rate_contact.sel(barrier="no wall") == 0).all()
+
+
+def test_annual_values_recompute_from_the_stripes_and_the_hazard(loss_quick):
+    from pipeline.assess import hazard
+
+    ds = loss_quick
+    curve = hazard.Hazard(ds.hazard_sa.values, ds.hazard_rate.values, "archive")
+    sa = ds.level_sa.values
+    eal = hazard.mean_annual(sa, ds.repair_cost.values, curve)
+    np.testing.assert_allclose(ds.expected_annual_loss.values, eal, rtol=1e-12)
+    contact = hazard.mean_annual(sa, ds.contact_probability.values, curve)
+    np.testing.assert_allclose(ds.annual_rate_contact.values, contact, rtol=1e-12)
+    s_mt = sa[list(ds.level.values).index(1.0)]
+    rate = hazard.lognormal_annual(ds.acmr.values * s_mt, ds.beta_total.values, curve)
+    np.testing.assert_allclose(ds.annual_rate_collapse.values, rate, rtol=1e-12)
+
+
+def test_the_loss_study_refuses_a_missing_collapse_archive_in_one_line(tmp_path, capsys):
+    pytest.importorskip("pelicun")
+    from studies import loss
+
+    missing = tmp_path / "none.nc"
+    assert loss.main(["--quick", "--collapse", str(missing), "--out", str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert "--collapse: cannot read" in err and len(err.strip().splitlines()) == 1
