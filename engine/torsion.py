@@ -1,5 +1,5 @@
 """What a building that twists takes beyond a run in plan, declared once: its plan, the
-eccentricity of its masses, its bearings where they stand, its stories' torsional stiffness,
+offset of its masses, its bearings where they stand, its stories' torsional stiffness,
 and the moat's contact points (the slab's corners against a bare wall, the bumpers where they
 are fixed); the per-member arrays the torsional loops read (loops/numpy_torsion.py,
 loops/numba_torsion.py) and their stability limit.
@@ -7,8 +7,8 @@ loops/numba_torsion.py) and their stability limit.
 The model (SI; small rotations). Every level j is a rigid diaphragm with three degrees of
 freedom at the centre of its plan, (u_x, u_y, theta): the material point (X, Y) of the level
 (m, from the plan's centre) moves by (u_x - theta Y, u_y + theta X). Its mass m_j sits at the
-eccentricity e_j = (e_x, e_y) with the polar moment J_j about its own centre (a uniform slab
-unless given: m (b_x^2 + b_y^2) / 12), so its mass matrix about the plan's centre is
+offset e_j = (e_x, e_y) (Torsion.mass_offset) with the polar moment J_j about its own centre
+(a uniform slab unless given: m (b_x^2 + b_y^2) / 12), so its mass matrix about the plan's centre is
     [[m, 0, -m e_y], [0, m, m e_x], [-m e_y, m e_x, J + m (e_x^2 + e_y^2)]]
 and the ground's (a_x, a_y) loads it by -M (a_x, a_y, 0): a torque where e != 0.
 - The isolation layer is n bearings at their positions (X_b, Y_b), each the building's

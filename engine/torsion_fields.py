@@ -21,10 +21,10 @@ from .errors import EngineError
 from .parameters import Parameter
 
 ACCIDENTAL_ECCENTRICITY = Parameter(
-    "eccentricity", "1", "accidental eccentricity: every level's mass centre moved "
+    "accidental_eccentricity", "1", "accidental eccentricity: every level's mass centre moved "
     "by this fraction of each plan dimension (e_x + e b_x, e_y + e b_y) from the building's "
     "own", 0.0, "[0, 0.5)", equation="ASCE 7-22 17.5.3.3 (5%)",
-    sweep="eccentricity", plausible="[0, 0.2]")
+    sweep="accidental_eccentricity", plausible="[0, 0.2]")
 """A member's accidental eccentricity (pipeline.sweep's accidental_eccentricity;
 Torsion.shifted): the mass moved along the plan's diagonal, which loads both directions'
 torsion at once."""

@@ -34,15 +34,18 @@ def test_a_renamed_label_is_compared_under_its_new_name(tmp_path, capsys):
     """--renamed OLD=NEW: a label renamed on purpose (a dimension, a variable, a global
     attribute) compares its bits under the new name; a changed bit still fails."""
     before, after = tmp_path / "before", tmp_path / "after"
-    archive(before, [0.1, 0.2], building_eccentricity="[0, 0]")
+    archive(before, [0.1, 0.2], building_eccentricity="[0, 0]", arguments='{"x": [1]}')
     after.mkdir()
     xr.Dataset({"y": ("k", [0.1, 0.2], {"units": "m"})},
-               attrs={"building_torsion_mass_offset": "[0, 0]"}).to_netcdf(after / "a.nc")
+               attrs={"building_torsion_mass_offset": "[0, 0]",
+                      "arguments": '{"y": [1]}'}).to_netcdf(after / "a.nc")
     assert compare.main([str(before), str(after)]) == 1
     assert "missing x" in capsys.readouterr().out
-    renamed = ["--renamed", "x=y", "n=k", "building_eccentricity=building_torsion_mass_offset"]
+    renamed = ["--renamed", "x=y", "n=k", "building_eccentricity=building_torsion_mass_offset",
+               "--renamed-text", "x=y"]
     assert compare.main([str(before), str(after), *renamed]) == 0
     assert "a: equal" in capsys.readouterr().out
     xr.Dataset({"y": ("k", [0.1, 0.3], {"units": "m"})},
-               attrs={"building_torsion_mass_offset": "[0, 0]"}).to_netcdf(after / "a.nc")
+               attrs={"building_torsion_mass_offset": "[0, 0]",
+                      "arguments": '{"y": [1]}'}).to_netcdf(after / "a.nc")
     assert compare.main([str(before), str(after), *renamed]) == 1

@@ -46,12 +46,12 @@ def period_ratio(plan_size, positions) -> float:
     return math.sqrt(float(np.mean(np.sum((xy - centre) ** 2, axis=1)))) / r_i
 
 
-def total_maximum_displacement(d_m: float, plan_size, eccentricity=(0.0, 0.0),
+def total_maximum_displacement(d_m: float, plan_size, mass_offset=(0.0, 0.0),
                                positions=None, accidental: float = ACCIDENTAL) -> dict:
     """ASCE 7-22's D_TM (m) of the slab's worst corner from D_M (m), for a rectangular plan
-    plan_size (b_x, b_y) m, the mass centre's actual eccentricity (e_x, e_y) m from the plan's
-    centre, identical bearings at `positions` (n, 2) m (default: grid_positions) and the
-    accidental eccentricity's share of the plan dimension.
+    plan_size (b_x, b_y) m, the mass centre's actual eccentricity, its offset mass_offset
+    (e_x, e_y) m from the plan's centre, identical bearings at `positions` (n, 2) m
+    (default: grid_positions) and the accidental eccentricity's share of the plan dimension.
 
     Returns d_tm (the larger over loading along x and along y, at least 1.15 D_M), its ratio
     to D_M, the formula's value for each loading direction (`along_x`, `along_y`, before the
@@ -59,9 +59,9 @@ def total_maximum_displacement(d_m: float, plan_size, eccentricity=(0.0, 0.0),
     b_x, b_y = plan_dimensions(plan_size)
     if not (math.isfinite(d_m) and d_m > 0):
         raise ValueError(f"d_m must be a positive length (m), got {d_m!r}")
-    e = np.asarray(eccentricity, float)
+    e = np.asarray(mass_offset, float)
     if e.shape != (2,) or not np.all(np.isfinite(e)):
-        raise ValueError(f"eccentricity must be (e_x, e_y) in metres, got {eccentricity!r}")
+        raise ValueError(f"mass_offset must be (e_x, e_y) in metres, got {mass_offset!r}")
     if not (math.isfinite(accidental) and 0 <= accidental < 0.5):
         raise ValueError(f"accidental must be a share of the plan dimension in [0, 0.5), got "
                          f"{accidental!r}")

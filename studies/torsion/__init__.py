@@ -121,7 +121,7 @@ def compute(args):
     code = [total_maximum_displacement(d_m, plan, (e * plan[0], e * plan[1])) for e in eccs]
     tables = [members([*(f * d_m for f in fractions), d_tm["d_tm"]], thetas) for d_tm in code]
     table = {name: np.concatenate([t[name] for t in tables]) for name in tables[0]}
-    table["eccentricity"] = np.repeat(eccs, tables[0]["law"].size)
+    table["accidental_eccentricity"] = np.repeat(eccs, tables[0]["law"].size)
     table["n_bumpers"] = np.where(table["law"] == "bumper", float(args.pads), np.nan)
     swept = sweep(suite.pairs, moat="rectangular", factors=suite.factors, members=table,
                   bumper_positions=positions, **{**run_options(args), "building": building})
@@ -136,7 +136,7 @@ PER_RUN = ("peak_isolator_disp", "peak_corner_disp", "peak_rotation", "max_impac
 
 
 def dataset(swept, code, suite, thetas, eccs, positions, gaps, fractions, args):
-    """The study's archive: dims record, eccentricity, angle, gap, barrier (and point for the
+    """The study's archive: dims record, mass_offset_ratio, angle, gap, barrier (and point for the
     pads' and corners' forces), the code's D_M and D_TM per eccentricity, the suite."""
     from engine.results import PEAKS, PLAN_PEAKS, TORSION_PEAKS
     from pipeline.archive import labelled_dataset, variable
@@ -148,12 +148,12 @@ def dataset(swept, code, suite, thetas, eccs, positions, gaps, fractions, args):
     per_angle = 1 + 2 * n_g
 
     def blocks(name):
-        """(record, eccentricity, angle, member of the angle) values of the sweep."""
+        """(record, mass_offset_ratio, angle, member of the angle) values of the sweep."""
         values = swept[name].values
         return values.reshape(n_r, n_e, n_a, per_angle, *values.shape[2:])
 
-    dims_free = ("record", "eccentricity", "angle")
-    dims_wall = ("record", "eccentricity", "angle", "gap", "barrier")
+    dims_free = ("record", "mass_offset_ratio", "angle")
+    dims_wall = ("record", "mass_offset_ratio", "angle", "gap", "barrier")
     data = {}
     declared = {q.name: q for q in (*PEAKS, *PLAN_PEAKS, *TORSION_PEAKS)}
     for name in PER_RUN:
@@ -187,9 +187,9 @@ def dataset(swept, code, suite, thetas, eccs, positions, gaps, fractions, args):
         "range, counted apart in every summary")
     first = swept
     coords = {
-        "eccentricity": variable("eccentricity", eccs, "1", "the mass centre's offset from "
-                                 "the plan's centre as a fraction of each plan dimension "
-                                 "(e_x = e b_x, e_y = e b_y)"),
+        "mass_offset_ratio": variable("mass_offset_ratio", eccs, "1", "the mass centre's offset "
+                                      "from the plan's centre as a fraction of each plan "
+                                      "dimension (e_x = e b_x, e_y = e b_y)"),
         "angle": variable("angle", thetas, "degree", "incidence angle: the pair rotated "
                           "counterclockwise"),
         "gap": variable("gap", np.array(gaps), "1", "the clear gap: a fraction of the code's "
@@ -199,10 +199,10 @@ def dataset(swept, code, suite, thetas, eccs, positions, gaps, fractions, args):
         "point_along": first["point_along"], "wall": first["wall"],
         "record": first["record"], "direction": first["direction"],
     }
-    data["D_TM"] = variable("eccentricity", [c["d_tm"] for c in code], "m",
+    data["D_TM"] = variable("mass_offset_ratio", [c["d_tm"] for c in code], "m",
                             "the code's total maximum displacement D_TM (ASCE 7-22 17.5.3.3, "
                             "the actual eccentricity plus the accidental 5%, >= 1.15 D_M)")
-    data["gap_length"] = variable(("eccentricity", "gap"),
+    data["gap_length"] = variable(("mass_offset_ratio", "gap"),
                                   [[*(f * suite.design.d_m for f in fractions), c["d_tm"]]
                                    for c in code], "m",
                                   "the moat's clear gap from the slab's edges")

@@ -22,7 +22,7 @@ def caption(ds) -> str:
 def plot(ds):
     fig, axes = plt.subplots(2, 2, figsize=(9, 7), layout="constrained")
     (a, b), (c, d) = axes
-    eccs = ds.eccentricity.values
+    eccs = ds.mass_offset_ratio.values
     w = ds.record_weight.values
     ratio = corner_ratio(ds)
     stats = [spread(ratio[:, i], w) for i in range(eccs.size)]
@@ -31,7 +31,7 @@ def plot(ds):
                      [s["p84"] - s["median"] for s in stats]], marker="o", capsize=3,
                label="measured (median, 16-84%)")
     a.plot(eccs * 100, code_ratio(ds), "k--", label="code D_TM / D_M")
-    a.set_xlabel("eccentricity (% of each plan dimension)")
+    a.set_xlabel("mass centre offset (% of each plan dimension)")
     a.set_ylabel("worst corner / centre")
     a.set_title("(a) corners travel farther")
     a.legend(fontsize=7)
@@ -59,7 +59,7 @@ def plot(ds):
                 c.plot(eccs * 100, med, marker=marker, label=f"{barrier} at {gap}")
         c.axhline(1 / points_per_wall(ds, barrier), ls=":", lw=0.8, color="0.4")
     c.set_ylim(0, 1.05)
-    c.set_xlabel("eccentricity (%)")
+    c.set_xlabel("mass centre offset (% of the plan)")
     c.set_ylabel("worst point's share of its wall's peak")
     c.set_title("(c) force on one pad (median; dotted: equal shares)")
     c.legend(fontsize=7)
@@ -74,7 +74,7 @@ def plot(ds):
                    marker="o", capsize=3, ls="none", label=name)
     d.axhline(1.0, color="k", lw=0.8, ls="--")
     d.set_ylim(0, None)
-    d.set_xlabel("eccentricity (%)")
+    d.set_xlabel("mass centre offset (% of the plan)")
     d.set_ylabel("peak without wall / the code's")
     d.set_title("(d) against the code's D_M and D_TM (median, 16-84%)")
     d.legend(fontsize=7)

@@ -15,17 +15,17 @@ CLAUSE = "ASCE 7-22 17.5.3.3"
 
 
 def corner_ratio(ds) -> np.ndarray:
-    """(record, eccentricity, angle): the worst corner's peak over the centre's, no wall."""
+    """(record, mass_offset_ratio, angle): the worst corner's peak over the centre's, no wall."""
     return (ds.free_peak_corner_disp / ds.free_peak_isolator_disp).values
 
 
 def code_ratio(ds) -> np.ndarray:
-    """(eccentricity,): the code's D_TM / D_M."""
+    """(mass_offset_ratio,): the code's D_TM / D_M."""
     return ds.D_TM.values / float(ds.attrs["D_M"])
 
 
 def pad_share(ds, barrier: str = "bumpers") -> np.ndarray:
-    """(record, eccentricity, angle, gap): the worst point's peak force over its wall's peak
+    """(record, mass_offset_ratio, angle, gap): the worst point's peak force over its wall's peak
     total, on the wall whose total is the largest (NaN without contact, and where a pad is
     past the rubber's range: `invalid`): 1 / points when the wall's points share its force
     equally, 1 when one takes it all."""
@@ -42,7 +42,7 @@ def pad_share(ds, barrier: str = "bumpers") -> np.ndarray:
 
 
 def invalid(ds, barrier: str) -> np.ndarray:
-    """(record, eccentricity, angle, gap) bool: a pad past the rubber's tested stress
+    """(record, mass_offset_ratio, angle, gap) bool: a pad past the rubber's tested stress
     (invalid_pad_stress; never for the bare wall)."""
     flags = ds.invalid_pad_stress.values.astype(bool)
     return flags if barrier == "bumpers" else np.zeros(flags.shape, bool)
@@ -72,7 +72,7 @@ def check(ds) -> list[Verdict]:
     events = ds.record_event.values
     ratio = corner_ratio(ds)
     allowed = code_ratio(ds)[None, :, None]
-    eccs = ds.eccentricity.values
+    eccs = ds.mass_offset_ratio.values
     out = []
 
     held = count("most", ratio <= allowed, np.ones(ratio.shape, bool), weights=weights,

@@ -92,25 +92,25 @@ def test_bumper_positions_are_part_of_the_key():
 
 
 def test_the_accidental_eccentricity_is_a_sweep_dimension():
-    """eccentricity (a fraction of the plan, engine.torsion.shifted) moves the mass of each
-    member: the engine's run of the building so moved; a building that does not twist, or a
+    """accidental_eccentricity (a fraction of the plan, engine.torsion.shifted) moves the mass
+    of each member: the engine's run of the building so moved; a building that does not twist, or a
     planar run, refuses it before any compute."""
     pair = short_pair()
     ds = pipeline.sweep([pair], gap=0.03, impact="linear", moat="rectangular",
-                        building=BUILDING, eccentricity=[0.0, 0.05], quiet=True)
-    assert ds.peak_rotation.dims == ("record", "eccentricity") \
-        and ds.eccentricity.attrs["units"] == "1"
+                        building=BUILDING, accidental_eccentricity=[0.0, 0.05], quiet=True)
+    assert ds.peak_rotation.dims == ("record", "accidental_eccentricity") \
+        and ds.accidental_eccentricity.attrs["units"] == "1"
     moved = dataclasses.replace(BUILDING, torsion=dataclasses.replace(
         BUILDING.torsion, mass_offset=(2.0 + 1.5, -1.0 + 1.0)))
     alone = engine.simulate(pair.accel, pair.dt, engine.Contact.linear(0.03), moved,
                             moat="rectangular")
-    np.testing.assert_array_equal(ds.peak_corner_disp.sel(eccentricity=0.05).values,
+    np.testing.assert_array_equal(ds.peak_corner_disp.sel(accidental_eccentricity=0.05).values,
                                   alone.peak_corner_disp)
     for kwargs in ({"building": engine.Building(), "moat": "rectangular"},
                    {"building": BUILDING}):
         with pytest.raises(SweepError, match="torsion|in plan"):
             pipeline.sweep([pair] if "moat" in kwargs else ["RSN953"], gap=0.03,
-                           impact="linear", eccentricity=[0.05], quiet=True, **kwargs)
+                           impact="linear", accidental_eccentricity=[0.05], quiet=True, **kwargs)
 
 
 def test_the_bumpers_stress_is_judged_on_the_pad_that_takes_most():
@@ -139,12 +139,12 @@ def test_the_command_line_sweeps_a_building_that_twists(tmp_path, capsys):
 
     common = ["--records", "RSN953", "--moat", "rectangular", "--building",
               "torsion.plan_size=30,20", "--gap-cm", "10", "--quiet"]
-    assert sweep.main([*common, "--eccentricity", "0", "0.05", "--bumpers-along-x", "-5", "5",
-                       "--bumpers-along-y", "0", "--out", str(tmp_path)]) == 0
+    assert sweep.main([*common, "--accidental-eccentricity", "0", "0.05", "--bumpers-along-x",
+                       "-5", "5", "--bumpers-along-y", "0", "--out", str(tmp_path)]) == 0
     with xr.open_dataset(tmp_path / "sweep.nc") as ds:
-        assert list(ds.eccentricity.values) == [0.0, 0.05]
+        assert list(ds.accidental_eccentricity.values) == [0.0, 0.05]
         np.testing.assert_array_equal(ds.point_along.values, [-5, 5, -5, 5, 0, 0])
-        assert float(ds.peak_rotation.sel(eccentricity=0.0).max()) < 1e-15 \
-            < float(ds.peak_rotation.sel(eccentricity=0.05).min())
+        assert float(ds.peak_rotation.sel(accidental_eccentricity=0.0).max()) < 1e-15 \
+            < float(ds.peak_rotation.sel(accidental_eccentricity=0.05).min())
     assert sweep.main([*common, "--bumpers-along-x", "0", "--out", str(tmp_path / "x")]) == 2
     assert "go together" in capsys.readouterr().err

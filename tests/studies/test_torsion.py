@@ -19,11 +19,11 @@ def quick(tmp_path_factory):
 
 def test_archive(quick):
     ds = quick
-    assert ds.peak_corner_disp.dims == ("record", "eccentricity", "angle", "gap", "barrier")
-    assert ds.free_peak_corner_disp.dims == ("record", "eccentricity", "angle")
+    assert ds.peak_corner_disp.dims == ("record", "mass_offset_ratio", "angle", "gap", "barrier")
+    assert ds.free_peak_corner_disp.dims == ("record", "mass_offset_ratio", "angle")
     assert ds.max_point_force.dims[-1] == "point" and ds.sizes["point"] == 8  # 2 pads a wall
     assert list(ds.gap.values) == ["0.6 D_M", "D_TM"]
-    assert list(ds.eccentricity.values) == [0.0, 0.1] and ds.sizes["angle"] == 3
+    assert list(ds.mass_offset_ratio.values) == [0.0, 0.1] and ds.sizes["angle"] == 3
     assert json.loads(ds.attrs["pad_positions_m"]) == [[-5.0, 5.0], [-7.5, 7.5]]
     assert_udunits(ds)
     assert len(json.loads(ds.attrs["paper_verdicts"])) == 4
@@ -32,7 +32,7 @@ def test_archive(quick):
 def test_the_gaps_are_the_codes(quick):
     ds = quick
     d_m = float(ds.attrs["D_M"])
-    for i, e in enumerate(ds.eccentricity.values):
+    for i, e in enumerate(ds.mass_offset_ratio.values):
         code = total_maximum_displacement(d_m, torsion.PLAN, (e * 30.0, e * 20.0))
         assert float(ds.D_TM[i]) == code["d_tm"]
         np.testing.assert_array_equal(ds.gap_length[i], [0.6 * d_m, code["d_tm"]])
@@ -41,7 +41,7 @@ def test_the_gaps_are_the_codes(quick):
 
 
 def test_a_centred_mass_does_not_twist_an_eccentric_one_does(quick):
-    ds = quick.sel(eccentricity=0.0)
+    ds = quick.sel(mass_offset_ratio=0.0)
     np.testing.assert_allclose(ds.free_peak_corner_disp, ds.free_peak_isolator_disp,
                                rtol=1e-9)
     assert float(ds.free_peak_rotation.max()) < 1e-15
@@ -49,11 +49,11 @@ def test_a_centred_mass_does_not_twist_an_eccentric_one_does(quick):
     pads = ds.max_point_force.values.reshape(*ds.max_point_force.shape[:-1], 4, 2)
     assert (pads > 0).any()
     np.testing.assert_allclose(pads[..., 0], pads[..., 1], rtol=1e-9)
-    share = pad_share(quick.sel(eccentricity=[0.0]), "bare wall")
+    share = pad_share(quick.sel(mass_offset_ratio=[0.0]), "bare wall")
     hit = np.isfinite(share)
     assert hit.any()
     np.testing.assert_allclose(share[hit], 0.5, rtol=1e-9)
-    twisted = quick.sel(eccentricity=0.1)
+    twisted = quick.sel(mass_offset_ratio=0.1)
     assert (twisted.free_peak_corner_disp > twisted.free_peak_isolator_disp * 1.05).all()
 
 
@@ -68,13 +68,13 @@ def test_a_run_is_the_engines(quick):
     assert float(ds.scale_factor[0]) == suite.factors[0]
     building = engine.Building(**{**_fields(suite.building), "torsion": engine.Torsion(
         plan_size=torsion.PLAN, mass_offset=(3.0, 2.0))})
-    gap = float(ds.gap_length.sel(eccentricity=0.1, gap="0.6 D_M"))
+    gap = float(ds.gap_length.sel(mass_offset_ratio=0.1, gap="0.6 D_M"))
     run = engine.simulate(pairs[0].accel, pairs[0].dt,
                           engine.Contact.bumper(gap, thickness=torsion.THICKNESS, n_bumpers=2),
                           building, angle=45.0, scale=[suite.factors[0]],
                           moat=engine.Moat(bumper_positions=torsion.pad_positions(torsion.PLAN,
                                                                                   2)))
-    got = ds.isel(record=0).sel(eccentricity=0.1, angle=45.0, gap="0.6 D_M", barrier="bumpers")
+    got = ds.isel(record=0).sel(mass_offset_ratio=0.1, angle=45.0, gap="0.6 D_M", barrier="bumpers")
     for name in ("peak_corner_disp", "peak_rotation", "max_point_force", "peak_isolator_disp"):
         np.testing.assert_array_equal(got[name].values, getattr(run, name)[0], err_msg=name)
 

@@ -30,7 +30,7 @@ def test_a_square_plan_with_accidental_eccentricity_only_is_the_codes_floor():
 def test_a_rectangular_eccentric_plan_by_hand():
     # 40 x 20 m, mass centre 1 m off along y; loading along x: y = 10, e = 1 + 0.05 x 20 = 2,
     # 1 + 10 x 12 x 2 / (20^2 + 40^2) = 1.12; along y: y = 20, e = 0.05 x 40 = 2: 1.24
-    out = torsion.total_maximum_displacement(0.25, (40.0, 20.0), eccentricity=(0.0, 1.0),
+    out = torsion.total_maximum_displacement(0.25, (40.0, 20.0), mass_offset=(0.0, 1.0),
                                              positions=cell_centres(40, 20, 40, 20))
     assert out["along_x"] == pytest.approx(1.12 * 0.25, rel=1e-12)
     assert out["along_y"] == pytest.approx(1.24 * 0.25, rel=1e-12)
@@ -49,7 +49,7 @@ def test_bearings_at_the_edges_raise_the_torsional_period_ratio():
 
 def test_bad_arguments_are_refused_in_one_line():
     for kwargs, match in (({"plan_size": (30.0, -1.0)}, "plan_size"),
-                          ({"eccentricity": (1.0,)}, "eccentricity"),
+                          ({"mass_offset": (1.0,)}, "mass_offset"),
                           ({"accidental": 0.7}, "accidental")):
         args = {"d_m": 0.3, "plan_size": (30.0, 30.0), **kwargs}
         with pytest.raises(ValueError, match=match):
