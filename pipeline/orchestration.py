@@ -6,6 +6,7 @@ the peaks mean computed (pipeline.assess.sweep_variables) and labelled into the 
 this module on first use only)."""
 from __future__ import annotations
 
+import dataclasses
 import inspect
 import shutil
 from dataclasses import dataclass
@@ -72,12 +73,37 @@ class Output:
     force: bool = False
 
 
-def sweep(records, *, impact: str = "bumper", dt: float | None = None, workers: int = 1,
-           scheduler=None, out=None, baseline: bool = False, unconstrained: bool = False,
-           building=None, m_eff: float | None = None, batch_size: int | None = None,
-           records_dir=None, quiet: bool = False, work_dir=None, force: bool = False,
-           moat: str | None = None, factors=None, members=None, bumper_positions=None,
-           **parameters):
+@dataclass(frozen=True)
+class SweepOptions:
+    """The sweep's own options: every keyword of `sweep` besides the swept parameters, with
+    its default, declared once (`sweep` documents each; its signature, for help() and IDEs,
+    is made from these fields and the swept parameters: completed_sweep)."""
+
+    impact: str = "bumper"
+    dt: float | None = None
+    workers: int = 1
+    scheduler: object = None
+    out: object = None
+    baseline: bool = False
+    unconstrained: bool = False
+    building: object = None
+    m_eff: float | None = None
+    batch_size: int | None = None
+    records_dir: object = None
+    quiet: bool = False
+    work_dir: object = None
+    force: bool = False
+    moat: str | None = None
+    factors: object = None
+    members: object = None
+    bumper_positions: object = None
+
+
+OPTIONS = tuple(f.name for f in dataclasses.fields(SweepOptions))
+"""The names of the sweep's own options (SweepOptions), apart from the swept parameters."""
+
+
+def sweep(records, **keywords):
     """Simulate every combination of the parameters under every record; label the peaks.
 
     records: paper keys ("kobe", "sylmar_converter", "olive_view", "pacoima"), library names,
@@ -158,12 +184,14 @@ def sweep(records, *, impact: str = "bumper", dt: float | None = None, workers: 
     bumpers); with unconstrained, unconstrained_<same> (record, ...). Raises SweepError, naming
     the parameter, before any simulation runs.
     """
-    given = sweep_parameters(parameters)
-    building = check_building(building)
-    model = run_model(moat, building)
+    o = SweepOptions(**{name: keywords.pop(name) for name in OPTIONS if name in keywords})
+    given = sweep_parameters(keywords)  # the rest: swept parameters (SweepError otherwise)
+    building = check_building(o.building)
+    model = run_model(o.moat, building)
+    members, factors = o.members, o.factors
     if members is not None:
         given = {k: v for k, v in given.items() if v is not None}
-        if given or baseline or unconstrained or m_eff is not None:
+        if given or o.baseline or o.unconstrained or o.m_eff is not None:
             raise SweepError("members lists every member: give its parameters as its columns, "
                              f"not as {', '.join(given) or 'baseline/unconstrained/m_eff'}")
         grid = listed_grid(members, isolator=building.isolation.law, plan=model.in_plan,
@@ -171,30 +199,31 @@ def sweep(records, *, impact: str = "bumper", dt: float | None = None, workers: 
     elif given["gap"] is None:
         raise SweepError("gap is required (m)")
     else:
-        grid = make_grid(impact=impact, isolator=building.isolation.law, m_eff=m_eff,
-                         baseline=baseline, unconstrained=unconstrained,
+        grid = make_grid(impact=o.impact, isolator=building.isolation.law, m_eff=o.m_eff,
+                         baseline=o.baseline, unconstrained=o.unconstrained,
                          plan=model.in_plan, intensity=factors is not None, **given)
     # a building that twists' parameters are recorded when given (other archives unchanged)
     recorded = {k: v for k, v in given.items() if v is not None or k not in TORSION_PARAMS}
-    arguments = {"members": members, "moat": moat} if members is not None else {
-        **recorded, "impact": impact, "baseline": baseline, "unconstrained": unconstrained,
-        "m_eff": grid.m_eff, "moat": moat}
+    arguments = {"members": members, "moat": o.moat} if members is not None else {
+        **recorded, "impact": o.impact, "baseline": o.baseline,
+        "unconstrained": o.unconstrained, "m_eff": grid.m_eff, "moat": o.moat}
     return execute_sweep(grid, arguments,
-                         Conditions(records, records_dir, dt, building, moat, factors,
-                                    bumper_positions),
-                         Compute(workers, scheduler, batch_size, quiet),
-                         Output(out, work_dir, force))
+                         Conditions(records, o.records_dir, o.dt, building, o.moat, factors,
+                                    o.bumper_positions),
+                         Compute(o.workers, o.scheduler, o.batch_size, o.quiet),
+                         Output(o.out, o.work_dir, o.force))
 
 
 def completed_sweep():
     """`sweep`, its signature listing the sweep parameters by name (keyword-only, default
     None) for help() and IDEs: what `pipeline.sweep` is. Deriving them imports the impact and
     isolator laws, which `import pipeline` does not."""
-    own = [p for p in inspect.signature(sweep).parameters.values()
-           if p.kind is not inspect.Parameter.VAR_KEYWORD]
+    records = inspect.Parameter("records", inspect.Parameter.POSITIONAL_OR_KEYWORD)
     swept = [inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=None)
              for name in DIMENSIONS]
-    sweep.__signature__ = inspect.Signature([own[0], *swept, *own[1:]])
+    own = [inspect.Parameter(f.name, inspect.Parameter.KEYWORD_ONLY, default=f.default,
+                             annotation=f.type) for f in dataclasses.fields(SweepOptions)]
+    sweep.__signature__ = inspect.Signature([records, *swept, *own])
     return sweep
 
 
