@@ -411,3 +411,34 @@ def test_the_longest_first_order_names_existing_files():
 
     gone = [file for file in LONG_FIRST if not (PROJECT / file).is_file()]
     assert not gone, gone
+
+
+MAX_PARAMETERS = 12
+
+
+def parameter_count(node: ast.FunctionDef | ast.AsyncFunctionDef | ast.Lambda) -> int:
+    """A function's parameters: positional, keyword-only, *args and **kwargs each count one;
+    self and cls do not."""
+    a = node.args
+    named = [*a.posonlyargs, *a.args]
+    count = len(named) + len(a.kwonlyargs) + (a.vararg is not None) + (a.kwarg is not None)
+    return count - (bool(named) and named[0].arg in ("self", "cls"))
+
+
+def test_no_function_takes_more_than_twelve_parameters():
+    """A function with more parameters than a reader keeps in mind is a set of values that
+    belongs together: a declared layout, a dataclass, a component (issue 36)."""
+    over = [f"{MODULES[name].relative_to(PROJECT)}:{node.lineno} "
+            f"{getattr(node, 'name', 'lambda')} takes {parameter_count(node)}"
+            for name, tree in TREES.items() for node in ast.walk(tree)
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda))
+            and parameter_count(node) > MAX_PARAMETERS]
+    assert not over, f"more than {MAX_PARAMETERS} parameters:\n" + "\n".join(over)
+
+
+def test_the_parameter_count_counts_what_it_says():
+    tree = ast.parse("def f(self, a, /, b, *args, c, **kw): pass\nclass C:\n"
+                     "    def g(cls, x): pass\nh = lambda p, q=1: p")
+    counts = [parameter_count(n) for n in ast.walk(tree)
+              if isinstance(n, (ast.FunctionDef, ast.Lambda))]
+    assert sorted(counts) == [1, 2, 5]
