@@ -1,8 +1,9 @@
-"""The physics both compiled loops (numba_loop.py, numba_plan.py) call, compiled for scalars
-from the modules that write it once: the isolator's and the stories' slip elements
-(isolators/hysteresis.py), the scheme's contact solve and onset weight (scheme.py), and the
-impact laws' force terms and the story laws' forces, each chained into one dispatch on a
-member's law code (the registries).
+"""The physics the compiled loops (numba_loop.py, numba_plan.py, numba_torsion.py) call,
+compiled for scalars from the modules that write it once: the isolator's and the stories' slip
+elements (isolators/hysteresis.py), the scheme's contact solve and onset weight (scheme.py),
+and the impact laws' force terms and the story laws' forces, each chained into one dispatch on
+a member's law code (the registries): law_terms(code, delta, rate, v_imp, row) with the
+member's packed law row (impact.contact.law_rows), story_force(code, drift, state, row).
 
 JIT: the options of the cached kernels; LINK: those of the functions compiled into them.
 """

@@ -195,9 +195,11 @@ def damping_constants(cor, m_eff, n, rule="eq9"):
     return hunt_crossley_chi(cor, n, restitution_only=True), np.ones(cor.shape)
 
 
-def contact_fields(gap, thickness, strain, n_bumpers, k_w, cor, m_eff, cavity, area, k_r, n,
-                   alpha, shape_k, shape_factor_cal, c_imp_rule, c_imp):
-    """The Contact fields of this law from its checked, broadcast (B,) parameters."""
+def contact_fields(gap, thickness, strain, n_bumpers, k_w, cor, m_eff, cavity, c_imp_rule,
+                   c_imp, **pad):
+    """The Contact fields of this law from its checked, broadcast (B,) parameters; `pad`: the
+    pad's and its rubber's (area, k_r, n, alpha, shape_k, shape_factor_cal)."""
+    n = pad["n"]
     if np.any(cavity >= thickness):
         raise EngineError(f"cavity must be smaller than thickness, got cavity {cavity} m, "
                           f"thickness {thickness} m")
@@ -210,8 +212,8 @@ def contact_fields(gap, thickness, strain, n_bumpers, k_w, cor, m_eff, cavity, a
     else:
         c_imp_coef, c_imp_exponent = c_imp, 0.0
     return {"clear_gap": gap - protrusion,
-            "k": impact_stiffness(area, thickness, k_r, n, alpha, n_bumpers, shape_k,
-                                  shape_factor_cal),
+            "k": impact_stiffness(pad["area"], thickness, pad["k_r"], n, pad["alpha"], n_bumpers,
+                                  pad["shape_k"], pad["shape_factor_cal"]),
             "n": n, "delta_u": np.minimum(strain * thickness, protrusion), "k_w": k_w,
             "c_imp_coef": c_imp_coef, "c_imp_exponent": c_imp_exponent}
 
