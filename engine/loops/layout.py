@@ -63,12 +63,12 @@ def _scalar_floats(*quantities):
                  if q.along is None and not q.direction and q.dtype is np.float64)
 
 
-PLANAR_PEAKS = columns("PlanarPeaks", *_scalar_floats(*PEAKS))
+PLANAR_PEAK_COLUMNS = columns("PlanarPeaks", *_scalar_floats(*PEAKS))
 """The scalar float peaks numba_loop keeps in one (B, W) matrix, by their names in
 engine/results.py."""
-PLAN_PEAKS_COLUMNS = columns("PlanPeaks", *_scalar_floats(*PEAKS, *PLAN_PEAKS))
+PLAN_PEAK_COLUMNS = columns("PlanPeaks", *_scalar_floats(*PEAKS, *PLAN_PEAKS))
 """numba_plan's scalar float peaks."""
-TORSION_PEAKS_COLUMNS = columns("TorsionPeaks",
+TORSION_PEAK_COLUMNS = columns("TorsionPeaks",
                                 *_scalar_floats(*PEAKS, *PLAN_PEAKS, *TORSION_PEAKS))
 """numba_torsion's scalar float peaks."""
 

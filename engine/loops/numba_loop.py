@@ -37,7 +37,7 @@ from .compiled import (
     slip_limit,
     story_force,
 )
-from .layout import PLANAR, PLANAR_PEAKS, PLANAR_STATE, PLANAR_STORY, finish_peaks, packed
+from .layout import PLANAR, PLANAR_PEAK_COLUMNS, PLANAR_STATE, PLANAR_STORY, finish_peaks, packed
 from .numba_support import (
     data_pointer,
     history_rows,
@@ -53,7 +53,7 @@ install_cache_locator(Path(__file__), [compiled.__file__, layout.__file__, *PHYS
 # (contact.law_rows), its state between chunks of steps (PLANAR_STATE; the displacements and
 # velocities of every level are arrays of their own), per story PLANAR_STORY; the peaks per
 # level (peak_total_accel), per story (peak_interstory_drift), the scalar float peaks
-# (PLANAR_PEAKS, named as in engine/results.py) in one matrix, the count (n_impacts) apart.
+# (PLANAR_PEAK_COLUMNS, named as in engine/results.py) in one matrix, the count (n_impacts) apart.
 
 
 @njit(**LINK)
@@ -127,8 +127,10 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     delta_prev = st[PLANAR_STATE.delta_prev]
     in_contact = st[PLANAR_STATE.in_contact] != 0.0
     pk = peak_scalar[b]
-    p_iso, p_indent = pk[PLANAR_PEAKS.peak_isolator_disp], pk[PLANAR_PEAKS.max_indentation]
-    p_force, energy = pk[PLANAR_PEAKS.max_impact_force], pk[PLANAR_PEAKS.impact_energy]
+    p_iso = pk[PLANAR_PEAK_COLUMNS.peak_isolator_disp]
+    p_indent = pk[PLANAR_PEAK_COLUMNS.max_indentation]
+    p_force = pk[PLANAR_PEAK_COLUMNS.max_impact_force]
+    energy = pk[PLANAR_PEAK_COLUMNS.impact_energy]
     n_imp = n_impacts[b]
     half_dt = 0.5 * dt
 
@@ -242,8 +244,10 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     st[PLANAR_STATE.fp], st[PLANAR_STATE.v_imp] = fp, v_imp
     st[PLANAR_STATE.delta_prev] = delta_prev
     st[PLANAR_STATE.in_contact] = 1.0 if in_contact else 0.0
-    pk[PLANAR_PEAKS.peak_isolator_disp], pk[PLANAR_PEAKS.max_indentation] = p_iso, p_indent
-    pk[PLANAR_PEAKS.max_impact_force], pk[PLANAR_PEAKS.impact_energy] = p_force, energy
+    pk[PLANAR_PEAK_COLUMNS.peak_isolator_disp] = p_iso
+    pk[PLANAR_PEAK_COLUMNS.max_indentation] = p_indent
+    pk[PLANAR_PEAK_COLUMNS.max_impact_force] = p_force
+    pk[PLANAR_PEAK_COLUMNS.impact_energy] = energy
     n_impacts[b] = n_imp
 
 
@@ -321,7 +325,7 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
     state = np.zeros((size, len(PLANAR_STATE)))
     state[:, PLANAR_STATE.v_imp] = 1.0
     peaks = empty_peaks(size, n_levels)
-    peak_scalar = np.zeros((size, len(PLANAR_PEAKS)))
+    peak_scalar = np.zeros((size, len(PLANAR_PEAK_COLUMNS)))
     ag = np.ascontiguousarray(ag, dtype=np.float64)
 
     hist_row, every, rows, inverse = history_rows(history, size)
@@ -345,7 +349,7 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
                  model, memory, kept, hist)
     run_members(size, n_steps, progress, steps)
 
-    result = finish_peaks(peaks, peak_scalar, PLANAR_PEAKS, state)
+    result = finish_peaks(peaks, peak_scalar, PLANAR_PEAK_COLUMNS, state)
     hist = None
     if history is not None:
         hist = {"time": np.arange(n_out) * every * dt, "isolator_disp": h_u[inverse],

@@ -48,7 +48,7 @@ from .compiled import (
 from .layout import (
     CONTACT,
     PLAN,
-    PLAN_PEAKS_COLUMNS,
+    PLAN_PEAK_COLUMNS,
     PLAN_STATE,
     PLAN_STORY,
     contact_state,
@@ -74,7 +74,7 @@ install_cache_locator(Path(__file__), [compiled.__file__, layout.__file__, *PHYS
 
 # The kernel's packed arrays (layout.py): per member its floats (PLAN) and state between
 # chunks (PLAN_STATE), per wall direction its clear gap, its law's row (contact.law_rows) and
-# its CONTACT state, per story PLAN_STORY, the scalar float peaks (PLAN_PEAKS_COLUMNS: the
+# its CONTACT state, per story PLAN_STORY, the scalar float peaks (PLAN_PEAK_COLUMNS: the
 # displacement's squared while running, as every displacement and acceleration peak:
 # layout.finish_peaks roots them).
 
@@ -176,9 +176,9 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
         inside[d] = ws[d, CONTACT.in_contact]
         gaps[d] = gaps_all[b, d]
     pk = peak_scalar[b]
-    p_iso2 = pk[PLAN_PEAKS_COLUMNS.peak_isolator_disp]
-    p_indent = pk[PLAN_PEAKS_COLUMNS.max_indentation]
-    p_force, energy = pk[PLAN_PEAKS_COLUMNS.max_impact_force], pk[PLAN_PEAKS_COLUMNS.impact_energy]
+    p_iso2 = pk[PLAN_PEAK_COLUMNS.peak_isolator_disp]
+    p_indent = pk[PLAN_PEAK_COLUMNS.max_indentation]
+    p_force, energy = pk[PLAN_PEAK_COLUMNS.max_impact_force], pk[PLAN_PEAK_COLUMNS.impact_energy]
     p_iso_x, p_iso_y = peak_iso_xy[b, 0], peak_iso_xy[b, 1]
     n_imp = n_impacts[b]
     pw = peak_wall[b]
@@ -359,10 +359,10 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     for d in range(n_walls):
         ws[d, CONTACT.v_imp], ws[d, CONTACT.delta_prev] = v_imp[d], delta_prev[d]
         ws[d, CONTACT.in_contact] = inside[d]
-    pk[PLAN_PEAKS_COLUMNS.peak_isolator_disp] = p_iso2
-    pk[PLAN_PEAKS_COLUMNS.max_indentation] = p_indent
-    pk[PLAN_PEAKS_COLUMNS.max_impact_force] = p_force
-    pk[PLAN_PEAKS_COLUMNS.impact_energy] = energy
+    pk[PLAN_PEAK_COLUMNS.peak_isolator_disp] = p_iso2
+    pk[PLAN_PEAK_COLUMNS.max_indentation] = p_indent
+    pk[PLAN_PEAK_COLUMNS.max_impact_force] = p_force
+    pk[PLAN_PEAK_COLUMNS.impact_energy] = energy
     peak_iso_xy[b, 0], peak_iso_xy[b, 1] = p_iso_x, p_iso_y
     n_impacts[b] = n_imp
 
@@ -417,7 +417,7 @@ def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, histor
     wall_state = contact_state(size, n_dir)
     peaks = {q.name: np.zeros((size, *q.trailing_shape(n_levels, len(WALLS[moat]))),
                               dtype=q.dtype) for q in (*PEAKS, *PLAN_PEAKS)}
-    scalar = np.zeros((size, len(PLAN_PEAKS_COLUMNS)))
+    scalar = np.zeros((size, len(PLAN_PEAK_COLUMNS)))
     n_steps = ag.shape[0]
     hist_row, every, rows, inverse = history_rows(history, size)
     hist = empty_plan_history(rows, n_steps, every, dt, n_levels)
@@ -437,7 +437,7 @@ def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, histor
                     _run((levels, pairs, circular, (0,) * (int(code) + 1)),
                          members[codes[members] == code], s0, s1, model, memory, kept, written)
                     for code in np.unique(codes[members])])
-    peaks = finish_peaks(peaks, scalar, PLAN_PEAKS_COLUMNS, state, rooted=True)
+    peaks = finish_peaks(peaks, scalar, PLAN_PEAK_COLUMNS, state, rooted=True)
     if history is None:
         return peaks, None
     hist = {"time": hist["time"], **{q.name: hist[q.name][inverse] for q in PLAN_HISTORIES},

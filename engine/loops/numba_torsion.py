@@ -48,7 +48,7 @@ from .compiled import (
 from .layout import (
     CONTACT,
     TORSION,
-    TORSION_PEAKS_COLUMNS,
+    TORSION_PEAK_COLUMNS,
     TORSION_STATE,
     contact_state,
     finish_peaks,
@@ -72,7 +72,7 @@ install_cache_locator(Path(__file__), [compiled.__file__, layout.__file__,
 
 # The kernel's packed arrays (layout.py): per member its floats (TORSION) and state (
 # TORSION_STATE), per contact point its law row (contact.law_rows) and CONTACT state, the
-# scalar float peaks (TORSION_PEAKS_COLUMNS; displacements squared while running).
+# scalar float peaks (TORSION_PEAK_COLUMNS; displacements squared while running).
 POINT_SLOTS = 8
 """The contact points' stack arrays come in multiples of this many (the kernel compiles once per
 multiple): the slab's corners, or two pads a wall, are 8."""
@@ -170,13 +170,13 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
         for e in range(2):
             pd[2 * i + e] = peak_story_xy[b, i, e]
         pd2[i] = peak_story[b, i]
-    p_iso2 = pk[TORSION_PEAKS_COLUMNS.peak_isolator_disp]
+    p_iso2 = pk[TORSION_PEAK_COLUMNS.peak_isolator_disp]
     p_iso_x, p_iso_y = peak_iso_xy[b, 0], peak_iso_xy[b, 1]
-    p_indent = pk[TORSION_PEAKS_COLUMNS.max_indentation]
-    p_force = pk[TORSION_PEAKS_COLUMNS.max_impact_force]
-    energy = pk[TORSION_PEAKS_COLUMNS.impact_energy]
-    p_corner = pk[TORSION_PEAKS_COLUMNS.peak_corner_disp]
-    p_rot = pk[TORSION_PEAKS_COLUMNS.peak_rotation]
+    p_indent = pk[TORSION_PEAK_COLUMNS.max_indentation]
+    p_force = pk[TORSION_PEAK_COLUMNS.max_impact_force]
+    energy = pk[TORSION_PEAK_COLUMNS.impact_energy]
+    p_corner = pk[TORSION_PEAK_COLUMNS.peak_corner_disp]
+    p_rot = pk[TORSION_PEAK_COLUMNS.peak_rotation]
     n_imp = n_impacts[b]
     touch_x = st[TORSION_STATE.touch_x] != 0.0
     touch_y = st[TORSION_STATE.touch_y] != 0.0
@@ -400,13 +400,13 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
         for e in range(2):
             peak_story_xy[b, i, e] = pd[2 * i + e]
         peak_story[b, i] = pd2[i]
-    pk[TORSION_PEAKS_COLUMNS.peak_isolator_disp] = p_iso2
+    pk[TORSION_PEAK_COLUMNS.peak_isolator_disp] = p_iso2
     peak_iso_xy[b, 0], peak_iso_xy[b, 1] = p_iso_x, p_iso_y
-    pk[TORSION_PEAKS_COLUMNS.max_indentation] = p_indent
-    pk[TORSION_PEAKS_COLUMNS.max_impact_force] = p_force
-    pk[TORSION_PEAKS_COLUMNS.impact_energy] = energy
-    pk[TORSION_PEAKS_COLUMNS.peak_corner_disp] = p_corner
-    pk[TORSION_PEAKS_COLUMNS.peak_rotation] = p_rot
+    pk[TORSION_PEAK_COLUMNS.max_indentation] = p_indent
+    pk[TORSION_PEAK_COLUMNS.max_impact_force] = p_force
+    pk[TORSION_PEAK_COLUMNS.impact_energy] = energy
+    pk[TORSION_PEAK_COLUMNS.peak_corner_disp] = p_corner
+    pk[TORSION_PEAK_COLUMNS.peak_rotation] = p_rot
     n_impacts[b] = n_imp
     for q in range(n_points):
         ps[q, CONTACT.v_imp], ps[q, CONTACT.delta_prev] = v_imp[q], delta_prev[q]
@@ -463,7 +463,7 @@ def run_torsion(ag, dt, b, t, contacts, points, progress, scale, angle, history=
     n_walls = len(WALLS["rectangular"])
     peaks = {q.name: np.zeros((size, *q.trailing_shape(n_levels, n_walls, n_points)),
                               dtype=q.dtype) for q in (*PEAKS, *PLAN_PEAKS, *TORSION_PEAKS)}
-    scalar = np.zeros((size, len(TORSION_PEAKS_COLUMNS)))
+    scalar = np.zeros((size, len(TORSION_PEAK_COLUMNS)))
     n_steps = ag.shape[0]
     hist_row, every, rows, inverse = history_rows(history, size)
     hist = empty_plan_history(rows, n_steps, every, dt, n_levels, torsion=True)
@@ -490,7 +490,7 @@ def run_torsion(ag, dt, b, t, contacts, points, progress, scale, angle, history=
     run_members(size, n_steps, progress,
                 lambda members, s0, s1: _run((levels, padded, slots), members, s0, s1, model,
                                              memory, kept, written))
-    peaks = finish_peaks(peaks, scalar, TORSION_PEAKS_COLUMNS, state, rooted=True)
+    peaks = finish_peaks(peaks, scalar, TORSION_PEAK_COLUMNS, state, rooted=True)
     if history is None:
         return peaks, None
     hist = {"time": hist["time"], **{q.name: hist[q.name][inverse] for q in TORSION_HISTORIES},
