@@ -19,8 +19,10 @@ from pathlib import Path
 import numba
 import numpy as np
 from numba import carray, njit
+from numba.np.unsafe.ndarray import to_fixed_tuple
 
 from ..impact.contact import law_rows
+from ..impact.registry import ROW_WIDTH
 from ..results import empty_peaks
 from ..scheme import banded_operators, step_operators
 from ..stories.registry import MAX_FIELDS, MAX_STATE
@@ -119,7 +121,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     nonlinear = p[PLANAR.stories_nonlinear] != 0.0
     story_law = len(law_tag) - 1
     scale = p[PLANAR.scale]
-    law_row = law_par[b]
+    law_row = to_fixed_tuple(law_par[b], ROW_WIDTH)  # in registers, as scalars
     code = law[b]
     hrow = hist_row[b]
 
