@@ -2,9 +2,9 @@
 
 Built from a law's declared parameters (`Contact.of(law, ...)` or the constructor named after
 the law, e.g. `Contact.bumper(gap, ...)`: one per law of the registry, its signature and
-docstring generated from the law's declaration). The time loops read the fields named in
-LAW_ARGUMENTS, the same for every law, so that one call signature serves every law's
-`force_terms`.
+docstring generated from the law's declaration). A law's `force_terms` takes the fields named
+in its ROW packed into one row (law_rows for the compiled loops, law_arguments for the NumPy
+loops), so that one call signature serves every law whatever constants it needs.
 """
 from __future__ import annotations
 
@@ -15,11 +15,11 @@ import numpy as np
 
 from ..errors import EngineError
 from ..parameters import Declaration, Parameter, law_constructor
-from .registry import LAW_CODES, LAW_MODULES, LAW_NAMES, LAWS, NONE
+from .registry import LAW_CODES, LAW_MODULES, LAW_NAMES, LAWS, NONE, ROW_WIDTH
 
 LAW_ARGUMENTS = ("k", "n", "m_eff", "delta_u", "k_w", "dashpot", "damping_ratio", "chi",
                  "c_imp_coef", "c_imp_exponent")
-"""The Contact fields every law's force_terms takes after (delta, delta_dot, v_imp), in order."""
+"""The Contact fields the laws' rows draw on (each law's ROW names those it reads)."""
 
 SHARED_ARGUMENTS = ("k", "m_eff", "k_w", "dashpot")
 """The Contact fields scaled by the part of a wall a contact point carries (Contact.part):
@@ -158,17 +158,29 @@ def law_blocks(contact: Contact):
         idx = np.flatnonzero(law == code)
         if idx.size:
             block = slice(idx[0], idx[-1] + 1)
-            blocks.append((block, module, law_arguments(contact[order[block]])))
+            blocks.append((block, module, law_arguments(contact[order[block]], module)))
     return order, blocks
 
 
-def law_arguments(p: Contact) -> tuple:
-    """The (B,) Contact fields a law's force_terms takes after (delta, delta_dot, v_imp)."""
-    return tuple(getattr(p, name) for name in LAW_ARGUMENTS)
+def law_arguments(p: Contact, module) -> tuple:
+    """The row the law of `module` takes after (delta, delta_dot, v_imp), for the NumPy loops:
+    the (B,) Contact fields its ROW names, a tuple in ROW's order."""
+    return tuple(getattr(p, name) for name in module.ROW._fields)
+
+
+def law_rows(contact: Contact) -> np.ndarray:
+    """(B, ROW_WIDTH) float64: each member's law row for the compiled loops, its law's ROW
+    fields first (zeros after them, and for a member without wall)."""
+    rows = np.zeros((len(contact), ROW_WIDTH))
+    for code, module in LAW_MODULES.items():
+        sel = np.flatnonzero(contact.law == code)
+        for column, name in enumerate(module.ROW._fields):
+            rows[sel, column] = getattr(contact, name)[sel]
+    return rows
 
 
 def fill_force_terms(blocks, delta, delta_dot, v_imp, elastic, dashpot):
     """Evaluate every law on its block of the sorted batch into elastic and dashpot, (B,)."""
     for block, module, arguments in blocks:
         elastic[block], dashpot[block] = module.force_terms(
-            delta[block], delta_dot[block], v_imp[block], *arguments)
+            delta[block], delta_dot[block], v_imp[block], arguments)

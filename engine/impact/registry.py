@@ -16,7 +16,7 @@ NONE = 0
 """Law code of a member without moat wall."""
 NO_WALL = "none"
 """Its name."""
-LAW_INTERFACE = ("NAME", "ORDER", "PARAMETERS", "contact_fields", "force_terms",
+LAW_INTERFACE = ("NAME", "ORDER", "PARAMETERS", "ROW", "contact_fields", "force_terms",
                  "max_tangent_stiffness")
 
 LAWS: dict[str, ModuleType] = discover(_laws_package, LAW_INTERFACE, reserved=(NO_WALL,))
@@ -26,3 +26,6 @@ LAW_CODES: dict[str, int] = {NO_WALL: NONE, **{name: code for code, name in
 LAW_NAMES: dict[int, str] = {code: name for name, code in LAW_CODES.items()}
 LAW_MODULES: dict[int, ModuleType] = {LAW_CODES[name]: module for name, module in LAWS.items()}
 """Law code -> its module, for the time loops."""
+ROW_WIDTH = max(len(module.ROW) for module in LAWS.values())
+"""The widest law's packed row (its ROW): the compiled loops' per-member law rows are this
+wide, each law's constants first, the rest unused."""

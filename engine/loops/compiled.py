@@ -1,8 +1,9 @@
-"""The physics both compiled loops (numba_loop.py, numba_plan.py) call, compiled for scalars
-from the modules that write it once: the isolator's and the stories' slip elements
-(isolators/hysteresis.py), the scheme's contact solve and onset weight (scheme.py), and the
-impact laws' force terms and the story laws' forces, each chained into one dispatch on a
-member's law code (the registries).
+"""The physics the compiled loops (numba_loop.py, numba_plan.py, numba_torsion.py) call,
+compiled for scalars from the modules that write it once: the isolator's and the stories' slip
+elements (isolators/hysteresis.py), the scheme's contact solve and onset weight (scheme.py),
+and the impact laws' force terms and the story laws' forces, each chained into one dispatch on
+a member's law code (the registries): law_terms(code, delta, rate, v_imp, row) with the
+member's packed law row (impact.contact.law_rows), story_force(code, drift, state, row).
 
 JIT: the options of the cached kernels; LINK: those of the functions compiled into them.
 """
@@ -12,13 +13,15 @@ import types
 
 from numba import njit
 
+from .. import layout as columns
 from .. import scheme
 from ..impact import registry
 from ..isolators import hysteresis
 from ..stories import registry as story_registry
 
-PHYSICS_FILES = [m.__file__ for m in (hysteresis, scheme, registry, *registry.LAWS.values(),
-                                      story_registry, *story_registry.LAWS.values())]
+PHYSICS_FILES = [m.__file__ for m in (hysteresis, scheme, columns, registry,
+                                      *registry.LAWS.values(), story_registry,
+                                      *story_registry.LAWS.values())]
 """The sources a cached kernel compiles besides its own file (numba_support's cache key)."""
 
 JIT = {"cache": True, "nogil": True, "error_model": "numpy"}
@@ -39,26 +42,23 @@ implicit_force = njit(**LINK)(scheme.implicit_force)
 onset_weight = njit(**LINK)(scheme.onset_weight)
 
 
-def _no_wall(code, delta, rate, v_imp, k, n, m_eff, delta_u, k_w, dashpot, damping_ratio, chi,
-             c_imp_coef, c_imp_exponent):
+def _no_wall(code, delta, rate, v_imp, row):
     return 0.0, 0.0
 
 
 def _link(code, force_terms, otherwise):
     """A dispatch that runs force_terms for members of law `code`, else `otherwise`."""
-    def dispatch(law, delta, rate, v_imp, k, n, m_eff, delta_u, k_w, dashpot, damping_ratio,
-                 chi, c_imp_coef, c_imp_exponent):
+    def dispatch(law, delta, rate, v_imp, row):
         if law == code:
-            return force_terms(delta, rate, v_imp, k, n, m_eff, delta_u, k_w, dashpot,
-                               damping_ratio, chi, c_imp_coef, c_imp_exponent)
-        return otherwise(law, delta, rate, v_imp, k, n, m_eff, delta_u, k_w, dashpot,
-                         damping_ratio, chi, c_imp_coef, c_imp_exponent)
+            return force_terms(delta, rate, v_imp, row)
+        return otherwise(law, delta, rate, v_imp, row)
     return njit(**LINK)(dispatch)
 
 
 def _law_dispatch():
     """(elastic, dashpot) of the member's law, dispatched on its code: every law of the
-    registry, chained; (0, 0) for a member without wall."""
+    registry, chained; (0, 0) for a member without wall. law_terms(code, delta, rate, v_imp,
+    row): row the member's law row (contact.law_rows), of floats."""
     dispatch = njit(**LINK)(_no_wall)
     for code, module in registry.LAW_MODULES.items():
         dispatch = _link(code, njit(**LINK)(module.force_terms), dispatch)

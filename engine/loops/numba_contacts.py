@@ -5,27 +5,24 @@ partial pivoting, no array allocated (the kernel hands its stack arrays)."""
 import numpy as np
 from numba import njit
 
-from ..impact.contact import LAW_ARGUMENTS
+from ..impact.contact import law_rows
+from ..impact.registry import ROW_WIDTH
 from ..torsion import point_laws
 from .compiled import LINK
 
-# Per member and point, floats: the clear gap, then the law's arguments (its share applied).
-GAP, LAW_ARGS = 0, 1
-N_POINT_PAR = LAW_ARGS + len(LAW_ARGUMENTS)
-
 
 def point_arrays(contacts, points, size: int):
-    """Every point's law code (B, P) int64 and floats (B, P, N_POINT_PAR): the clear gap and
-    LAW_ARGUMENTS of its share of its wall's law (torsion.point_laws, the NumPy loop's)."""
+    """Every point's law code (B, P) int64, clear gap (B, P) m and law row (B, P, ROW_WIDTH)
+    of its share of its wall's law (torsion.point_laws, the NumPy loop's; contact.law_rows)."""
     codes = np.zeros((size, points.wall.size), dtype=np.int64)
-    out = np.zeros((size, points.wall.size, N_POINT_PAR))
+    gaps = np.zeros((size, points.wall.size))
+    rows = np.zeros((size, points.wall.size, ROW_WIDTH))
     for columns, contact, flat in point_laws(contacts, points):
         n = columns.size
         codes[:, columns] = np.asarray(flat.law, dtype=np.int64).reshape(size, n)
-        out[:, columns, GAP] = np.repeat(contact.clear_gap, n).reshape(size, n)
-        for i, name in enumerate(LAW_ARGUMENTS):
-            out[:, columns, LAW_ARGS + i] = getattr(flat, name).reshape(size, n)
-    return codes, out
+        gaps[:, columns] = np.repeat(contact.clear_gap, n).reshape(size, n)
+        rows[:, columns] = law_rows(flat).reshape(size, n, ROW_WIDTH)
+    return codes, gaps, rows
 
 
 @njit(**LINK)

@@ -19,12 +19,14 @@ from pathlib import Path
 import numba
 import numpy as np
 from numba import carray, njit
+from numba.np.unsafe.ndarray import to_fixed_tuple
 
-from ..impact.contact import LAW_ARGUMENTS
-from ..results import PEAKS
+from ..impact.contact import law_rows
+from ..impact.registry import ROW_WIDTH
+from ..results import empty_peaks
 from ..scheme import banded_operators, step_operators
 from ..stories.registry import MAX_FIELDS, MAX_STATE
-from . import compiled
+from . import compiled, layout
 from .compiled import (
     JIT,
     LINK,
@@ -37,6 +39,7 @@ from .compiled import (
     slip_limit,
     story_force,
 )
+from .layout import PLANAR, PLANAR_PEAK_COLUMNS, PLANAR_STATE, PLANAR_STORY, finish_peaks, packed
 from .numba_support import (
     data_pointer,
     history_rows,
@@ -46,23 +49,13 @@ from .numba_support import (
 )
 
 # Cached kernels go stale when any physics source they compile changes, not only this file.
-install_cache_locator(Path(__file__), [compiled.__file__, *PHYSICS_FILES])
+install_cache_locator(Path(__file__), [compiled.__file__, layout.__file__, *PHYSICS_FILES])
 
-
-
-# Columns of the per-member scalar parameters.
-(_COMPLIANCE, _K_ELASTIC, _K_SLIP, _F_LIMIT, _SLOW_DROP, _RATE, _STORIES_NONLINEAR, _GAP,
- _SCALE, _LAW_ARGS) = range(10)
-_N_PAR = _LAW_ARGS + len(LAW_ARGUMENTS)
-# Columns of the per-member scalar state carried between chunks of steps (the displacements
-# and velocities of every level are arrays of their own).
-_FP, _V_IMP, _DELTA_PREV, _IN_CONTACT, _COLLAPSED, _COLLAPSE_TIME = range(6)
-_N_STATE = 6
-# The peaks: per level (peak_total_accel), per story (peak_interstory_drift), the scalar
-# float peaks in PEAKS order in one matrix, the integer count (n_impacts) in its own array.
-_SCALAR_PEAKS = tuple(q.name for q in PEAKS if q.along is None and q.dtype is not np.int64)
-_P_ISO, _P_INDENT, _P_FORCE, _P_ENERGY = (_SCALAR_PEAKS.index(name) for name in (
-    "peak_isolator_disp", "max_indentation", "max_impact_force", "impact_energy"))
+# The kernel's packed arrays (layout.py): per member its floats (PLANAR), its law's row
+# (contact.law_rows), its state between chunks of steps (PLANAR_STATE; the displacements and
+# velocities of every level are arrays of their own), per story PLANAR_STORY; the peaks per
+# level (peak_total_accel), per story (peak_interstory_drift), the scalar float peaks
+# (PLANAR_PEAK_COLUMNS, named as in engine/results.py) in one matrix, the count (n_impacts) apart.
 
 
 @njit(**LINK)
@@ -89,18 +82,25 @@ def _solve_banded(bd, r, v, out, n_levels, dt):
 
 
 @njit(**JIT)
-def _member(levels, law_tag, b, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u_all,
-            v_all, story_fields, story_state, state, peak_level, peak_story, peak_scalar, n_impacts,
-            hist_row, every, h_u, h_acc, h_f, h_d):
+def _member(shape, b, s0, s1, model, memory, peaks, hist):
     """Steps s0 <= step < s1 of member b: the NumPy loop's step, on scalars and the member's
-    own small arrays (L levels, L - 1 stories; `levels` is a tuple of L zeros, so that L is a
-    compile-time constant; `law_tag` a tuple of (story law code + 1) zeros, so that the
-    member's story law is one too and its force is the only one compiled into this kernel:
-    one compilation per number of levels and story law). Sums run in the order of the scalar
-    kernel this loop replaced, and a member's result never depends on the batch. A member
-    that has collapsed stops."""
+    own small arrays (L levels, L - 1 stories). shape = (levels, law_tag): `levels` a tuple of
+    L zeros, so that L is a compile-time constant; `law_tag` a tuple of (story law code + 1)
+    zeros, so that the member's story law is one too and its force is the only one compiled
+    into this kernel: one compilation per number of levels and story law. model = (ag, dt,
+    op, bands, wall, mass, story, law, par, law_par, story_fields), what the run reads;
+    memory = (u, v, story_state, state), what it carries between chunks; peaks =
+    (peak_level, peak_story, peak_scalar, n_impacts); hist = (hist_row, every, h_u, h_acc,
+    h_f, h_d) (run_simulation builds them; layout.py names their columns). Sums run in the
+    order of the scalar kernel this loop replaced, and a member's result never depends on the
+    batch. A member that has collapsed stops."""
+    levels, law_tag = shape
+    ag, dt, op, bands, wall, mass, story, law, par, law_par, story_fields = model
+    u_all, v_all, story_state, state = memory
+    peak_level, peak_story, peak_scalar, n_impacts = peaks
+    hist_row, every, h_u, h_acc, h_f, h_d = hist
     st = state[b]
-    if st[_COLLAPSED] != 0.0:
+    if st[PLANAR_STATE.collapsed] != 0.0:
         return
     n_levels = len(levels)
     ot = op[b]
@@ -108,27 +108,31 @@ def _member(levels, law_tag, b, s0, s1, ag, dt, op, bands, wall, mass, story, la
     banded = bd.shape[1] > 0
     w = wall[b]
     m = mass[b]
-    k_story, gravity, collapse_drift = story[b, 0], story[b, 1], story[b, 2]
+    k_story, gravity = story[b, PLANAR_STORY.story_k], story[b, PLANAR_STORY.story_gravity]
+    collapse_drift = story[b, PLANAR_STORY.collapse_drift]
     # The story law's constants and state as views of a shape known when the kernel compiles.
     s_fields = carray(data_pointer(story_fields[b]), (n_levels - 1, MAX_FIELDS))
     s_state = carray(data_pointer(story_state[b]), (n_levels - 1, MAX_STATE))
     p = par[b]
-    comp = p[_COMPLIANCE]
-    k_el, k_slip, f_limit, gap = p[_K_ELASTIC], p[_K_SLIP], p[_F_LIMIT], p[_GAP]
-    slow_drop, rate = p[_SLOW_DROP], p[_RATE]
-    nonlinear = p[_STORIES_NONLINEAR] != 0.0
+    comp = p[PLANAR.compliance]
+    k_el, k_slip, f_limit = p[PLANAR.k_elastic], p[PLANAR.k_slip], p[PLANAR.f_limit]
+    gap = p[PLANAR.gap]
+    slow_drop, rate = p[PLANAR.slow_drop], p[PLANAR.rate]
+    nonlinear = p[PLANAR.stories_nonlinear] != 0.0
     story_law = len(law_tag) - 1
-    scale = p[_SCALE]
-    q = _LAW_ARGS
-    k, n, m_eff, delta_u, k_w = p[q], p[q + 1], p[q + 2], p[q + 3], p[q + 4]
-    dashpot, xi, chi, c_coef, c_exp = p[q + 5], p[q + 6], p[q + 7], p[q + 8], p[q + 9]
+    scale = p[PLANAR.scale]
+    law_row = to_fixed_tuple(law_par[b], ROW_WIDTH)  # in registers, as scalars
     code = law[b]
     hrow = hist_row[b]
 
-    fp, v_imp, delta_prev = st[_FP], st[_V_IMP], st[_DELTA_PREV]
-    in_contact = st[_IN_CONTACT] != 0.0
+    fp, v_imp = st[PLANAR_STATE.fp], st[PLANAR_STATE.v_imp]
+    delta_prev = st[PLANAR_STATE.delta_prev]
+    in_contact = st[PLANAR_STATE.in_contact] != 0.0
     pk = peak_scalar[b]
-    p_iso, p_indent, p_force, energy = pk[_P_ISO], pk[_P_INDENT], pk[_P_FORCE], pk[_P_ENERGY]
+    p_iso = pk[PLANAR_PEAK_COLUMNS.peak_isolator_disp]
+    p_indent = pk[PLANAR_PEAK_COLUMNS.max_indentation]
+    p_force = pk[PLANAR_PEAK_COLUMNS.max_impact_force]
+    energy = pk[PLANAR_PEAK_COLUMNS.impact_energy]
     n_imp = n_impacts[b]
     half_dt = 0.5 * dt
 
@@ -162,8 +166,8 @@ def _member(levels, law_tag, b, s0, s1, ag, dt, op, bands, wall, mass, story, la
             else:
                 chain[i + 1] = k_story[i] * drift[i]
         if fallen:
-            st[_COLLAPSED] = 1.0
-            st[_COLLAPSE_TIME] = step * dt
+            st[PLANAR_STATE.collapsed] = 1.0
+            st[PLANAR_STATE.collapse_time] = step * dt
             break
         for i in range(n_levels - 1):
             r[i] = (chain[i + 1] - chain[i]) - m[i] * a
@@ -198,8 +202,7 @@ def _member(levels, law_tag, b, s0, s1, ag, dt, op, bands, wall, mass, story, la
         force = 0.0
         if touching:
             rate_free = side * 0.5 * (v[0] + nxt[0])
-            elastic, dashpot_now = law_terms(code, delta, rate_free, v_imp, k, n, m_eff,
-                                              delta_u, k_w, dashpot, xi, chi, c_coef, c_exp)
+            elastic, dashpot_now = law_terms(code, delta, rate_free, v_imp, law_row)
             if new:
                 dashpot_now = dashpot_now * onset_weight(delta, delta_prev)
             force = implicit_force(elastic, dashpot_now, rate_free, comp)
@@ -240,24 +243,25 @@ def _member(levels, law_tag, b, s0, s1, ag, dt, op, bands, wall, mass, story, la
         u_all[b, i], v_all[b, i], peak_level[b, i] = u[i], v[i], pa[i]
     for i in range(n_levels - 1):
         peak_story[b, i] = pd[i]
-    st[_FP], st[_V_IMP], st[_DELTA_PREV] = fp, v_imp, delta_prev
-    st[_IN_CONTACT] = 1.0 if in_contact else 0.0
-    pk[_P_ISO], pk[_P_INDENT], pk[_P_FORCE], pk[_P_ENERGY] = p_iso, p_indent, p_force, energy
+    st[PLANAR_STATE.fp], st[PLANAR_STATE.v_imp] = fp, v_imp
+    st[PLANAR_STATE.delta_prev] = delta_prev
+    st[PLANAR_STATE.in_contact] = 1.0 if in_contact else 0.0
+    pk[PLANAR_PEAK_COLUMNS.peak_isolator_disp] = p_iso
+    pk[PLANAR_PEAK_COLUMNS.max_indentation] = p_indent
+    pk[PLANAR_PEAK_COLUMNS.max_impact_force] = p_force
+    pk[PLANAR_PEAK_COLUMNS.impact_energy] = energy
     n_impacts[b] = n_imp
 
 
 @njit(**JIT)
-def _run(levels, law_tag, members, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u, v,
-         story_fields, story_state, state, peak_level, peak_story, peak_scalar, n_impacts,
-         hist_row, every, h_u, h_acc, h_f, h_d):
-    """Steps s0 <= step < s1 of the members in `members` (indices), one after the other. One
-    compilation per number of levels (the length of `levels` is part of its type): loops of
-    known length, the member's arrays on the stack. It releases the GIL: run_simulation hands
-    batches of members to threads (numba_support.run_members)."""
+def _run(shape, members, s0, s1, model, memory, peaks, hist):
+    """Steps s0 <= step < s1 of the members in `members` (indices), one after the other (the
+    other arguments: _member's). One compilation per number of levels (the length of
+    `levels` is part of its type): loops of known length, the member's arrays on the stack.
+    It releases the GIL: run_simulation hands batches of members to threads
+    (numba_support.run_members)."""
     for b in members:
-        _member(levels, law_tag, b, s0, s1, ag, dt, op, bands, wall, mass, story, law, par, u, v,
-                story_fields, story_state, state, peak_level, peak_story, peak_scalar,
-                n_impacts, hist_row, every, h_u, h_acc, h_f, h_d)
+        _member(shape, b, s0, s1, model, memory, peaks, hist)
 
 
 @njit(**JIT)
@@ -292,20 +296,9 @@ def threads() -> int:
 
 
 def member_parameters(arrays, contact, compliance, scale) -> np.ndarray:
-    """(B, _N_PAR) float matrix of every per-member scalar the step reads."""
-    par = np.empty((len(contact), _N_PAR))
-    par[:, _COMPLIANCE] = compliance
-    par[:, _K_ELASTIC] = arrays.k_elastic
-    par[:, _K_SLIP] = arrays.k_slip
-    par[:, _F_LIMIT] = arrays.f_limit
-    par[:, _SLOW_DROP] = arrays.slow_drop
-    par[:, _RATE] = arrays.rate
-    par[:, _STORIES_NONLINEAR] = ~arrays.story_linear
-    par[:, _GAP] = contact.clear_gap
-    par[:, _SCALE] = scale
-    for i, name in enumerate(LAW_ARGUMENTS):
-        par[:, _LAW_ARGS + i] = getattr(contact, name)
-    return par
+    """(B, len(PLANAR)) float matrix of every per-member scalar the step reads."""
+    return packed(PLANAR, arrays, len(contact), compliance=compliance,
+                  stories_nonlinear=~arrays.story_linear, gap=contact.clear_gap, scale=scale)
 
 
 def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
@@ -327,17 +320,14 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
     par = member_parameters(arrays, contact, compliance, scale)
     law = np.ascontiguousarray(contact.law, dtype=np.int64)
     u, v = np.zeros((size, n_levels)), np.zeros((size, n_levels))
-    # Per story: the linear stiffness (P-Delta folded in), P-Delta's stiffness (subtracted
-    # from a nonlinear law's force), the collapse drift; the story law's constants and state.
-    story = np.ascontiguousarray(np.stack([arrays.story_k, arrays.story_gravity,
-                                           arrays.collapse_drift], axis=1))
+    # Per story PLANAR_STORY; the story law's constants and state.
+    story = packed(PLANAR_STORY, arrays)
     story_fields = np.ascontiguousarray(arrays.story_fields, dtype=np.float64)
     story_state = np.array(arrays.story_state, dtype=np.float64, order="C")
-    state = np.zeros((size, _N_STATE))
-    state[:, _V_IMP] = 1.0
-    peak_level, peak_story = np.zeros((size, n_levels)), np.zeros((size, n_levels - 1))
-    peak_scalar = np.zeros((size, len(_SCALAR_PEAKS)))
-    n_impacts = np.zeros(size, dtype=np.int64)
+    state = np.zeros((size, len(PLANAR_STATE)))
+    state[:, PLANAR_STATE.v_imp] = 1.0
+    peaks = empty_peaks(size, n_levels)
+    peak_scalar = np.zeros((size, len(PLANAR_PEAK_COLUMNS)))
     ag = np.ascontiguousarray(ag, dtype=np.float64)
 
     hist_row, every, rows, inverse = history_rows(history, size)
@@ -345,25 +335,23 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
     h_u, h_f, h_d = (np.zeros((rows, n_out)) for _ in range(3))
     h_acc = np.zeros((rows, n_out, n_levels))
 
-    args = (ag, float(dt), np.ascontiguousarray(op.transpose(0, 2, 1)), bands,
-            np.ascontiguousarray(wall_response), np.ascontiguousarray(arrays.masses), story,
-            law, par, u, v, story_fields, story_state, state, peak_level, peak_story,
-            peak_scalar, n_impacts, hist_row, every, h_u, h_acc, h_f, h_d)
+    model = (ag, float(dt), np.ascontiguousarray(op.transpose(0, 2, 1)), bands,
+             np.ascontiguousarray(wall_response), np.ascontiguousarray(arrays.masses), story,
+             law, par, law_rows(contact), story_fields)
+    memory = (u, v, story_state, state)
+    kept = (peaks["peak_total_accel"], peaks["peak_interstory_drift"], peak_scalar,
+            peaks["n_impacts"])
+    hist = (hist_row, every, h_u, h_acc, h_f, h_d)
     codes = arrays.story_code
 
     def steps(members, s0, s1):
         # One kernel per story law (law_tag): each member runs the one its stories follow.
         for code in np.unique(codes[members]):
-            _run(levels, (0,) * (int(code) + 1), members[codes[members] == code], s0, s1,
-                 *args)
+            _run((levels, (0,) * (int(code) + 1)), members[codes[members] == code], s0, s1,
+                 model, memory, kept, hist)
     run_members(size, n_steps, progress, steps)
 
-    by_name = {"peak_total_accel": peak_level, "peak_interstory_drift": peak_story,
-               "n_impacts": n_impacts,
-               **{name: peak_scalar[:, i].copy() for i, name in enumerate(_SCALAR_PEAKS)}}
-    result = {q.name: by_name[q.name] for q in PEAKS}
-    result["collapsed"] = state[:, _COLLAPSED] != 0.0
-    result["collapse_time"] = np.where(result["collapsed"], state[:, _COLLAPSE_TIME], np.nan)
+    result = finish_peaks(peaks, peak_scalar, PLANAR_PEAK_COLUMNS, state)
     hist = None
     if history is not None:
         hist = {"time": np.arange(n_out) * every * dt, "isolator_disp": h_u[inverse],
@@ -401,8 +389,7 @@ def _two_body(law, par, v, dt, m_eff, n_iter, deltas, forces, out, stops):
             force = 0.0
             if delta > 0.0:
                 # No other force acts, so the free central rate is v_{n-1/2} itself.
-                elastic, dashpot = law_terms(code, delta, v_half, v_imp, p[0], p[1], p[2],
-                                              p[3], p[4], p[5], p[6], p[7], p[8], p[9])
+                elastic, dashpot = law_terms(code, delta, v_half, v_imp, p)
                 force = implicit_force(elastic, dashpot, v_half, compliance)
             if record:
                 deltas[b, i] = delta
@@ -435,7 +422,7 @@ def run_two_body(contact, v, dt, m_eff, max_steps):
     separate within max_steps, out (B, 4), indentation (B, T), force (B, T))."""
     size = len(contact)
     law = np.ascontiguousarray(contact.law, dtype=np.int64)
-    par = np.ascontiguousarray(np.column_stack([getattr(contact, f) for f in LAW_ARGUMENTS]))
+    par = law_rows(contact)
     # writable copies: a read-only array is another type to numba, another compilation
     v, dt, m_eff = (np.require(x, dtype=np.float64, requirements=["C", "W"])
                     for x in (v, dt, m_eff))

@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 from numba import carray, njit
 
-from ..impact.contact import LAW_ARGUMENTS
+from ..impact.contact import law_rows
 from ..results import (
     DIRECTIONS,
     PEAKS,
@@ -33,7 +33,7 @@ from ..results import (
 )
 from ..scheme import step_operators
 from ..stories.registry import MAX_FIELDS, MAX_STATE
-from . import compiled
+from . import compiled, layout
 from .compiled import (
     JIT,
     LINK,
@@ -44,6 +44,16 @@ from .compiled import (
     radial_return,
     slip_limit,
     story_force,
+)
+from .layout import (
+    CONTACT,
+    PLAN,
+    PLAN_PEAK_COLUMNS,
+    PLAN_STATE,
+    PLAN_STORY,
+    contact_state,
+    finish_peaks,
+    packed,
 )
 from .numba_support import (
     add2,
@@ -60,29 +70,21 @@ from .numba_support import (
     sub2,
 )
 
-install_cache_locator(Path(__file__), [compiled.__file__, *PHYSICS_FILES])
+install_cache_locator(Path(__file__), [compiled.__file__, layout.__file__, *PHYSICS_FILES])
 
-# Per-member scalars, and per wall direction: the clear gap, then the law's arguments.
-(_COMPLIANCE, _COMPLIANCE_Y, _ANISOTROPIC, _MU_WALL, _K_ELASTIC, _K_SLIP, _F_LIMIT, _SLOW_DROP,
- _RATE, _STORIES_YIELD, _STORIES_UNIAXIAL, _COS, _SIN, _N_PAR) = range(14)
-_GAP, _LAW_ARGS = 0, 1
-_N_WALL_PAR = _LAW_ARGS + len(LAW_ARGUMENTS)
-# State carried between chunks: the isolator's slip force (x, y), whether the member collapsed
-# and when, then per wall direction its impact velocity, previous indentation and contact flag.
-_FPX, _FPY, _COLLAPSED, _COLLAPSE_TIME, _WALL_STATE = 0, 1, 2, 3, 4
-# Scalar float peaks: resultant isolator displacement (squared while running, as every
-# displacement and acceleration peak: run_plan roots them), indentation, force, energy.
-_P_ISO, _P_INDENT, _P_FORCE, _P_ENERGY = range(4)
+# The kernel's packed arrays (layout.py): per member its floats (PLAN) and state between
+# chunks (PLAN_STATE), per wall direction its clear gap, its law's row (contact.law_rows) and
+# its CONTACT state, per story PLAN_STORY, the scalar float peaks (PLAN_PEAK_COLUMNS: the
+# displacement's squared while running, as every displacement and acceleration peak:
+# layout.finish_peaks roots them).
 
 
 @njit(**LINK)
-def _contact(code, wp, delta, new, v_imp, delta_prev, rate_free, comp):
+def _contact(code, row, delta, new, v_imp, delta_prev, rate_free, comp):
     """One wall direction's contact force (N, >= 0) at indentation delta > 0 (m): the law's
-    terms along the wall's normal, the dashpot weighted at a new contact, solved exactly."""
-    q = _LAW_ARGS
-    elastic, dashpot = law_terms(code, delta, rate_free, v_imp, wp[q], wp[q + 1], wp[q + 2],
-                                  wp[q + 3], wp[q + 4], wp[q + 5], wp[q + 6], wp[q + 7],
-                                  wp[q + 8], wp[q + 9])
+    terms along the wall's normal (row: its law row), the dashpot weighted at a new contact,
+    solved exactly."""
+    elastic, dashpot = law_terms(code, delta, rate_free, v_imp, row)
     if new:
         dashpot = dashpot * onset_weight(delta, delta_prev)
     return implicit_force(elastic, dashpot, rate_free, comp)
@@ -105,12 +107,13 @@ def _friction(nx, w, comp, comp_y, limit, nrm_x, nrm_y):
 
 
 @njit(**JIT)
-def _member(levels, pairs, circular, law_tag, b, s0, s1, ag, dt, op, wall, story_k, mass,
-            story, law, par, wall_par, u_all, v_all, f_story_all, story_fields, story_state,
-            state, peak_level, peak_level_xy,
-            peak_story, peak_story_xy, peak_iso_xy, peak_scalar, n_impacts, peak_wall, hist_row,
-            every, h_u, h_acc, h_f, h_d):
-    """Steps s0 <= step < s1 of member b (see the module docstring). Like the planar kernel,
+def _member(shape, b, s0, s1, model, memory, peaks, hist):
+    """Steps s0 <= step < s1 of member b (see the module docstring). shape = (levels, pairs,
+    circular, law_tag); model = (ag, dt, op, wall, story_k, mass, story, law, par, gaps,
+    law_par, story_fields), what the run reads; memory = (u, v, f_story, story_state, state,
+    wall_state), what it carries between chunks; peaks = (peak_level, peak_level_xy,
+    peak_story, peak_story_xy, peak_iso_xy, peak_scalar, n_impacts, peak_wall); hist =
+    (hist_row, every, h_u, h_acc, h_f, h_d) (run_plan builds them). Like the planar kernel,
     the member's state lives in scalars and arrays on the stack while it runs, each level's x
     and y side by side (a last axis of 2, as the operators: op (2L, L, 2), the operator along
     x and along y transposed, wall (L, 2), story_k (L - 1, 2)), and the two directions'
@@ -121,8 +124,14 @@ def _member(levels, pairs, circular, law_tag, b, s0, s1, ag, dt, op, wall, story
     engine/stories/) act along x and y each on their own (two springs of the law per story,
     uncoupled), its force compiled in for the member's law only (law_tag, as the planar
     kernel's). A member that has collapsed stops."""
+    levels, pairs, circular, law_tag = shape
+    ag, dt, op, wall, story_k, mass, story, law, par, gaps_all, law_par, story_fields = model
+    u_all, v_all, f_story_all, story_state, state, wall_state = memory
+    (peak_level, peak_level_xy, peak_story, peak_story_xy, peak_iso_xy, peak_scalar, n_impacts,
+     peak_wall) = peaks
+    hist_row, every, h_u, h_acc, h_f, h_d = hist
     st = state[b]
-    if st[_COLLAPSED] != 0.0:
+    if st[PLAN_STATE.collapsed] != 0.0:
         return
     n_levels = len(levels)
     n_st = n_levels - 1
@@ -131,17 +140,18 @@ def _member(levels, pairs, circular, law_tag, b, s0, s1, ag, dt, op, wall, story
     ks = story_k[b]
     m = mass[b]
     p = par[b]
-    comp, comp_y = p[_COMPLIANCE], p[_COMPLIANCE_Y]
-    anisotropic = p[_ANISOTROPIC] != 0.0
-    mu_wall = p[_MU_WALL]
-    k_el, k_slip, f_limit = p[_K_ELASTIC], p[_K_SLIP], p[_F_LIMIT]
-    slow_drop, rate = p[_SLOW_DROP], p[_RATE]
-    stories_yield = p[_STORIES_YIELD] != 0.0
-    cs, sn = p[_COS], p[_SIN]
-    k_post, k_slip_story, f_limit_story = story[b, 1], story[b, 2], story[b, 3]
-    collapse_square = story[b, 4]  # the collapse drift squared: no root per step
-    gravity = story[b, 5]
-    uniaxial = p[_STORIES_UNIAXIAL] != 0.0
+    comp, comp_y = p[PLAN.compliance], p[PLAN.compliance_y]
+    anisotropic = p[PLAN.anisotropic] != 0.0
+    mu_wall = p[PLAN.mu_wall]
+    k_el, k_slip, f_limit = p[PLAN.k_elastic], p[PLAN.k_slip], p[PLAN.f_limit]
+    slow_drop, rate = p[PLAN.slow_drop], p[PLAN.rate]
+    stories_yield = p[PLAN.stories_yield] != 0.0
+    cs, sn = p[PLAN.cos], p[PLAN.sin]
+    k_post, k_slip_story = story[b, PLAN_STORY.story_k_post], story[b, PLAN_STORY.story_k_slip]
+    f_limit_story = story[b, PLAN_STORY.story_f_limit]
+    collapse_square = story[b, PLAN_STORY.collapse_square]  # no root per step
+    gravity = story[b, PLAN_STORY.story_gravity]
+    uniaxial = p[PLAN.stories_uniaxial] != 0.0
     story_law = len(law_tag) - 1
     s_fields = carray(data_pointer(story_fields[b]), (n_levels - 1, MAX_FIELDS))
     s_state = carray(data_pointer(story_state[b]), (n_levels - 1, 2, MAX_STATE))
@@ -149,7 +159,7 @@ def _member(levels, pairs, circular, law_tag, b, s0, s1, ag, dt, op, wall, story
     codes = law[b]
     half_dt = 0.5 * dt
 
-    fpx, fpy = st[_FPX], st[_FPY]
+    fpx, fpy = st[PLAN_STATE.fpx], st[PLAN_STATE.fpy]
     # per wall direction: impact velocity, previous indentation, in contact (1.0 or 0.0),
     # and the clear gap
     v_imp = carray(stack_doubles(levels), (2,))
@@ -160,13 +170,15 @@ def _member(levels, pairs, circular, law_tag, b, s0, s1, ag, dt, op, wall, story
     f_n = carray(stack_doubles(levels), (2,))
     n_x = carray(stack_doubles(levels), (2,))
     n_y = carray(stack_doubles(levels), (2,))
+    ws = wall_state[b]
     for d in range(n_walls):
-        j = _WALL_STATE + 3 * d
-        v_imp[d], delta_prev[d], inside[d] = st[j], st[j + 1], st[j + 2]
-        gaps[d] = wall_par[b, d, _GAP]
+        v_imp[d], delta_prev[d] = ws[d, CONTACT.v_imp], ws[d, CONTACT.delta_prev]
+        inside[d] = ws[d, CONTACT.in_contact]
+        gaps[d] = gaps_all[b, d]
     pk = peak_scalar[b]
-    p_iso2 = pk[_P_ISO]
-    p_indent, p_force, energy = pk[_P_INDENT], pk[_P_FORCE], pk[_P_ENERGY]
+    p_iso2 = pk[PLAN_PEAK_COLUMNS.peak_isolator_disp]
+    p_indent = pk[PLAN_PEAK_COLUMNS.max_indentation]
+    p_force, energy = pk[PLAN_PEAK_COLUMNS.max_impact_force], pk[PLAN_PEAK_COLUMNS.impact_energy]
     p_iso_x, p_iso_y = peak_iso_xy[b, 0], peak_iso_xy[b, 1]
     n_imp = n_impacts[b]
     pw = peak_wall[b]
@@ -204,8 +216,8 @@ def _member(levels, pairs, circular, law_tag, b, s0, s1, ag, dt, op, wall, story
             if not drift[0] * drift[0] + drift[1] * drift[1] <= collapse_square[i]:
                 fallen = True
         if fallen:
-            st[_COLLAPSED] = 1.0
-            st[_COLLAPSE_TIME] = step * dt
+            st[PLAN_STATE.collapsed] = 1.0
+            st[PLAN_STATE.collapse_time] = step * dt
             break
         acc = (cs * ag[step, 0] - sn * ag[step, 1], sn * ag[step, 0] + cs * ag[step, 1])
         store_pair(c, 0, add2(mul2((k_el, k_el), load_pair(u, 0)), (fpx, fpy)))
@@ -273,7 +285,7 @@ def _member(levels, pairs, circular, law_tag, b, s0, s1, ag, dt, op, wall, story
                 if new:
                     n_imp += 1
                     v_imp[d] = before
-                force = _contact(codes[d], wall_par[b, d], delta, new, v_imp[d],
+                force = _contact(codes[d], law_par[b, d], delta, new, v_imp[d],
                                  delta_prev[d], free, along)
                 wfx -= nrm_x * force
                 wfy -= nrm_y * force
@@ -343,30 +355,26 @@ def _member(levels, pairs, circular, law_tag, b, s0, s1, ag, dt, op, wall, story
             f_story_all[b, i, e] = fs[i, e]
             peak_story_xy[b, i, e] = pd[i, e]
         peak_story[b, i] = pd2[i]
-    st[_FPX], st[_FPY] = fpx, fpy
+    st[PLAN_STATE.fpx], st[PLAN_STATE.fpy] = fpx, fpy
     for d in range(n_walls):
-        j = _WALL_STATE + 3 * d
-        st[j], st[j + 1], st[j + 2] = v_imp[d], delta_prev[d], inside[d]
-    pk[_P_ISO] = p_iso2
-    pk[_P_INDENT], pk[_P_FORCE], pk[_P_ENERGY] = p_indent, p_force, energy
+        ws[d, CONTACT.v_imp], ws[d, CONTACT.delta_prev] = v_imp[d], delta_prev[d]
+        ws[d, CONTACT.in_contact] = inside[d]
+    pk[PLAN_PEAK_COLUMNS.peak_isolator_disp] = p_iso2
+    pk[PLAN_PEAK_COLUMNS.max_indentation] = p_indent
+    pk[PLAN_PEAK_COLUMNS.max_impact_force] = p_force
+    pk[PLAN_PEAK_COLUMNS.impact_energy] = energy
     peak_iso_xy[b, 0], peak_iso_xy[b, 1] = p_iso_x, p_iso_y
     n_impacts[b] = n_imp
 
 
 @njit(**JIT)
-def _run(levels, pairs, circular, law_tag, members, s0, s1, ag, dt, op, wall, story_k, mass,
-         story, law, par, wall_par, u, v, f_story, story_fields, story_state, state, peak_level,
-         peak_level_xy, peak_story, peak_story_xy, peak_iso_xy, peak_scalar, n_impacts,
-         peak_wall, hist_row, every, h_u, h_acc, h_f, h_d):
-    """Steps s0 <= step < s1 of the members in `members` (indices), one after the other. It
-    releases the GIL (nogil), so that run_plan's threads run batches of members at once: the
-    same parallelism as numba's parallel loops, at a third of their compile time."""
+def _run(shape, members, s0, s1, model, memory, peaks, hist):
+    """Steps s0 <= step < s1 of the members in `members` (indices), one after the other (the
+    other arguments: _member's). It releases the GIL (nogil), so that run_plan's threads run
+    batches of members at once: the same parallelism as numba's parallel loops, at a third of
+    their compile time."""
     for b in members:
-        _member(levels, pairs, circular, law_tag, b, s0, s1, ag, dt, op, wall, story_k, mass,
-                story, law, par, wall_par, u, v, f_story, story_fields, story_state, state,
-                peak_level, peak_level_xy,
-                peak_story, peak_story_xy, peak_iso_xy, peak_scalar, n_impacts, peak_wall,
-                hist_row, every, h_u, h_acc, h_f, h_d)
+        _member(shape, b, s0, s1, model, memory, peaks, hist)
 
 
 def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, history=None,
@@ -387,28 +395,17 @@ def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, histor
                                           axis=-1))
     wall_xy = np.ascontiguousarray(np.stack([wall_response, response_y], axis=-1))
     story_xy = np.ascontiguousarray(np.stack([arrays.story_k, story_y], axis=-1))
-    par = np.empty((size, _N_PAR))
-    par[:, _COMPLIANCE], par[:, _COMPLIANCE_Y] = compliance, compliance_y
-    par[:, _ANISOTROPIC] = arrays_y is not None
-    par[:, _MU_WALL] = 0.0 if mu_wall is None else mu_wall
-    par[:, _K_ELASTIC], par[:, _K_SLIP] = arrays.k_elastic, arrays.k_slip
-    par[:, _F_LIMIT], par[:, _SLOW_DROP], par[:, _RATE] = (arrays.f_limit, arrays.slow_drop,
-                                                           arrays.rate)
-    par[:, _STORIES_YIELD] = arrays.story_yields
-    par[:, _STORIES_UNIAXIAL] = arrays.story_uniaxial
     # cos and sin times the scale, as the NumPy loop forms them (the same bits)
-    par[:, _COS], par[:, _SIN] = np.cos(angle) * scale, np.sin(angle) * scale
+    par = packed(PLAN, arrays, size, compliance=compliance, compliance_y=compliance_y,
+                 anisotropic=arrays_y is not None, mu_wall=0.0 if mu_wall is None else mu_wall,
+                 stories_yield=arrays.story_yields, stories_uniaxial=arrays.story_uniaxial,
+                 cos=np.cos(angle) * scale, sin=np.sin(angle) * scale)
     n_dir = len(contacts)
     law = np.ascontiguousarray(np.stack([c.law for c in contacts], axis=1), dtype=np.int64)
-    wall_par = np.empty((size, n_dir, _N_WALL_PAR))
-    for d, c in enumerate(contacts):
-        wall_par[:, d, _GAP] = c.clear_gap
-        for i, name in enumerate(LAW_ARGUMENTS):
-            wall_par[:, d, _LAW_ARGS + i] = getattr(c, name)
-    story = np.ascontiguousarray(np.stack([arrays.story_k, arrays.story_k_post,
-                                           arrays.story_k_slip, arrays.story_f_limit,
-                                           arrays.collapse_drift**2, arrays.story_gravity],
-                                          axis=1))
+    gaps = np.ascontiguousarray(np.stack([c.clear_gap for c in contacts], axis=1),
+                                dtype=np.float64)
+    law_par = np.ascontiguousarray(np.stack([law_rows(c) for c in contacts], axis=1))
+    story = packed(PLAN_STORY, arrays, collapse_square=arrays.collapse_drift**2)
     story_fields = np.ascontiguousarray(arrays.story_fields, dtype=np.float64)
     # each story's law state twice: along x and along y
     story_state = np.ascontiguousarray(np.repeat(arrays.story_state[:, :, None, :], 2, axis=2),
@@ -416,37 +413,31 @@ def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, histor
     n_dirs = len(DIRECTIONS)
     u, v = np.zeros((size, n_levels, n_dirs)), np.zeros((size, n_levels, n_dirs))
     f_story = np.zeros((size, n_levels - 1, n_dirs))
-    state = np.zeros((size, _WALL_STATE + 3 * n_dir))
-    state[:, _WALL_STATE::3] = 1.0  # impact velocities before any impact
+    state = np.zeros((size, len(PLAN_STATE)))
+    wall_state = contact_state(size, n_dir)
     peaks = {q.name: np.zeros((size, *q.trailing_shape(n_levels, len(WALLS[moat]))),
                               dtype=q.dtype) for q in (*PEAKS, *PLAN_PEAKS)}
-    scalar = np.zeros((size, 4))
+    scalar = np.zeros((size, len(PLAN_PEAK_COLUMNS)))
     n_steps = ag.shape[0]
     hist_row, every, rows, inverse = history_rows(history, size)
     hist = empty_plan_history(rows, n_steps, every, dt, n_levels)
-    args = (np.ascontiguousarray(ag, dtype=np.float64), float(dt), op_xy, wall_xy, story_xy,
-            np.ascontiguousarray(arrays.masses), story, law, par, wall_par, u, v, f_story,
-            story_fields, story_state, state,
-            peaks["peak_total_accel"], peaks["peak_total_accel_xy"],
+    model = (np.ascontiguousarray(ag, dtype=np.float64), float(dt), op_xy, wall_xy, story_xy,
+             np.ascontiguousarray(arrays.masses), story, law, par, gaps, law_par, story_fields)
+    memory = (u, v, f_story, story_state, state, wall_state)
+    kept = (peaks["peak_total_accel"], peaks["peak_total_accel_xy"],
             peaks["peak_interstory_drift"], peaks["peak_interstory_drift_xy"],
             peaks["peak_isolator_disp_xy"], scalar, peaks["n_impacts"],
-            peaks["max_impact_force_wall"], hist_row, every, hist["isolator_disp"],
-            hist["total_accel"], hist["impact_force"], hist["indentation"])
+            peaks["max_impact_force_wall"])
+    written = (hist_row, every, hist["isolator_disp"], hist["total_accel"],
+               hist["impact_force"], hist["indentation"])
     circular = moat == "circular"
     codes = arrays.story_code  # one kernel per story law (law_tag), as the planar loop
     run_members(size, n_steps, progress,
                 lambda members, s0, s1: [
-                    _run(levels, pairs, circular, (0,) * (int(code) + 1),
-                         members[codes[members] == code], s0, s1, *args)
+                    _run((levels, pairs, circular, (0,) * (int(code) + 1)),
+                         members[codes[members] == code], s0, s1, model, memory, kept, written)
                     for code in np.unique(codes[members])])
-    for i, name in enumerate(("peak_isolator_disp", "max_indentation", "max_impact_force",
-                              "impact_energy")):
-        peaks[name] = scalar[:, i].copy()
-    for name in ("peak_total_accel", "peak_interstory_drift", "peak_isolator_disp",
-                 "peak_total_accel_xy", "peak_interstory_drift_xy", "peak_isolator_disp_xy"):
-        peaks[name] = np.sqrt(peaks[name])  # kept squared by the kernel
-    peaks["collapsed"] = state[:, _COLLAPSED] != 0.0
-    peaks["collapse_time"] = np.where(peaks["collapsed"], state[:, _COLLAPSE_TIME], np.nan)
+    peaks = finish_peaks(peaks, scalar, PLAN_PEAK_COLUMNS, state, rooted=True)
     if history is None:
         return peaks, None
     hist = {"time": hist["time"], **{q.name: hist[q.name][inverse] for q in PLAN_HISTORIES},

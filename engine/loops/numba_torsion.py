@@ -36,7 +36,7 @@ from ..results import (
 )
 from ..scheme import full_step_operator
 from ..torsion import CORNERS
-from . import compiled, numba_contacts
+from . import compiled, layout, numba_contacts
 from .compiled import (
     JIT,
     PHYSICS_FILES,
@@ -45,7 +45,16 @@ from .compiled import (
     radial_return,
     slip_limit,
 )
-from .numba_contacts import GAP, LAW_ARGS, point_arrays, solve_contacts
+from .layout import (
+    CONTACT,
+    TORSION,
+    TORSION_PEAK_COLUMNS,
+    TORSION_STATE,
+    contact_state,
+    finish_peaks,
+    packed,
+)
+from .numba_contacts import point_arrays, solve_contacts
 from .numba_support import (
     add2,
     data_pointer,
@@ -58,39 +67,42 @@ from .numba_support import (
     store_pair,
 )
 
-install_cache_locator(Path(__file__), [compiled.__file__, numba_contacts.__file__,
-                                       *PHYSICS_FILES])
+install_cache_locator(Path(__file__), [compiled.__file__, layout.__file__,
+                                       numba_contacts.__file__, *PHYSICS_FILES])
 
-# Per-member scalars.
-(_COS, _SIN, _K_ELASTIC, _K_SLIP, _F_LIMIT, _SLOW_DROP, _RATE, _MU_WALL, _N_PAR) = range(9)
+# The kernel's packed arrays (layout.py): per member its floats (TORSION) and state (
+# TORSION_STATE), per contact point its law row (contact.law_rows) and CONTACT state, the
+# scalar float peaks (TORSION_PEAK_COLUMNS; displacements squared while running).
 POINT_SLOTS = 8
 """The contact points' stack arrays come in multiples of this many (the kernel compiles once per
 multiple): the slab's corners, or two pads a wall, are 8."""
-# Per member and point, the contact state: impact velocity, previous indentation, in contact.
-_V_IMP, _DELTA_PREV, _IN_CONTACT = range(3)
-# Per member, the state beside it: collapsed, collapse time, each axis' walls touched.
-_COLLAPSED, _COLLAPSE_TIME, _TOUCH_X, _TOUCH_Y = range(4)
-# Scalar float peaks (displacements squared while running).
-(_P_ISO, _P_ISO_X, _P_ISO_Y, _P_INDENT, _P_FORCE, _P_ENERGY, _P_CORNER, _P_ROTATION,
- _N_SCALAR) = range(9)
-
 
 @njit(**JIT)
-def _member(levels, padded, slots, b, s0, s1, ag, dt, op, respond, load, story_k, story_centre,
-            collapse_square, par, bearings, f_plastic, u_all, v_all, state, point_wall, point_axis,
-            codes, point_par, direction, tangent, coupling, tangent_compliance, point_state,
-            corners, peak_level, peak_level_xy, peak_story, peak_story_xy, scalar, n_impacts,
-            peak_wall, peak_point_force, peak_point_indent, hist_row, every, h_u, h_acc, h_f, h_d,
-            h_floor, h_floor_rot):
-    """Steps s0 <= step < s1 of member b (the module docstring). The state's 3L degrees of
+def _member(shape, b, s0, s1, model, memory, peaks, hist):
+    """Steps s0 <= step < s1 of member b (the module docstring). shape = (levels, padded,
+    slots); model = (ag, dt, op, respond, load, story_k, story_centre, collapse_square, par,
+    bearings, point_wall, point_axis, codes, gaps, point_par, direction, tangent, coupling,
+    tangent_compliance, corners), what the run reads; memory = (u, v, f_plastic, state,
+    point_state), what it carries between chunks; peaks = (peak_level, peak_level_xy,
+    peak_story, peak_story_xy, peak_iso_xy, scalar, n_impacts, peak_wall, peak_point_force,
+    peak_point_indent); hist = (hist_row, every, h_u, h_acc, h_f, h_d, h_floor, h_floor_rot)
+    (run_torsion builds them). The state's 3L degrees of
     freedom sit on the stack as Q pairs (Q = len(padded) / 2, the last lane of an odd 3L
     unused, its operator rows 0): op (B, 6L, Q, 2) the transposed step operator, respond
     (B, 3, Q, 2) its first three columns transposed; the P contact points' state and this
     step's values too, on POINT_SLOTS-sized stack arrays (len(slots) of them: the kernel
     compiles once per number of levels and multiple of POINT_SLOTS, P = len(point_wall) at run
     time). A member that has collapsed stops."""
+    levels, padded, slots = shape
+    (ag, dt, op, respond, load, story_k, story_centre, collapse_square, par, bearings,
+     point_wall, point_axis, codes, gaps_all, point_par, direction, tangent, coupling,
+     tangent_compliance, corners) = model
+    u_all, v_all, f_plastic, state, point_state = memory
+    (peak_level, peak_level_xy, peak_story, peak_story_xy, peak_iso_xy, scalar, n_impacts,
+     peak_wall, peak_point_force, peak_point_indent) = peaks
+    hist_row, every, h_u, h_acc, h_f, h_d, h_floor, h_floor_rot = hist
     st = state[b]
-    if st[_COLLAPSED] != 0.0:
+    if st[TORSION_STATE.collapsed] != 0.0:
         return
     n_levels = len(levels)
     n_dofs = 3 * n_levels
@@ -104,15 +116,16 @@ def _member(levels, padded, slots, b, s0, s1, ag, dt, op, respond, load, story_k
     sc = carray(data_pointer(story_centre[b]), (n_st, 2))
     cq = collapse_square[b]
     p = par[b]
-    cs, sn = p[_COS], p[_SIN]
-    k_el, k_slip, f_limit = p[_K_ELASTIC], p[_K_SLIP], p[_F_LIMIT]
-    slow_drop, rate = p[_SLOW_DROP], p[_RATE]
-    mu_wall = p[_MU_WALL]
+    cs, sn = p[TORSION.cos], p[TORSION.sin]
+    k_el, k_slip, f_limit = p[TORSION.k_elastic], p[TORSION.k_slip], p[TORSION.f_limit]
+    slow_drop, rate = p[TORSION.slow_drop], p[TORSION.rate]
+    mu_wall = p[TORSION.mu_wall]
     bear = bearings[b]
     fp = f_plastic[b]
     n_bearings = bear.shape[0]
     code = codes[b]
     pp = point_par[b]
+    pg = gaps_all[b]
     g = direction[b]
     tg = tangent[b]
     cg = coupling[b]
@@ -157,11 +170,16 @@ def _member(levels, padded, slots, b, s0, s1, ag, dt, op, respond, load, story_k
         for e in range(2):
             pd[2 * i + e] = peak_story_xy[b, i, e]
         pd2[i] = peak_story[b, i]
-    p_iso2, p_iso_x, p_iso_y = pk[_P_ISO], pk[_P_ISO_X], pk[_P_ISO_Y]
-    p_indent, p_force, energy = pk[_P_INDENT], pk[_P_FORCE], pk[_P_ENERGY]
-    p_corner, p_rot = pk[_P_CORNER], pk[_P_ROTATION]
+    p_iso2 = pk[TORSION_PEAK_COLUMNS.peak_isolator_disp]
+    p_iso_x, p_iso_y = peak_iso_xy[b, 0], peak_iso_xy[b, 1]
+    p_indent = pk[TORSION_PEAK_COLUMNS.max_indentation]
+    p_force = pk[TORSION_PEAK_COLUMNS.max_impact_force]
+    energy = pk[TORSION_PEAK_COLUMNS.impact_energy]
+    p_corner = pk[TORSION_PEAK_COLUMNS.peak_corner_disp]
+    p_rot = pk[TORSION_PEAK_COLUMNS.peak_rotation]
     n_imp = n_impacts[b]
-    touch_x, touch_y = st[_TOUCH_X] != 0.0, st[_TOUCH_Y] != 0.0
+    touch_x = st[TORSION_STATE.touch_x] != 0.0
+    touch_y = st[TORSION_STATE.touch_y] != 0.0
 
     # The contact points on the stack (POINT_SLOTS at a time; P at run time): their
     # directions, gaps and state, and this step's indentations, law terms and forces.
@@ -182,8 +200,9 @@ def _member(levels, padded, slots, b, s0, s1, ag, dt, op, respond, load, story_k
     active = carray(stack_doubles(slots), (n_points,))
     for q in range(n_points):
         gx_[q], gy_[q], gt_[q] = g[q, 0], g[q, 1], g[q, 2]
-        gap[q] = pp[q, GAP]
-        v_imp[q], delta_prev[q], inside[q] = ps[q, _V_IMP], ps[q, _DELTA_PREV], ps[q, _IN_CONTACT]
+        gap[q] = pg[q]
+        v_imp[q], delta_prev[q] = ps[q, CONTACT.v_imp], ps[q, CONTACT.delta_prev]
+        inside[q] = ps[q, CONTACT.in_contact]
         p_point[q] = ppi[q]
     index = np.empty(n_points, dtype=np.int64)
     a = np.empty((n_points, n_points))
@@ -201,8 +220,8 @@ def _member(levels, padded, slots, b, s0, s1, ag, dt, op, respond, load, story_k
             if not dx * dx + dy * dy <= cq[i]:
                 fallen = True
         if fallen:
-            st[_COLLAPSED] = 1.0
-            st[_COLLAPSE_TIME] = step * dt
+            st[TORSION_STATE.collapsed] = 1.0
+            st[TORSION_STATE.collapse_time] = step * dt
             break
         a0 = cs * ag[step, 0] - sn * ag[step, 1]
         a1 = sn * ag[step, 0] + cs * ag[step, 1]
@@ -269,11 +288,7 @@ def _member(levels, padded, slots, b, s0, s1, ag, dt, op, respond, load, story_k
                     v_imp[q] = gx * v0x + gy * v0y + gt * v0t
                 rf = gx * mx + gy * my + gt * mt
                 rate_free[q] = rf
-                w = pp[q]
-                el, dp = law_terms(code[q], dq, rf, v_imp[q], w[LAW_ARGS],
-                                   w[LAW_ARGS + 1], w[LAW_ARGS + 2], w[LAW_ARGS + 3],
-                                   w[LAW_ARGS + 4], w[LAW_ARGS + 5], w[LAW_ARGS + 6],
-                                   w[LAW_ARGS + 7], w[LAW_ARGS + 8], w[LAW_ARGS + 9])
+                el, dp = law_terms(code[q], dq, rf, v_imp[q], pp[q])
                 if fresh:
                     dp = dp * onset_weight(dq, delta_prev[q])
                 elastic[q], dashpot[q] = el, dp
@@ -385,33 +400,29 @@ def _member(levels, padded, slots, b, s0, s1, ag, dt, op, respond, load, story_k
         for e in range(2):
             peak_story_xy[b, i, e] = pd[2 * i + e]
         peak_story[b, i] = pd2[i]
-    pk[_P_ISO], pk[_P_ISO_X], pk[_P_ISO_Y] = p_iso2, p_iso_x, p_iso_y
-    pk[_P_INDENT], pk[_P_FORCE], pk[_P_ENERGY] = p_indent, p_force, energy
-    pk[_P_CORNER], pk[_P_ROTATION] = p_corner, p_rot
+    pk[TORSION_PEAK_COLUMNS.peak_isolator_disp] = p_iso2
+    peak_iso_xy[b, 0], peak_iso_xy[b, 1] = p_iso_x, p_iso_y
+    pk[TORSION_PEAK_COLUMNS.max_indentation] = p_indent
+    pk[TORSION_PEAK_COLUMNS.max_impact_force] = p_force
+    pk[TORSION_PEAK_COLUMNS.impact_energy] = energy
+    pk[TORSION_PEAK_COLUMNS.peak_corner_disp] = p_corner
+    pk[TORSION_PEAK_COLUMNS.peak_rotation] = p_rot
     n_impacts[b] = n_imp
     for q in range(n_points):
-        ps[q, _V_IMP], ps[q, _DELTA_PREV], ps[q, _IN_CONTACT] = v_imp[q], delta_prev[q], inside[q]
+        ps[q, CONTACT.v_imp], ps[q, CONTACT.delta_prev] = v_imp[q], delta_prev[q]
+        ps[q, CONTACT.in_contact] = inside[q]
         ppi[q] = p_point[q]
-    st[_TOUCH_X] = 1.0 if touch_x else 0.0
-    st[_TOUCH_Y] = 1.0 if touch_y else 0.0
+    st[TORSION_STATE.touch_x] = 1.0 if touch_x else 0.0
+    st[TORSION_STATE.touch_y] = 1.0 if touch_y else 0.0
 
 
 @njit(**JIT)
-def _run(levels, padded, slots, members, s0, s1, ag, dt, op, respond, load, story_k, story_centre,
-         collapse_square, par, bearings, f_plastic, u, v, state, point_wall, point_axis, codes,
-         point_par, direction, tangent, coupling, tangent_compliance, point_state, corners,
-         peak_level, peak_level_xy, peak_story, peak_story_xy, scalar, n_impacts, peak_wall,
-         peak_point_force, peak_point_indent, hist_row, every, h_u, h_acc, h_f, h_d, h_floor,
-         h_floor_rot):
-    """Steps s0 <= step < s1 of the members in `members` (indices), one after the other; it
-    releases the GIL (nogil), so that run_torsion's threads run batches of members at once."""
+def _run(shape, members, s0, s1, model, memory, peaks, hist):
+    """Steps s0 <= step < s1 of the members in `members` (indices), one after the other (the
+    other arguments: _member's); it releases the GIL (nogil), so that run_torsion's threads
+    run batches of members at once."""
     for b in members:
-        _member(levels, padded, slots, b, s0, s1, ag, dt, op, respond, load, story_k, story_centre,
-                collapse_square, par, bearings, f_plastic, u, v, state, point_wall, point_axis,
-                codes, point_par, direction, tangent, coupling, tangent_compliance, point_state,
-                corners, peak_level, peak_level_xy, peak_story, peak_story_xy, scalar, n_impacts,
-                peak_wall, peak_point_force, peak_point_indent, hist_row, every, h_u, h_acc, h_f,
-                h_d, h_floor, h_floor_rot)
+        _member(shape, b, s0, s1, model, memory, peaks, hist)
 
 
 def run_torsion(ag, dt, b, t, contacts, points, progress, scale, angle, history=None,
@@ -436,59 +447,50 @@ def run_torsion(ag, dt, b, t, contacts, points, progress, scale, angle, history=
     coupling = np.ascontiguousarray(np.einsum("bpi,bij,bqj->bpq", g, r0, g))
     tangent_compliance = np.ascontiguousarray(np.einsum("bpi,bij,bpj->bp", tangent, r0,
                                                         tangent))
-    codes, point_par = point_arrays(contacts, points, size)
+    codes, gaps, point_par = point_arrays(contacts, points, size)
     n_bearings = t.bearings.shape[1]
-    par = np.empty((size, _N_PAR))
-    # cos and sin times the scale, as the NumPy loop forms them (the same bits)
-    par[:, _COS], par[:, _SIN] = np.cos(angle) * scale, np.sin(angle) * scale
-    par[:, _K_ELASTIC] = b.k_elastic / n_bearings
-    par[:, _K_SLIP] = b.k_slip / n_bearings
-    par[:, _F_LIMIT] = b.f_limit / n_bearings
-    par[:, _SLOW_DROP], par[:, _RATE] = b.slow_drop, b.rate
-    par[:, _MU_WALL] = 0.0 if mu_wall is None else mu_wall
+    # per bearing: the isolator's stiffnesses and force shared; cos and sin times the scale,
+    # as the NumPy loop forms them (the same bits)
+    par = packed(TORSION, b, size, k_elastic=b.k_elastic / n_bearings,
+                 k_slip=b.k_slip / n_bearings, f_limit=b.f_limit / n_bearings,
+                 cos=np.cos(angle) * scale, sin=np.sin(angle) * scale,
+                 mu_wall=0.0 if mu_wall is None else mu_wall)
     corners = np.ascontiguousarray(np.array(CORNERS) * t.plan[:, None, :] / 2)
     u, v = np.zeros((size, n_levels, 3)), np.zeros((size, n_levels, 3))
     f_plastic = np.zeros((size, n_bearings, 2))
-    state = np.zeros((size, 4))
-    point_state = np.zeros((size, n_points, 3))
-    point_state[:, :, _V_IMP] = 1.0  # impact velocities before any impact
+    state = np.zeros((size, len(TORSION_STATE)))
+    point_state = contact_state(size, n_points)
     n_walls = len(WALLS["rectangular"])
     peaks = {q.name: np.zeros((size, *q.trailing_shape(n_levels, n_walls, n_points)),
                               dtype=q.dtype) for q in (*PEAKS, *PLAN_PEAKS, *TORSION_PEAKS)}
-    scalar = np.zeros((size, _N_SCALAR))
+    scalar = np.zeros((size, len(TORSION_PEAK_COLUMNS)))
     n_steps = ag.shape[0]
     hist_row, every, rows, inverse = history_rows(history, size)
     hist = empty_plan_history(rows, n_steps, every, dt, n_levels, torsion=True)
-    args = (np.ascontiguousarray(ag, dtype=np.float64), float(dt), op, respond,
-            np.ascontiguousarray(t.load, dtype=np.float64),
-            np.ascontiguousarray(t.story_k, dtype=np.float64),
-            np.ascontiguousarray(t.story_centre, dtype=np.float64),
-            np.ascontiguousarray(b.collapse_drift**2, dtype=np.float64), par,
-            np.ascontiguousarray(t.bearings, dtype=np.float64), f_plastic, u, v, state,
-            np.ascontiguousarray(points.wall, dtype=np.int64),
-            np.ascontiguousarray(points.axis, dtype=np.int64), codes, point_par,
-            np.ascontiguousarray(g, dtype=np.float64),
-            np.ascontiguousarray(tangent, dtype=np.float64), coupling, tangent_compliance,
-            point_state, corners,
-            peaks["peak_total_accel"], peaks["peak_total_accel_xy"],
-            peaks["peak_interstory_drift"], peaks["peak_interstory_drift_xy"], scalar,
-            peaks["n_impacts"], peaks["max_impact_force_wall"], peaks["max_point_force"],
-            peaks["max_point_indentation"], hist_row, every, hist["isolator_disp"],
-            hist["total_accel"], hist["impact_force"], hist["indentation"],
-            hist["floor_disp"], hist["floor_rotation"])
+    model = (np.ascontiguousarray(ag, dtype=np.float64), float(dt), op, respond,
+             np.ascontiguousarray(t.load, dtype=np.float64),
+             np.ascontiguousarray(t.story_k, dtype=np.float64),
+             np.ascontiguousarray(t.story_centre, dtype=np.float64),
+             np.ascontiguousarray(b.collapse_drift**2, dtype=np.float64), par,
+             np.ascontiguousarray(t.bearings, dtype=np.float64),
+             np.ascontiguousarray(points.wall, dtype=np.int64),
+             np.ascontiguousarray(points.axis, dtype=np.int64), codes, gaps, point_par,
+             np.ascontiguousarray(g, dtype=np.float64),
+             np.ascontiguousarray(tangent, dtype=np.float64), coupling, tangent_compliance,
+             corners)
+    memory = (u, v, f_plastic, state, point_state)
+    kept = (peaks["peak_total_accel"], peaks["peak_total_accel_xy"],
+            peaks["peak_interstory_drift"], peaks["peak_interstory_drift_xy"],
+            peaks["peak_isolator_disp_xy"], scalar, peaks["n_impacts"],
+            peaks["max_impact_force_wall"], peaks["max_point_force"],
+            peaks["max_point_indentation"])
+    written = (hist_row, every, hist["isolator_disp"], hist["total_accel"],
+               hist["impact_force"], hist["indentation"], hist["floor_disp"],
+               hist["floor_rotation"])
     run_members(size, n_steps, progress,
-                lambda members, s0, s1: _run(levels, padded, slots, members, s0, s1, *args))
-    for name, column in (("max_indentation", _P_INDENT), ("max_impact_force", _P_FORCE),
-                         ("impact_energy", _P_ENERGY), ("peak_rotation", _P_ROTATION)):
-        peaks[name] = scalar[:, column].copy()
-    peaks["peak_isolator_disp"] = np.sqrt(scalar[:, _P_ISO])
-    peaks["peak_isolator_disp_xy"] = np.sqrt(scalar[:, [_P_ISO_X, _P_ISO_Y]])
-    peaks["peak_corner_disp"] = np.sqrt(scalar[:, _P_CORNER])
-    for name in ("peak_total_accel", "peak_interstory_drift", "peak_total_accel_xy",
-                 "peak_interstory_drift_xy"):
-        peaks[name] = np.sqrt(peaks[name])  # kept squared by the kernel
-    peaks["collapsed"] = state[:, _COLLAPSED] != 0.0
-    peaks["collapse_time"] = np.where(peaks["collapsed"], state[:, _COLLAPSE_TIME], np.nan)
+                lambda members, s0, s1: _run((levels, padded, slots), members, s0, s1, model,
+                                             memory, kept, written))
+    peaks = finish_peaks(peaks, scalar, TORSION_PEAK_COLUMNS, state, rooted=True)
     if history is None:
         return peaks, None
     hist = {"time": hist["time"], **{q.name: hist[q.name][inverse] for q in TORSION_HISTORIES},

@@ -13,9 +13,10 @@ LAW_INTERFACE = ("NAME", "ORDER", "PARAMETERS", "N_FIELDS", "N_STATE", "check", 
 LAWS: dict[str, ModuleType] = discover(_laws_package, LAW_INTERFACE)
 """Story law name -> its module, in ORDER."""
 LAW_CODES: dict[str, int] = {name: code for code, name in enumerate(LAWS)}
+"""Story law name -> its code in the time loops (0 the first law: linear)."""
 BY_CODE: tuple[ModuleType, ...] = tuple(LAWS.values())
 """Story law code -> its module."""
-"""Story law name -> its code in the time loops (0 the first law: linear)."""
 MAX_FIELDS = max(module.N_FIELDS for module in LAWS.values())
+"""The widest law's constants per story: the loops' (B, N, MAX_FIELDS) arrays are this wide."""
 MAX_STATE = max(module.N_STATE for module in LAWS.values())
-"""The widest law's constants and state per story: the loops' (B, N, ...) arrays are this wide."""
+"""The widest law's state per story: the loops' (B, N, MAX_STATE) arrays are this wide."""

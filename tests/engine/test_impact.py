@@ -11,7 +11,7 @@ from engine.impact.laws import linear_viscoelastic, rubber_bumper
 
 def force(module, delta, delta_dot, v_imp, p):
     """Contact force (N, >= 0) of one law at indentation delta (m), rate delta_dot (m/s)."""
-    elastic, dashpot = module.force_terms(delta, delta_dot, v_imp, *law_arguments(p))
+    elastic, dashpot = module.force_terms(delta, delta_dot, v_imp, law_arguments(p, module))
     return np.where(delta > 0, np.maximum(elastic + dashpot * delta_dot, 0.0), 0.0)
 
 M_BODY = 300.0           # kg, the Kajita et al. steel rods

@@ -23,7 +23,7 @@ import pytest
 
 import engine
 from engine import Building, Contact, History, Isolator, Moat, Torsion
-from engine.impact.contact import LAW_ARGUMENTS
+from engine.impact.contact import law_arguments
 from engine.impact.registry import LAW_MODULES
 from engine.torsion import contact_points, grid_positions, torsion_arrays
 from engine.torsion_fields import FIELDS as TORSION_FIELDS
@@ -163,9 +163,9 @@ def test_every_law_carries_its_share(law):
     rate = rng.uniform(-0.5, 0.5, delta.size)
     v_imp = rng.uniform(0.05, 0.8, delta.size)
     for share in (0.5, 1 / 3, 0.125):
-        full = law.force_terms(delta, rate, v_imp, *(getattr(contact, n) for n in LAW_ARGUMENTS))
+        full = law.force_terms(delta, rate, v_imp, law_arguments(contact, law))
         part = contact.part(share)
-        got = law.force_terms(delta, rate, v_imp, *(getattr(part, n) for n in LAW_ARGUMENTS))
+        got = law.force_terms(delta, rate, v_imp, law_arguments(part, law))
         for f, g in zip(full, got, strict=True):
             np.testing.assert_allclose(g, share * np.asarray(f), rtol=1e-12)
     assert np.any(full[1] > 0)

@@ -6,10 +6,14 @@ A law module holds, besides its own helpers:
     ORDER: int                     its place in listings (the paper's section 2 order)
     PARAMETERS: Declaration        its parameters, once (engine.impact.parameters)
     contact_fields(**checked)      -> the Contact fields of its members
-    force_terms(delta, delta_dot, v_imp, *LAW_ARGUMENTS) -> (elastic N, dashpot N*s/m)
+    ROW: columns                   the Contact fields force_terms reads, in its packed row
+    force_terms(delta, delta_dot, v_imp, row) -> (elastic N, dashpot N*s/m)
     max_tangent_stiffness(contact, indentation_bound) -> (B,) N/m, for the stability limit
 `force_terms` is the law's physics, written once: plain arithmetic and NumPy ufuncs on scalars
 or (B,) arrays alike, so the NumPy time loop calls it on arrays and the compiled loop compiles
-the very same function for scalars (engine.impact.contact.LAW_ARGUMENTS lists the arguments,
-the same for every law; a law ignores those it does not use).
+the very same function for scalars. `row` is the law's own constants packed in ROW's order (a
+tuple of (B,) arrays in the NumPy loops, a row of floats in the compiled ones:
+engine.impact.contact.law_arguments and law_rows), read by name (row[ROW.k]): a law needing a
+new constant names it in ROW (a constant no law had before is also a new field of
+Contact), and no loop changes.
 """

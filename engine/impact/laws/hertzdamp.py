@@ -16,6 +16,7 @@ dashpot of k delta^n chi / v_imp.
 """
 import numpy as np
 
+from ...layout import columns
 from ...parameters import REQUIRED, Declaration, Option, Parameter
 from ...units import power_law_units
 from ..calibration import hunt_crossley_chi
@@ -45,6 +46,11 @@ PARAMETERS = Declaration(
            "to realise the COR"),
 )
 
+ROW = columns("HertzdampRow", "k", "n", "chi")
+"""The Contact fields force_terms reads, packed in this order into one row per member
+(contact.law_rows; the NumPy loops pass a tuple of (B,) arrays, the compiled ones a row of
+floats): a new constant of this law is a new name here."""
+
 
 def chi(cor, n, rule="lankarani"):
     """Dimensionless damping factor chi, (B,)."""
@@ -58,13 +64,13 @@ def contact_fields(gap, k, n, cor, m_eff, chi_rule):
     return {"clear_gap": gap, "k": k, "n": n, "chi": chi(cor, n, chi_rule)}
 
 
-def force_terms(delta, delta_dot, v_imp, k, n, m_eff, delta_u, k_w, dashpot, damping_ratio, chi,
-                c_imp_coef, c_imp_exponent):
+def force_terms(delta, delta_dot, v_imp, row):
     """(elastic force N, dashpot N*s/m): F = k delta^n + (k delta^n chi / v_imp) delta_dot.
 
-    k (N/m^n), n, chi; v_imp (m/s) > 0; scalars or (B,) arrays alike (the laws' uniform
-    signature, contact.LAW_ARGUMENTS), compiled as is by the kernel.
+    row: ROW, k (N/m^n), n, chi; v_imp (m/s) > 0; scalars or (B,) arrays alike (a row of
+    floats or a tuple of arrays), compiled as is by the kernel.
     """
+    k, n, chi = row[ROW.k], row[ROW.n], row[ROW.chi]
     elastic = k * np.maximum(delta, 0.0) ** n
     return elastic, elastic * chi / v_imp
 

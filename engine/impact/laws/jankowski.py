@@ -7,6 +7,7 @@ xi = 9 sqrt(5) (1 - COR^2) / (2 COR (COR (9 pi - 16) + 16))  (Jankowski 2006).
 """
 import numpy as np
 
+from ...layout import columns
 from ...parameters import REQUIRED, Declaration, Parameter
 from ...units import power_law_units
 from ..parameters import GAP, M_EFF
@@ -28,6 +29,11 @@ PARAMETERS = Declaration(
     M_EFF,
 )
 
+ROW = columns("JankowskiRow", "k", "m_eff", "damping_ratio")
+"""The Contact fields force_terms reads, packed in this order into one row per member
+(contact.law_rows; the NumPy loops pass a tuple of (B,) arrays, the compiled ones a row of
+floats): a new constant of this law is a new name here."""
+
 
 def damping_ratio(cor):
     """Jankowski's damping ratio for a target COR, (B,)."""
@@ -39,15 +45,15 @@ def contact_fields(gap, beta, cor, m_eff):
     return {"clear_gap": gap, "k": beta, "n": EXPONENT, "damping_ratio": damping_ratio(cor)}
 
 
-def force_terms(delta, delta_dot, v_imp, k, n, m_eff, delta_u, k_w, dashpot, damping_ratio, chi,
-                c_imp_coef, c_imp_exponent):
+def force_terms(delta, delta_dot, v_imp, row):
     """(elastic force N, dashpot N*s/m); the dashpot acts on approach only.
 
-    k = beta (N/m^1.5), damping_ratio = xi, m_eff (kg); scalars or (B,) arrays alike (the
-    laws' uniform signature, contact.LAW_ARGUMENTS), compiled as is by the kernel.
+    row: ROW, k = beta (N/m^1.5), damping_ratio = xi, m_eff (kg); scalars or (B,) arrays
+    alike (a row of floats or a tuple of arrays), compiled as is by the kernel.
     """
+    k, m_eff, xi = row[ROW.k], row[ROW.m_eff], row[ROW.damping_ratio]
     d = np.maximum(delta, 0.0)
-    dashpot = 2 * damping_ratio * np.sqrt(k * np.sqrt(d) * m_eff)
+    dashpot = 2 * xi * np.sqrt(k * np.sqrt(d) * m_eff)
     return k * d**EXPONENT, (delta_dot > 0) * dashpot
 
 

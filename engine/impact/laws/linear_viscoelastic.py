@@ -15,6 +15,7 @@ defaults: k = 2500 kN/mm, COR 0.5 (SPEC decision).
 """
 import numpy as np
 
+from ...layout import columns
 from ...parameters import Declaration, Option, Parameter
 from ..parameters import GAP, M_EFF
 
@@ -35,6 +36,11 @@ PARAMETERS = Declaration(
     Option("xi_rule", XI_RULES, "no_tension",
            "damping ratio from the COR: exact for the no-tension contact, or Eq. 3"),
 )
+
+ROW = columns("LinearViscoelasticRow", "k", "dashpot")
+"""The Contact fields force_terms reads, packed in this order into one row per member
+(contact.law_rows; the NumPy loops pass a tuple of (B,) arrays, the compiled ones a row of
+floats): a new constant of this law is a new name here."""
 
 
 def xi_eq3(cor):
@@ -73,14 +79,13 @@ def contact_fields(gap, k, cor, m_eff, xi_rule):
             "dashpot": damping_coefficient(k, cor, m_eff, xi_rule)}
 
 
-def force_terms(delta, delta_dot, v_imp, k, n, m_eff, delta_u, k_w, dashpot, damping_ratio, chi,
-                c_imp_coef, c_imp_exponent):
+def force_terms(delta, delta_dot, v_imp, row):
     """(elastic force N, dashpot N*s/m): F = k delta + c delta_dot; k N/m, dashpot c N*s/m.
 
-    The laws' uniform signature (contact.LAW_ARGUMENTS); scalars or (B,) arrays alike, compiled
-    as is by the kernel. The other arguments are unused.
+    row: ROW; scalars or (B,) arrays alike (a row of floats or a tuple of arrays), compiled as
+    is by the kernel.
     """
-    return k * delta, dashpot
+    return row[ROW.k] * delta, row[ROW.dashpot]
 
 
 def max_tangent_stiffness(p, indentation_bound):

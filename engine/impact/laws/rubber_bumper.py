@@ -68,6 +68,7 @@ tests/engine/impact/test_contact.py):
 import numpy as np
 
 from ...errors import EngineError
+from ...layout import columns
 from ...parameters import Declaration, Option, Parameter
 from ..calibration import hunt_crossley_chi
 from ..parameters import GAP, M_EFF
@@ -125,6 +126,11 @@ PARAMETERS = Declaration(
               "impact velocity (to re-derive Eq. 9, section 3.2)", None, "(0, inf)",
               equation="Eq. 8"),
 )
+
+ROW = columns("RubberBumperRow", "k", "n", "delta_u", "k_w", "c_imp_coef", "c_imp_exponent")
+"""The Contact fields force_terms reads, packed in this order into one row per member
+(contact.law_rows; the NumPy loops pass a tuple of (B,) arrays, the compiled ones a row of
+floats): a new constant of this law is a new name here."""
 
 
 _RUBBER = {name: PARAMETERS[name].default
@@ -189,9 +195,11 @@ def damping_constants(cor, m_eff, n, rule="eq9"):
     return hunt_crossley_chi(cor, n, restitution_only=True), np.ones(cor.shape)
 
 
-def contact_fields(gap, thickness, strain, n_bumpers, k_w, cor, m_eff, cavity, area, k_r, n,
-                   alpha, shape_k, shape_factor_cal, c_imp_rule, c_imp):
-    """The Contact fields of this law from its checked, broadcast (B,) parameters."""
+def contact_fields(gap, thickness, strain, n_bumpers, k_w, cor, m_eff, cavity, c_imp_rule,
+                   c_imp, **pad):
+    """The Contact fields of this law from its checked, broadcast (B,) parameters; `pad`: the
+    pad's and its rubber's (area, k_r, n, alpha, shape_k, shape_factor_cal)."""
+    n = pad["n"]
     if np.any(cavity >= thickness):
         raise EngineError(f"cavity must be smaller than thickness, got cavity {cavity} m, "
                           f"thickness {thickness} m")
@@ -204,22 +212,23 @@ def contact_fields(gap, thickness, strain, n_bumpers, k_w, cor, m_eff, cavity, a
     else:
         c_imp_coef, c_imp_exponent = c_imp, 0.0
     return {"clear_gap": gap - protrusion,
-            "k": impact_stiffness(area, thickness, k_r, n, alpha, n_bumpers, shape_k,
-                                  shape_factor_cal),
+            "k": impact_stiffness(pad["area"], thickness, pad["k_r"], n, pad["alpha"], n_bumpers,
+                                  pad["shape_k"], pad["shape_factor_cal"]),
             "n": n, "delta_u": np.minimum(strain * thickness, protrusion), "k_w": k_w,
             "c_imp_coef": c_imp_coef, "c_imp_exponent": c_imp_exponent}
 
 
-def force_terms(delta, delta_dot, v_imp, k, n, m_eff, delta_u, k_w, dashpot, damping_ratio, chi,
-                c_imp_coef, c_imp_exponent):
+def force_terms(delta, delta_dot, v_imp, row):
     """(elastic force N, dashpot N*s/m): F_A on approach, F_A (1 + C_imp delta_dot) in
     restitution, i.e. a dashpot F_A C_imp that acts in restitution only.
 
     F_A of Eq. 4 and 14: k_imp min(delta, delta_u)^n + k_w max(delta - delta_u, 0), with
-    k = k_imp (N/m^n), delta_u (m), k_w (N/m); C_imp = c_imp_coef / v_imp^c_imp_exponent (s/m).
-    Scalars or (B,) arrays alike (the laws' uniform signature, contact.LAW_ARGUMENTS),
-    compiled as is by the kernel.
+    row: ROW, k = k_imp (N/m^n), delta_u (m), k_w (N/m); C_imp = c_imp_coef /
+    v_imp^c_imp_exponent (s/m). Scalars or (B,) arrays alike (a row of floats or a tuple of
+    arrays), compiled as is by the kernel.
     """
+    k, n, delta_u, k_w = row[ROW.k], row[ROW.n], row[ROW.delta_u], row[ROW.k_w]
+    c_imp_coef, c_imp_exponent = row[ROW.c_imp_coef], row[ROW.c_imp_exponent]
     d = np.maximum(delta, 0.0)
     elastic = k * np.minimum(d, delta_u) ** n + k_w * np.maximum(d - delta_u, 0.0)
     c_imp = c_imp_coef / v_imp**c_imp_exponent

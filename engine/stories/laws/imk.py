@@ -138,54 +138,47 @@ one the exact tests would find common, with the same bits."""
 # then on), 3 strength lost pushing positive, 4 lost pushing negative, 5 lost both ways.
 
 
-def check(yield_force, capping_ratio, plastic_deformation, post_capping_deformation,
-          ultimate_deformation, residual_ratio, lambda_s, lambda_c, lambda_k, c_s, c_c, c_k,
-          deterioration_factor):
-    """The law's own consistency (ValueError otherwise): the ultimate drift, a total drift,
-    beyond the plastic drift theta_p (it has to leave room for the hardening branch). The
-    ranges already keep F_r < F_y <= F_c."""
+def check(**values):
+    """The law's own consistency (ValueError otherwise) from its values (PARAMETERS, by
+    name): the ultimate drift, a total drift, beyond the plastic drift theta_p (it has to
+    leave room for the hardening branch). The ranges already keep F_r < F_y <= F_c."""
+    ultimate_deformation = values["ultimate_deformation"]
+    plastic_deformation = values["plastic_deformation"]
     if np.any(np.asarray(ultimate_deformation) <= np.asarray(plastic_deformation)):
         raise ValueError(f"ultimate_deformation is a total drift beyond the capping point: it "
                          f"must exceed plastic_deformation, got {ultimate_deformation} <= "
                          f"{plastic_deformation}")
 
 
-def fields(stiffness, yield_force, capping_ratio, plastic_deformation,
-           post_capping_deformation, ultimate_deformation, residual_ratio, lambda_s, lambda_c,
-           lambda_k, c_s, c_c, c_k, deterioration_factor):
+def fields(stiffness, **values):
     """(N, N_FIELDS) per-story constants from the story stiffnesses K_e (N/m) and the law's
-    values, each (N,): the virgin backbone's corners and slopes and the reference energies
-    E_t = lambda F_y theta_p (J), so that the step computes none of them."""
+    values (PARAMETERS by name), each (N,): the virgin backbone's corners and slopes and the
+    reference energies E_t = lambda F_y theta_p (J), so that the step computes none of them."""
     ke = np.asarray(stiffness, dtype=float)
-    fy = np.asarray(yield_force, dtype=float)
-    theta_p = np.asarray(plastic_deformation, dtype=float)
-    f_cap = capping_ratio * fy
+    fy = np.asarray(values["yield_force"], dtype=float)
+    theta_p = np.asarray(values["plastic_deformation"], dtype=float)
+    f_cap = values["capping_ratio"] * fy
     out = np.empty((ke.size, N_FIELDS))
     out[:, KE] = ke
     out[:, FY0] = fy
-    out[:, FRES] = residual_ratio * fy
+    out[:, FRES] = values["residual_ratio"] * fy
     out[:, KP0] = (f_cap - fy) / theta_p
-    out[:, KPC0] = f_cap / post_capping_deformation  # 0 when theta_pc is inf
+    out[:, KPC0] = f_cap / values["post_capping_deformation"]  # 0 when theta_pc is inf
     out[:, UCAP0] = fy / ke + theta_p
     out[:, FCAP0] = f_cap
-    out[:, UU] = ultimate_deformation
-    out[:, EREF_S] = lambda_s * fy * theta_p
-    out[:, EREF_C] = lambda_c * fy * theta_p
-    out[:, EREF_K] = lambda_k * fy * theta_p
-    out[:, C_S] = c_s
-    out[:, C_C] = c_c
-    out[:, C_K] = c_k
-    out[:, D] = deterioration_factor
+    out[:, UU] = values["ultimate_deformation"]
+    for column, factor in ((EREF_S, "lambda_s"), (EREF_C, "lambda_c"), (EREF_K, "lambda_k")):
+        out[:, column] = values[factor] * fy * theta_p
+    for column, name in ((C_S, "c_s"), (C_C, "c_c"), (C_K, "c_k"), (D, "deterioration_factor")):
+        out[:, column] = values[name]
     return out
 
 
-def strength(stiffness, yield_force, capping_ratio, plastic_deformation,
-             post_capping_deformation, ultimate_deformation, residual_ratio, lambda_s,
-             lambda_c, lambda_k, c_s, c_c, c_k, deterioration_factor):
+def strength(stiffness, **values):
     """(N,) the largest force each story carries (N): the virgin capping strength
     capping_ratio F_y (deterioration only lowers it)."""
-    return np.asarray(capping_ratio * np.asarray(yield_force, dtype=float), dtype=float) \
-        * np.ones(len(stiffness))
+    return np.asarray(values["capping_ratio"] * np.asarray(values["yield_force"], dtype=float),
+                      dtype=float) * np.ones(len(stiffness))
 
 
 def initial_state(par):
@@ -492,8 +485,6 @@ def code_values(strength, height):
                                                   CODE_POST_CAPPING_DRIFT_RATIO * height))}
 
 
-def yield_strength(stiffness, yield_force, capping_ratio, plastic_deformation,
-                   post_capping_deformation, ultimate_deformation, residual_ratio, lambda_s,
-                   lambda_c, lambda_k, c_s, c_c, c_k, deterioration_factor):
+def yield_strength(stiffness, **values):
     """(N,) the force at which each story starts to yield (N): the virgin F_y."""
-    return np.asarray(yield_force, dtype=float) * np.ones(len(stiffness))
+    return np.asarray(values["yield_force"], dtype=float) * np.ones(len(stiffness))

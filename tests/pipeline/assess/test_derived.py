@@ -32,8 +32,10 @@ def test_crushed_strictly_beyond_delta_u_as_the_bumper_law_has_it():
     assert derived.crushed([below, at, above], delta_u).tolist() == [False, False, True]
     # the law: the wall behind the rubber, k_w (delta - delta_u), acts only beyond delta_u
     indentation = np.array([below, at, above, 0.05])
-    wall, _ = rubber_bumper.force_terms(indentation, 1.0, 1.0, 0.0, 2.65, 1.0, delta_u, 1.5e9,
-                                        0.0, 0.0, 0.0, 0.0, 1.0)
+    row = {"k": 0.0, "n": 2.65, "delta_u": delta_u, "k_w": 1.5e9, "c_imp_coef": 0.0,
+           "c_imp_exponent": 1.0}
+    wall, _ = rubber_bumper.force_terms(indentation, 1.0, 1.0,
+                                        tuple(row[name] for name in rubber_bumper.ROW._fields))
     np.testing.assert_array_equal(derived.crushed(indentation, delta_u), wall > 0)
     # per member: each against its own limit
     assert derived.crushed([0.03, 0.03], [0.02, 0.04]).tolist() == [True, False]

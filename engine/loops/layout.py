@@ -1,0 +1,115 @@
+"""The compiled loops' packed arrays, declared once: which column of a member's parameters,
+state, per-story constants and scalar peaks holds what (engine/layout.py: a declaration is a
+tuple of names numbered from 0, read in a kernel as `p[PLANAR.gap]`, a constant offset).
+
+The three kernels (numba_loop.py, numba_plan.py, numba_torsion.py) share the isolator's
+columns (ISOLATOR, the BuildingArrays fields of the same names), the state of a run (RUN) and
+of a wall contact (CONTACT); each adds its own. Arrays are built from the declarations by name
+(`packed`), and the scalar peaks' columns are the results' own declarations
+(engine/results.py), so that a new column is one name here and no number anywhere.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..layout import appended, columns
+from ..results import PEAKS, PLAN_PEAKS, TORSION_PEAKS
+
+ISOLATOR = columns("Isolator", "k_elastic", "k_slip", "f_limit", "slow_drop", "rate")
+"""The isolator's constants per member (BuildingArrays fields of these names; in a building
+that twists, per bearing): elastic stiffness N/m, slip stiffness N/m, slip force N, the drop
+of the slip force at speed (1) and its rate s/m (isolators/hysteresis.py)."""
+
+PLANAR = appended("Planar", ISOLATOR, "compliance", "stories_nonlinear", "gap", "scale")
+"""numba_loop's per-member floats: ISOLATOR, then the slab's compliance to a wall force
+(dt^2 / m, m/N), 1.0 where the stories follow a nonlinear law, the clear gap (m) and the
+record's scale."""
+PLAN = appended("Plan", ISOLATOR, "compliance", "compliance_y", "anisotropic", "mu_wall",
+                "stories_yield", "stories_uniaxial", "cos", "sin")
+"""numba_plan's per-member floats: ISOLATOR, the compliances along x and y (m/N), 1.0 where
+the building differs along y, the slab-wall friction coefficient, 1.0 where the stories yield
+in plan (a slip element) or follow a uniaxial law along each axis, and the record's direction
+(cos, sin) times its scale."""
+TORSION = appended("Torsion", ISOLATOR, "cos", "sin", "mu_wall")
+"""numba_torsion's per-member floats: ISOLATOR per bearing, the record's direction (cos, sin)
+times its scale, the slab-wall friction coefficient."""
+
+PLANAR_STORY = columns("PlanarStory", "story_k", "story_gravity", "collapse_drift")
+"""numba_loop's per-story rows (B, 3, N): the linear stiffness (P-Delta folded in, N/m),
+P-Delta's stiffness (N/m, subtracted from a nonlinear law's force), the collapse drift (m)."""
+PLAN_STORY = columns("PlanStory", "story_k", "story_k_post", "story_k_slip", "story_f_limit",
+                     "collapse_square", "story_gravity")
+"""numba_plan's per-story rows (B, 6, N): the linear stiffness, the post-yield and slip
+stiffnesses (N/m), the slip force (N), the collapse drift squared (m^2: no root per step),
+P-Delta's stiffness (N/m)."""
+
+RUN = columns("Run", "collapsed", "collapse_time")
+"""The state every kernel keeps of a member's run: 1.0 once it collapsed, and when (s)."""
+CONTACT = columns("Contact", "v_imp", "delta_prev", "in_contact")
+"""The state of one wall contact (a planar wall, a wall direction in plan, a contact point):
+its impact velocity (m/s, 1.0 before any impact), previous indentation (m), 1.0 in contact."""
+PLANAR_STATE = appended("PlanarState", RUN, "fp", *CONTACT._fields)
+"""numba_loop's state between chunks of steps: RUN, the isolator's slip force (N), CONTACT."""
+PLAN_STATE = appended("PlanState", RUN, "fpx", "fpy")
+"""numba_plan's: RUN and the isolator's slip force (x, y) N (per wall direction, CONTACT)."""
+TORSION_STATE = appended("TorsionState", RUN, "touch_x", "touch_y")
+"""numba_torsion's: RUN and 1.0 where a wall of each axis was touched at the last step (per
+contact point, CONTACT)."""
+
+
+def _scalar_floats(*quantities):
+    """The names of the per-member float peaks among `quantities` (one value, no direction)."""
+    return tuple(q.name for q in quantities
+                 if q.along is None and not q.direction and q.dtype is np.float64)
+
+
+PLANAR_PEAK_COLUMNS = columns("PlanarPeaks", *_scalar_floats(*PEAKS))
+"""The scalar float peaks numba_loop keeps in one (B, W) matrix, by their names in
+engine/results.py."""
+PLAN_PEAK_COLUMNS = columns("PlanPeaks", *_scalar_floats(*PEAKS, *PLAN_PEAKS))
+"""numba_plan's scalar float peaks."""
+TORSION_PEAK_COLUMNS = columns("TorsionPeaks",
+                                *_scalar_floats(*PEAKS, *PLAN_PEAKS, *TORSION_PEAKS))
+"""numba_torsion's scalar float peaks."""
+
+SQUARED = tuple(q.name for q in (*PEAKS, *PLAN_PEAKS, *TORSION_PEAKS)
+                if q.units in ("m", "m s-2") and not q.wall)
+"""The peaks of the structure's displacements and accelerations, which the kernels in plan
+keep squared while running (no root per step: sqrt is monotone, and sqrt(x * x) == |x| in
+binary floating point) and finish_peaks roots."""
+
+
+def packed(layout, source=None, size=None, axis=1, **values) -> np.ndarray:
+    """The C-contiguous float64 array of `layout`'s columns stacked along `axis`: each
+    column `values[name]` if given, else `source`'s attribute of that name, broadcast to
+    (size,) where size is given (a number or a (B,) array alike)."""
+    parts = []
+    for name in layout._fields:
+        value = values[name] if name in values else getattr(source, name)
+        value = np.asarray(value, dtype=np.float64)
+        parts.append(np.broadcast_to(value, (size,)) if size is not None else value)
+    return np.ascontiguousarray(np.stack(parts, axis=axis))
+
+
+def contact_state(*shape) -> np.ndarray:
+    """Zeroed CONTACT state of the given leading shape, impact velocities 1.0 (no impact yet:
+    a harmless divisor)."""
+    state = np.zeros((*shape, len(CONTACT)))
+    state[..., CONTACT.v_imp] = 1.0
+    return state
+
+
+def finish_peaks(peaks: dict, scalar: np.ndarray, layout, state: np.ndarray,
+                 rooted: bool = False) -> dict:
+    """The run's peaks by name: `peaks` (the arrays a kernel filled by name) with the scalar
+    peaks' columns (`scalar` (B, W), `layout` their names), the SQUARED ones rooted where
+    `rooted` (a kernel in plan), and how each run ended from its state's RUN columns."""
+    for name in layout._fields:
+        peaks[name] = scalar[:, getattr(layout, name)].copy()
+    if rooted:
+        for name in SQUARED:
+            if name in peaks:
+                peaks[name] = np.sqrt(peaks[name])
+    peaks["collapsed"] = state[:, RUN.collapsed] != 0.0
+    peaks["collapse_time"] = np.where(peaks["collapsed"], state[:, RUN.collapse_time], np.nan)
+    return peaks
