@@ -232,6 +232,9 @@ TESTED_IN = {
         "fallback without numba, the compile cache of the physics both loops share",
         ("engine.loops.numpy_loop", "engine.loops.compiled", "engine.loops.numba_contacts",
          "engine.backends")),
+    "tests/engine/loops/test_layout.py": (
+        "the column numbering (engine.layout's columns) through the loops' packed layouts",
+        ("engine.layout",)),
     "tests/engine/test_plan.py": (
         "the run in plan: its two loops against each other and against the planar run",
         ("engine.loops.numpy_plan", "engine.loops.numba_plan")),
