@@ -132,7 +132,7 @@ def test_friction_is_refused_out_of_range():
     with pytest.raises(engine.EngineError, match="mu_wall"):
         engine.simulate(accel, dt, Contact.linear([0.1]),
                         moat=Moat("circular", mu_wall=-0.1))
-    refusal = "the planar model takes none.*accel as \\(N, 2\\)"
+    refusal = "the planar model takes none.*a record pair \\(accel \\(N, 2\\)"
     with pytest.raises(engine.EngineError, match=refusal):
         engine.simulate(accel[:, 0], dt, Contact.linear([0.1]), moat=Moat(mu_wall=0.2))
 
