@@ -74,7 +74,9 @@ def assert_peaks_equal(a: dict, b: dict):
                                    err_msg=name)
 
 
-@pytest.mark.parametrize("backend", BACKENDS)
+# On the compiled loop: the NumPy loop gives its numbers to 1e-9 in both moats
+# (test_the_compiled_loop_gives_the_numpy_loops_numbers).
+@pytest.mark.parametrize("backend", ["numba"])
 @pytest.mark.parametrize("moat", ["rectangular", "circular"])
 def test_pair_without_y_component_is_the_planar_run(moat, backend):
     accel, dt = record()

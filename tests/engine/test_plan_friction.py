@@ -55,7 +55,9 @@ def run(mu, moat="rectangular", backend="numba", contact_y=None):
                            history=engine.History(list(range(np.size(mu))), every=1))
 
 
-@pytest.mark.parametrize("backend", BACKENDS)
+# On the compiled loop: the NumPy loop gives its numbers to 1e-9 with friction
+# (test_no_friction_is_the_frictionless_run_and_the_loops_agree, below).
+@pytest.mark.parametrize("backend", ["numba"])
 def test_sliding_along_a_wall_costs_mu_times_the_normal_force(backend):
     """x walls only (the y walls out of reach): normal along x, friction along y."""
     far = Contact.linear([5.0])

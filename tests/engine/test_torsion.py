@@ -68,7 +68,10 @@ def plan_peaks(result) -> dict:
     return {**result.peaks(), **result.plan_peaks()}
 
 
-@pytest.mark.parametrize("backend", BACKENDS)
+# The invariants below run on the compiled loop: the NumPy loop gives its numbers to 1e-9
+# (test_the_compiled_loop_gives_the_numpy_loops_numbers: eccentric, bumpers where they stand,
+# wall friction, both isolator laws, histories), so they hold on it too.
+@pytest.mark.parametrize("backend", ["numba"])
 @pytest.mark.parametrize("layout", ["grid", "corners", "bumpers"])
 def test_a_slab_that_does_not_turn_is_the_plan_run(layout, backend):
     accel, dt = pair()
@@ -96,7 +99,7 @@ def test_a_slab_that_does_not_turn_is_the_plan_run(layout, backend):
 MIRRORED_WALLS = [1, 0, 3, 2]  # +x <-> -x, +y <-> -y
 
 
-@pytest.mark.parametrize("backend", BACKENDS)
+@pytest.mark.parametrize("backend", ["numba"])  # the NumPy loop: as above
 def test_a_half_turn_of_the_pair_mirrors_the_response(backend):
     accel, dt = pair()
     contact = walls()
@@ -126,7 +129,7 @@ def scheme_energy(t, disp, rotation, dt):
         + 0.5 * np.einsum("ti,ij,tj->t", u[:-1], stiffness, u[1:])
 
 
-@pytest.mark.parametrize("backend", BACKENDS)
+@pytest.mark.parametrize("backend", ["numba"])  # the NumPy loop: as above
 def test_undamped_torsional_vibration_keeps_its_energy(backend):
     dt = engine.DEFAULT_DT
     t_pulse = np.arange(0.0, 1.0, 0.01)
