@@ -98,9 +98,15 @@ LONG_FIRST = ("tests/engine/test_plan_references.py",                  # 79
 
 def pytest_configure(config):
     """Keep the order below: pytest-xdist (3.6 on) would otherwise hand out the files with the
-    most tests first, whatever their length (its --no-loadscope-reorder)."""
+    most tests first, whatever their length (its --no-loadscope-reorder). In the process that
+    starts the workers, compile the kernels most tests run once (tests/warm_kernels.py)."""
     if hasattr(config.option, "loadscopereorder"):
         config.option.loadscopereorder = False
+    workers = getattr(config.option, "numprocesses", None)
+    if workers and not hasattr(config, "workerinput") and not config.option.collectonly:
+        from tests.warm_kernels import warm
+
+        warm(Path(str(config.rootpath)))
 
 
 def pytest_collection_modifyitems(config, items):
