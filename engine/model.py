@@ -57,7 +57,7 @@ engine.simulate, the pipeline and docs/model.md read (each Model's `supports` ho
 column)."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)  # a model is itself: compared and hashed by identity
 class Model:
     """One model of the run and what it supports.
 
