@@ -82,6 +82,9 @@ class Model:
         if set(self.supports) != set(SUPPORTS) - {"ground motion components"}:
             raise ValueError(f"model {self.name}: supports must give every SUPPORTS row")
 
+    def __repr__(self) -> str:
+        return f"engine.model.{self.name.upper()}"
+
     @property
     def in_plan(self) -> bool:
         """Whether the building moves in x and y (plan or twisting)."""
