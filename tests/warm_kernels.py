@@ -1,31 +1,47 @@
-"""The compiled kernels most of the suite runs, compiled once before pytest-xdist's workers
-start (tests/conftest.py), so that the workers load them from numba's on-disk cache instead of
-each compiling the same ones (measured on a fresh clone, 2 cores: a cold cache cost the suite
-53 s of its 258, a warm one none). Two processes, one per core; a kernel variant missing here
-is compiled by the first worker that needs it, as before."""
+"""The compiled kernels the suite runs, compiled once before pytest-xdist's workers start
+(tests/conftest.py), so that the workers load them from numba's on-disk cache instead of each
+compiling the same ones (measured on a fresh clone, 2 cores: a cold cache cost the suite 53 s
+of its 258, a warm one none). A kernel is compiled per number of levels and story law (the
+planar one), per story law (in plan) and per multiple of 8 contact points (twisting): the
+variants below are those the suite's in-process tests compile. Two processes, one per core; a
+variant missing here is compiled by the first worker that needs it, as before."""
 from __future__ import annotations
 
 import subprocess
 import sys
 from pathlib import Path
 
-PLANAR = """
-import numpy as np, engine
-accel = np.sin(np.linspace(0.0, 20.0, 200))
-for building in (engine.Building(), engine.Building(story_yield_force=(3e6,) * 4)):
-    engine.simulate(accel, 0.01, engine.Contact.bumper([0.1]), building, backend="numba")
-"""
-IN_PLAN = """
+COMMON = """
 import numpy as np, engine
 accel = np.sin(np.linspace(0.0, 20.0, 200))
 pair = np.column_stack([accel, 0.5 * accel])
-engine.simulate(pair, 0.01, engine.Contact.bumper([0.1]), backend="numba")
-twists = engine.Building(torsion=engine.Torsion(plan_size=(30.0, 20.0)))
-engine.simulate(pair, 0.01, engine.Contact.bumper([0.1]), twists, backend="numba")
+wall = engine.Contact.bumper([0.1])
+
+def planar(n, yielding):
+    building = engine.Building(
+        masses=(5e5,) + (4e5,) * n, story_stiffness=(8e8,) * n,
+        story_yield_force=(6e6,) * n if yielding else None)
+    engine.simulate(accel, 0.01, wall, building, backend="numba")
+"""
+PLANAR = COMMON + """
+for n in (1, 4, 8):
+    for yielding in (False, True):
+        planar(n, yielding)
+planar(20, True)
+"""
+IN_PLAN = COMMON + """
+planar(20, False)
+imk = engine.Stories.imk(yield_force=3e6, plastic_deformation=0.09,
+                         post_capping_deformation=0.35)
+for building in (engine.Building(), engine.Building(story_yield_force=(3e6,) * 4),
+                 engine.Building(stories=imk),
+                 engine.Building(torsion=engine.Torsion(plan_size=(30.0, 20.0)))):
+    engine.simulate(pair, 0.01, wall, building, backend="numba")
 """
 SCRIPTS = (PLANAR, IN_PLAN)
-"""What each process runs: the paper's building planar (linear and yielding stories), then
-in plan and twisting (the default 16 bearings, 8 contact points)."""
+"""What each process runs: the planar kernel on 1, 4 and 8 stories, linear and yielding, and
+on 20 yielding; then on 20 linear, in plan (linear, bilinear and IMK stories) and twisting
+(the default 16 bearings, 8 contact points): about as long each."""
 
 
 def warm(root: Path) -> None:
