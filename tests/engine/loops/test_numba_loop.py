@@ -186,18 +186,17 @@ def test_compiled_kernel_loads_from_the_cache():
     kernel is compiled once per number of levels, the paper's 5 here)."""
     pytest.importorskip("numba")
     engine.simulate(np.zeros(10), 0.01, Contact.bumper([0.3]), backend="numba")
-    code = ("import time, numpy as np, engine\n"
+    code = ("import numpy as np, engine\n"
             "from engine.loops import numba_loop\n"
-            "t = time.perf_counter()\n"
             "engine.simulate(np.zeros(10), 0.01, engine.Contact.bumper([0.3]), backend='numba')\n"
             "stats = numba_loop._run.stats\n"
-            "print(time.perf_counter() - t, sum(stats.cache_hits.values()),\n"
-            "      sum(stats.cache_misses.values()))\n")
+            "print(sum(stats.cache_hits.values()), sum(stats.cache_misses.values()))\n")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True).stdout.split()
-    seconds, hits, misses = float(out[0]), int(out[1]), int(out[2])
+    hits, misses = int(out[0]), int(out[1])
+    # loaded from disk, not compiled: numba's own count, not a clock (a loaded machine must
+    # not turn this red; how long a load takes is for benchmarks/)
     assert hits >= 1 and misses == 0
-    assert seconds < 3.0   # a cold compile takes 5-10 s
 
 
 def test_every_compiled_loop_is_cached_on_the_physics_it_compiles():
