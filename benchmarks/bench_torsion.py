@@ -90,7 +90,7 @@ def main(argv=None) -> int:
                 t / p for t, p in zip(times[name], times["plan"], strict=True))
     print(f"{PAIR}, {SECONDS:g} s at {DT * 1e3:g} ms ({steps} steps), linear walls at "
           f"{GAP * 100:g} cm, the paper's building on a {PLAN[0]:g} x {PLAN[1]:g} m slab, "
-          f"eccentricity {ECCENTRICITY[0]:g} m, one thread")
+          f"mass offset {ECCENTRICITY[0]:g} m, one thread")
     print(f"{'':>22} {'B=1 ns/step':>12} {'B=1024 ns/member-step':>22} {'/ plan (B=1024)':>16}")
     for name in runs:
         s = _slug(name)

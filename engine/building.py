@@ -445,9 +445,7 @@ def _building_row(b: Building) -> dict:
         post, slip, limit = (np.asarray(x, float) for x in law.module.plan_fields(
             k, **law.per_story(k.size)))
         post = post - gravity if b.p_delta else post
-    return {"masses": np.asarray(b.masses, float), "story_k": story_k,
-            **{name: iso[name] for name in ("k_elastic", "k_slip", "f_limit", "slow_drop",
-                                            "rate")},
+    return {"masses": np.asarray(b.masses, float), "story_k": story_k, **iso,
             "story_linear": law.is_linear, "story_code": law.code, "story_fields": fields,
             "story_state": state, "story_gravity": gravity, "story_k_post": post,
             "story_k_slip": slip, "story_f_limit": limit,

@@ -69,14 +69,18 @@ def strong_motion(record, backend: str, contact):
     return part
 
 
+def recipe_outputs(module, argv: list[str], out: Path) -> Path:
+    """Run a recipe's main into `out` (must succeed) and return the folder of its outputs."""
+    assert module.main([*argv, "--quiet", "--out", str(out)]) == 0
+    # a quick run's outputs go beside a full run's, never over them
+    return out / "quick" if "--quick" in argv else out
+
+
 def run_recipe(module, argv: list[str], out: Path):
     """Run a recipe's main into `out` (must succeed) and return its archive, loaded."""
     import xarray as xr
 
-    assert module.main([*argv, "--quiet", "--out", str(out)]) == 0
-    if "--quick" in argv:  # a quick run's outputs go beside a full run's, never over them
-        out = out / "quick"
-    with xr.open_dataset(out / f"{module.recipe.name}.nc") as ds:
+    with xr.open_dataset(recipe_outputs(module, argv, out) / f"{module.recipe.name}.nc") as ds:
         return ds.load()
 
 

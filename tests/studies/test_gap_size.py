@@ -7,15 +7,13 @@ from engine.units import CM
 from studies import gap_size
 from studies.common.plot import plt, record_label
 from studies.common.recipe import verdicts
-from tests.helpers import assert_figure_files, assert_udunits, drawn
+from tests.helpers import assert_figure_files, assert_udunits, drawn, recipe_outputs
 
 
 @pytest.fixture(scope="module")
 def quick_run(tmp_path_factory, records_dir_args):
-    out = tmp_path_factory.mktemp("gap_size")
-    args = ["--quick", "--workers", "1", "--quiet", "--out", str(out), *records_dir_args]
-    assert gap_size.main(args) == 0
-    return out / "quick"  # a quick run's outputs never replace a full run's
+    return recipe_outputs(gap_size, ["--quick", "--workers", "1", *records_dir_args],
+                          tmp_path_factory.mktemp("gap_size"))
 
 
 def test_archive_is_labelled_and_complete(quick_run):

@@ -7,7 +7,7 @@ import xarray as xr
 from engine.units import CM, KN, G
 from studies import practical_example
 from studies.common.plot import plt, record_label
-from tests.helpers import assert_figure_files, assert_udunits, drawn
+from tests.helpers import assert_figure_files, assert_udunits, drawn, recipe_outputs
 
 PEAKS = ("peak_total_accel", "peak_interstory_drift", "peak_isolator_disp", "max_indentation",
          "max_impact_force", "n_impacts")
@@ -18,10 +18,8 @@ CONFIGS = ["no_pounding", "no_bumpers", "bumpers", "no_bumpers_at_paper_gap",
 
 @pytest.fixture(scope="module")
 def quick_run(tmp_path_factory, records_dir_args):
-    out = tmp_path_factory.mktemp("practical_example")
-    args = ["--quick", "--workers", "1", "--quiet", "--out", str(out), *records_dir_args]
-    assert practical_example.main(args) == 0
-    return out / "quick"  # a quick run's outputs never replace a full run's
+    return recipe_outputs(practical_example, ["--quick", "--workers", "1", *records_dir_args],
+                          tmp_path_factory.mktemp("practical_example"))
 
 
 def test_archive_is_labelled_and_complete(quick_run):
