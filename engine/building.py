@@ -357,8 +357,9 @@ class BuildingArrays:
 
     masses (B, L) kg; story_k (B, L - 1) N/m: the stories' elastic stiffness less what
     P-Delta takes (Building.gravity_stiffness; exactly story_stiffness without p_delta); the
-    isolator's hysteresis fields (B,) each (engine/isolators/hysteresis.py): k_elastic, k_slip
-    N/m, f_limit N, slow_drop, rate s/m; the story law (engine/stories/): story_linear (B,)
+    isolator law (engine/isolators/): isolator_code (B,) its code, isolator_fields
+    (B, MAX_FIELDS) its ROW (for the whole building: a building that twists shares the CARRIED
+    ones among its bearings); the story law (engine/stories/): story_linear (B,)
     bool (the loops multiply by story_k), story_code (B,) its code, story_fields
     (B, L - 1, MAX_FIELDS) its constants, story_state (B, L - 1, MAX_STATE) its initial
     state, story_gravity (B, L - 1) N/m the P-Delta stiffness subtracted from a nonlinear
@@ -373,11 +374,8 @@ class BuildingArrays:
 
     masses: np.ndarray
     story_k: np.ndarray
-    k_elastic: np.ndarray
-    k_slip: np.ndarray
-    f_limit: np.ndarray
-    slow_drop: np.ndarray
-    rate: np.ndarray
+    isolator_code: np.ndarray
+    isolator_fields: np.ndarray
     story_linear: np.ndarray
     story_code: np.ndarray
     story_fields: np.ndarray
@@ -427,7 +425,6 @@ def _building_row(b: Building) -> dict:
     """One building's batch arrays by BuildingArrays' field names (its damping needs
     eigenvalues: computed once per Building; the arrays are copied into the batch, never
     handed out)."""
-    iso = b.isolation.fields(b.total_mass, b.g)
     k = np.asarray(b.story_stiffness, float)
     law = b.story_law
     gravity = b.gravity_stiffness
@@ -445,7 +442,9 @@ def _building_row(b: Building) -> dict:
         post, slip, limit = (np.asarray(x, float) for x in law.module.plan_fields(
             k, **law.per_story(k.size)))
         post = post - gravity if b.p_delta else post
-    return {"masses": np.asarray(b.masses, float), "story_k": story_k, **iso,
+    return {"masses": np.asarray(b.masses, float), "story_k": story_k,
+            "isolator_code": b.isolation.code,
+            "isolator_fields": b.isolation.row(b.total_mass, b.g),
             "story_linear": law.is_linear, "story_code": law.code, "story_fields": fields,
             "story_state": state, "story_gravity": gravity, "story_k_post": post,
             "story_k_slip": slip, "story_f_limit": limit,

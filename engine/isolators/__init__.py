@@ -1,7 +1,8 @@
 """The isolation system: its laws, one module each in laws/ (bilinear, friction_pendulum; a new
-law is a new module there), the registry that finds them, the `Isolator` a building holds, and
-the hysteresis every law reduces to (hysteresis.py: an elastic spring in parallel with a slip
-element, the physics both time loops call)."""
+law, its state and physics included, is a new module there), the registry that finds them and
+numbers them for the time loops, the `Isolator` a building holds, and the slip element the
+bilinear and friction pendulum laws are made of (hysteresis.py: an elastic spring in parallel
+with an elastic-perfectly-plastic one, the physics both time loops call)."""
 from .isolator import Isolator
 from .registry import LAWS
 

@@ -1,9 +1,10 @@
-"""The isolator's physics, written once for both time loops: an elastic spring in parallel with
-a slip element, i.e. an elastic-perfectly-plastic spring whose limit force may depend on the
-sliding speed (every isolator law maps its parameters onto these, engine/isolators/laws/).
+"""The slip element, written once for both time loops: an elastic spring in parallel with an
+elastic-perfectly-plastic spring whose limit force may depend on the sliding speed. The
+bilinear and friction pendulum isolators are made of it (engine/isolators/laws/), as the
+bilinear story is; a law with physics of its own writes it in its own module.
 
-Scalars or (B,) arrays alike: the NumPy loop calls these functions on arrays, the compiled loop
-compiles the very same functions for scalars.
+Scalars or arrays alike: the NumPy loops call these functions on arrays, the compiled loops
+compile the very same functions for scalars.
 """
 import numpy as np
 
@@ -12,6 +13,11 @@ def isolator_force(u0, f_slip, k_elastic):
     """Total isolator force (N) at displacement u0 (m): the elastic spring's plus the slip
     element's force f_slip (N)."""
     return k_elastic * u0 + f_slip
+
+
+def isolator_force_xy(ux, uy, fx_slip, fy_slip, k_elastic):
+    """In plan: isolator_force along x and along y (N), at displacement (ux, uy) (m)."""
+    return k_elastic * ux + fx_slip, k_elastic * uy + fy_slip
 
 
 def slip_limit(f_limit, slow_drop, rate, speed):

@@ -7,9 +7,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numpy as np
+
 from ..errors import EngineError
 from ..parameters import Option, law_constructor
-from .registry import LAWS, law_function
+from .registry import LAW_CODES, LAWS, MAX_FIELDS, law_function
 
 
 @dataclass(frozen=True)
@@ -50,10 +52,22 @@ class Isolator:
         """The isolation damping ratio this law implies unless one is given."""
         return LAWS[self.law].DEFAULT_ZETA
 
+    @property
+    def code(self) -> int:
+        """The law's code in the time loops."""
+        return LAW_CODES[self.law]
+
     def fields(self, mass: float, g: float) -> dict[str, float]:
-        """The hysteresis fields (k_elastic, k_slip N/m; f_limit N; slow_drop; rate s/m) under
-        a building of total mass `mass` kg (weight g M; engine/isolators/hysteresis.py)."""
+        """The constants the time loops read (the law's ROW, by name, SI) under a building of
+        total mass `mass` kg (weight g M)."""
         return LAWS[self.law].fields(mass, g, **self.values)
+
+    def row(self, mass: float, g: float) -> np.ndarray:
+        """(MAX_FIELDS,) the law's ROW in its order, zero beyond: the loops' packed row."""
+        module = LAWS[self.law]
+        row = np.zeros(MAX_FIELDS)
+        row[:len(module.ROW)] = [self.fields(mass, g)[name] for name in module.ROW._fields]
+        return row
 
     def initial_stiffness(self, mass: float, g: float) -> float:
         """Stiffness before any slip, N/m (stability limit, damping rules)."""

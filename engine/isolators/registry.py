@@ -8,7 +8,9 @@ from ..registry import discover
 from . import laws as _laws_package
 
 LAW_INTERFACE = ("NAME", "ORDER", "PARAMETERS", "DEFAULT_ZETA", "DASHPOT_TEXT", "check",
-                 "fields", "initial_stiffness", "yield_displacement", "effective_stiffness")
+                 "fields", "initial_stiffness", "yield_displacement", "effective_stiffness",
+                 "ROW", "CARRIED", "STATE", "STATE_XY", "force", "advance", "force_xy",
+                 "advance_xy")
 CODE_INTERFACE = ("post_yield_stiffness", "energy_per_cycle", "bounded")
 """What a law gives the code's equivalent-linear design (pipeline.motions.target.isolation_design)
 and its property bounds (pipeline.motions.bounds: `bounded(values, lambda_q, lambda_k)`):
@@ -16,6 +18,16 @@ optional, so that a law can be run without them; law_function says which is miss
 
 LAWS: dict[str, ModuleType] = discover(_laws_package, LAW_INTERFACE)
 """Isolator law name -> its module, in ORDER."""
+LAW_CODES: dict[str, int] = {name: code for code, name in enumerate(LAWS)}
+"""Isolator law name -> its code in the time loops (0 the first law: bilinear)."""
+BY_CODE: tuple[ModuleType, ...] = tuple(LAWS.values())
+"""Isolator law code -> its module."""
+MAX_FIELDS = max(len(module.ROW) for module in LAWS.values())
+"""The widest law's ROW: the loops' (B, MAX_FIELDS) isolator constants are this wide."""
+MAX_STATE = max(len(module.STATE) for module in LAWS.values())
+"""The widest law's STATE along one axis (the planar loops' state per member)."""
+MAX_STATE_XY = max(len(module.STATE_XY) for module in LAWS.values())
+"""The widest law's STATE_XY in plan (the loops' state per member, or per bearing)."""
 
 
 def law_function(law: str, name: str):

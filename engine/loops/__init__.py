@@ -12,9 +12,11 @@ twist, each with one interface:
 numpy_loop.py, numpy_plan.py and numpy_torsion.py are the readable references (vectorised over
 the batch, no compiler); numba_loop.py, numba_plan.py and numba_torsion.py the compiled
 defaults (members outer, steps inner; compiled once per number of levels), with compiled.py,
-the physics they compile for scalars (the slip elements, the contact solve, the impact and
-story laws' dispatch), layout.py, the columns of the arrays they pack (declared once),
-numba_contacts.py, the contact points of the twisting kernel and their solve, and
+the physics they compile for scalars (the contact solve, the impact, story and isolator laws'
+dispatch), layout.py, the columns of the arrays they pack (declared once),
+numba_contacts.py, the contact points of the twisting kernel and their solve,
+numpy_isolators.py, the isolator laws on a NumPy batch (the NumPy loops' twin of compiled.py's
+isolator dispatch), and
 numba_support.py, what they need of numba beyond @njit (a cache keyed on the physics, arrays
 on the stack, pairs in one register, members on threads). The loops import only the scheme,
 the laws, the isolator's hysteresis, the torsion model and the result schema, and call the

@@ -1,9 +1,10 @@
 """The physics the compiled loops (numba_loop.py, numba_plan.py, numba_torsion.py) call,
-compiled for scalars from the modules that write it once: the isolator's and the stories' slip
-elements (isolators/hysteresis.py), the scheme's contact solve and onset weight (scheme.py),
-and the impact laws' force terms and the story laws' forces, each chained into one dispatch on
-a member's law code (the registries): law_terms(code, delta, rate, v_imp, row) with the
-member's packed law row (impact.contact.law_rows), story_force(code, drift, state, row).
+compiled for scalars from the modules that write it once: the stories' slip element in plan
+(isolators/hysteresis.py), the scheme's contact solve and onset weight (scheme.py), and the
+impact laws' force terms, the story laws' forces and the isolator laws' forces and state, each
+chained into one dispatch on a member's law code (the registries): law_terms(code, delta,
+rate, v_imp, row) with the member's packed law row (impact.contact.law_rows),
+story_force(code, drift, state, row), isolator_force(code, u, state, row) and its kin.
 
 JIT: the options of the cached kernels; LINK: those of the functions compiled into them.
 """
@@ -17,11 +18,13 @@ from .. import layout as columns
 from .. import scheme
 from ..impact import registry
 from ..isolators import hysteresis
+from ..isolators import registry as isolator_registry
 from ..stories import registry as story_registry
 
 PHYSICS_FILES = [m.__file__ for m in (hysteresis, scheme, columns, registry,
                                       *registry.LAWS.values(), story_registry,
-                                      *story_registry.LAWS.values())]
+                                      *story_registry.LAWS.values(), isolator_registry,
+                                      *isolator_registry.LAWS.values())]
 """The sources a cached kernel compiles besides its own file (numba_support's cache key)."""
 
 JIT = {"cache": True, "nogil": True, "error_model": "numpy"}
@@ -34,10 +37,7 @@ keeps four refcount calls and is never inlined into the story loop: the deterior
 then cost 2.4-2.6x the linear building's member-step, 1.3-1.4x without (numba's `_nrt`
 option, private but stable since numba 0.2x)."""
 
-isolator_force = njit(**LINK)(hysteresis.isolator_force)
-plastic_spring = njit(**LINK)(hysteresis.plastic_spring_force)
 radial_return = njit(**LINK)(hysteresis.radial_return)
-slip_limit = njit(**LINK)(hysteresis.slip_limit)
 implicit_force = njit(**LINK)(scheme.implicit_force)
 onset_weight = njit(**LINK)(scheme.onset_weight)
 
@@ -113,3 +113,40 @@ def _story_dispatch():
 
 
 story_force = _story_dispatch()
+
+
+def _otherwise(function):
+    """The end of a chain: `function` for every code not matched before."""
+    def dispatch(law, *args):
+        return function(*args)
+    return njit(**STORY_LINK)(dispatch)
+
+
+def _link_law(code, function, otherwise):
+    """A dispatch that runs `function` for members of law `code`, else `otherwise`."""
+    def dispatch(law, *args):
+        if law == code:
+            return function(*args)
+        return otherwise(law, *args)
+    return njit(**STORY_LINK)(dispatch)
+
+
+def _isolator_dispatch(name):
+    """The isolator laws' function `name` (force, advance, force_xy, advance_xy), dispatched
+    on the member's isolator law code: every law of the isolator registry, chained (the last
+    law ends the chain), each compiled as the story laws are (compiled_in_module)."""
+    laws = isolator_registry.BY_CODE
+    dispatch = _otherwise(compiled_in_module(getattr(laws[-1], name)))
+    for code in range(len(laws) - 2, -1, -1):
+        dispatch = _link_law(code, compiled_in_module(getattr(laws[code], name)), dispatch)
+    return dispatch
+
+
+isolator_force = _isolator_dispatch("force")
+"""isolator_force(code, u, state, row) -> N: the member's isolator law's force."""
+isolator_advance = _isolator_dispatch("advance")
+"""isolator_advance(code, state, velocity, dt, row): its state committed after a step."""
+isolator_force_xy = _isolator_dispatch("force_xy")
+"""isolator_force_xy(code, ux, uy, state, row) -> (N, N): in plan."""
+isolator_advance_xy = _isolator_dispatch("advance_xy")
+"""isolator_advance_xy(code, state, vx, vy, dt, row): in plan."""

@@ -2,9 +2,10 @@
 state, per-story constants and scalar peaks holds what (engine/layout.py: a declaration is a
 tuple of names numbered from 0, read in a kernel as `p[PLANAR.gap]`, a constant offset).
 
-The three kernels (numba_loop.py, numba_plan.py, numba_torsion.py) share the isolator's
-columns (ISOLATOR, the BuildingArrays fields of the same names), the state of a run (RUN) and
-of a wall contact (CONTACT); each adds its own. Arrays are built from the declarations by name
+The three kernels (numba_loop.py, numba_plan.py, numba_torsion.py) share the state of a run
+(RUN) and of a wall contact (CONTACT); each adds its own. The isolator law's constants and
+state are the law's own columns (its ROW, STATE and STATE_XY, engine/isolators/laws/), read
+from arrays of their own (isolator_rows). Arrays are built from the declarations by name
 (`packed`), and the scalar peaks' columns are the results' own declarations
 (engine/results.py), so that a new column is one name here and no number anywhere.
 """
@@ -12,27 +13,22 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..isolators.registry import BY_CODE, MAX_FIELDS, MAX_STATE, MAX_STATE_XY
 from ..layout import appended, columns
 from ..results import PEAKS, PLAN_PEAKS, TORSION_PEAKS
 
-ISOLATOR = columns("Isolator", "k_elastic", "k_slip", "f_limit", "slow_drop", "rate")
-"""The isolator's constants per member (BuildingArrays fields of these names; in a building
-that twists, per bearing): elastic stiffness N/m, slip stiffness N/m, slip force N, the drop
-of the slip force at speed (1) and its rate s/m (isolators/hysteresis.py)."""
-
-PLANAR = appended("Planar", ISOLATOR, "compliance", "stories_nonlinear", "gap", "scale")
-"""numba_loop's per-member floats: ISOLATOR, then the slab's compliance to a wall force
-(dt^2 / m, m/N), 1.0 where the stories follow a nonlinear law, the clear gap (m) and the
-record's scale."""
-PLAN = appended("Plan", ISOLATOR, "compliance", "compliance_y", "anisotropic", "mu_wall",
-                "stories_yield", "stories_uniaxial", "cos", "sin")
-"""numba_plan's per-member floats: ISOLATOR, the compliances along x and y (m/N), 1.0 where
-the building differs along y, the slab-wall friction coefficient, 1.0 where the stories yield
-in plan (a slip element) or follow a uniaxial law along each axis, and the record's direction
+PLANAR = columns("Planar", "compliance", "stories_nonlinear", "gap", "scale")
+"""numba_loop's per-member floats: the slab's compliance to a wall force (dt^2 / m, m/N), 1.0
+where the stories follow a nonlinear law, the clear gap (m) and the record's scale."""
+PLAN = columns("Plan", "compliance", "compliance_y", "anisotropic", "mu_wall",
+               "stories_yield", "stories_uniaxial", "cos", "sin")
+"""numba_plan's per-member floats: the compliances along x and y (m/N), 1.0 where the
+building differs along y, the slab-wall friction coefficient, 1.0 where the stories yield in
+plan (a slip element) or follow a uniaxial law along each axis, and the record's direction
 (cos, sin) times its scale."""
-TORSION = appended("Torsion", ISOLATOR, "cos", "sin", "mu_wall")
-"""numba_torsion's per-member floats: ISOLATOR per bearing, the record's direction (cos, sin)
-times its scale, the slab-wall friction coefficient."""
+TORSION = columns("Torsion", "cos", "sin", "mu_wall")
+"""numba_torsion's per-member floats: the record's direction (cos, sin) times its scale, the
+slab-wall friction coefficient."""
 
 PLANAR_STORY = columns("PlanarStory", "story_k", "story_gravity", "collapse_drift")
 """numba_loop's per-story rows (B, 3, N): the linear stiffness (P-Delta folded in, N/m),
@@ -48,10 +44,10 @@ RUN = columns("Run", "collapsed", "collapse_time")
 CONTACT = columns("Contact", "v_imp", "delta_prev", "in_contact")
 """The state of one wall contact (a planar wall, a wall direction in plan, a contact point):
 its impact velocity (m/s, 1.0 before any impact), previous indentation (m), 1.0 in contact."""
-PLANAR_STATE = appended("PlanarState", RUN, "fp", *CONTACT._fields)
-"""numba_loop's state between chunks of steps: RUN, the isolator's slip force (N), CONTACT."""
-PLAN_STATE = appended("PlanState", RUN, "fpx", "fpy")
-"""numba_plan's: RUN and the isolator's slip force (x, y) N (per wall direction, CONTACT)."""
+PLANAR_STATE = appended("PlanarState", RUN, *CONTACT._fields)
+"""numba_loop's state between chunks of steps: RUN, CONTACT."""
+PLAN_STATE = RUN
+"""numba_plan's: RUN (per wall direction, CONTACT)."""
 TORSION_STATE = appended("TorsionState", RUN, "touch_x", "touch_y")
 """numba_torsion's: RUN and 1.0 where a wall of each axis was touched at the last step (per
 contact point, CONTACT)."""
@@ -89,6 +85,31 @@ def packed(layout, source=None, size=None, axis=1, **values) -> np.ndarray:
         value = np.asarray(value, dtype=np.float64)
         parts.append(np.broadcast_to(value, (size,)) if size is not None else value)
     return np.ascontiguousarray(np.stack(parts, axis=axis))
+
+
+ISOLATOR_FIELDS = MAX_FIELDS
+"""The width of a member's isolator row (the isolator laws' widest ROW)."""
+ISOLATOR_STATE, ISOLATOR_STATE_XY = MAX_STATE, MAX_STATE_XY
+"""The width of a member's isolator state along one axis and in plan (per bearing when the
+building twists): the isolator laws' widest STATE and STATE_XY."""
+ISOLATOR_SLOTS, ISOLATOR_SLOTS_XY = (0,) * MAX_STATE, (0,) * MAX_STATE_XY
+"""Tuples of those lengths: numba_support.stack_doubles' argument for the state on the
+stack."""
+
+
+def isolator_rows(arrays, bearings: int = 1):
+    """(codes (B,) int64, rows (B, MAX_FIELDS) float64): each member's isolator law and its
+    ROW, the CARRIED columns shared among `bearings` bearings (a building that twists)."""
+    rows = np.array(arrays.isolator_fields, dtype=np.float64, order="C")
+    codes = np.ascontiguousarray(arrays.isolator_code, dtype=np.int64)
+    if bearings != 1:
+        for code in np.unique(codes):
+            law = BY_CODE[code]
+            mine = codes == code
+            for name in law.CARRIED:
+                column = getattr(law.ROW, name)
+                rows[mine, column] = rows[mine, column] / bearings
+    return codes, rows
 
 
 def contact_state(*shape) -> np.ndarray:

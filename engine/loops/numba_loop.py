@@ -32,14 +32,24 @@ from .compiled import (
     LINK,
     PHYSICS_FILES,
     implicit_force,
+    isolator_advance,
     isolator_force,
     law_terms,
     onset_weight,
-    plastic_spring,
-    slip_limit,
     story_force,
 )
-from .layout import PLANAR, PLANAR_PEAK_COLUMNS, PLANAR_STATE, PLANAR_STORY, finish_peaks, packed
+from .layout import (
+    ISOLATOR_FIELDS,
+    ISOLATOR_SLOTS,
+    ISOLATOR_STATE,
+    PLANAR,
+    PLANAR_PEAK_COLUMNS,
+    PLANAR_STATE,
+    PLANAR_STORY,
+    finish_peaks,
+    isolator_rows,
+    packed,
+)
 from .numba_support import (
     data_pointer,
     history_rows,
@@ -51,9 +61,10 @@ from .numba_support import (
 # Cached kernels go stale when any physics source they compile changes, not only this file.
 install_cache_locator(Path(__file__), [compiled.__file__, layout.__file__, *PHYSICS_FILES])
 
-# The kernel's packed arrays (layout.py): per member its floats (PLANAR), its law's row
-# (contact.law_rows), its state between chunks of steps (PLANAR_STATE; the displacements and
-# velocities of every level are arrays of their own), per story PLANAR_STORY; the peaks per
+# The kernel's packed arrays (layout.py): per member its floats (PLANAR), its impact law's
+# row (contact.law_rows), its isolator law's row (isolator_fields), its state between chunks of
+# steps (PLANAR_STATE; the displacements and velocities of every level and the isolator law's
+# state are arrays of their own), per story PLANAR_STORY; the peaks per
 # level (peak_total_accel), per story (peak_interstory_drift), the scalar float peaks
 # (PLANAR_PEAK_COLUMNS, named as in engine/results.py) in one matrix, the count (n_impacts) apart.
 
@@ -88,15 +99,16 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     L zeros, so that L is a compile-time constant; `law_tag` a tuple of (story law code + 1)
     zeros, so that the member's story law is one too and its force is the only one compiled
     into this kernel: one compilation per number of levels and story law. model = (ag, dt,
-    op, bands, wall, mass, story, law, par, law_par, story_fields), what the run reads;
-    memory = (u, v, story_state, state), what it carries between chunks; peaks =
+    op, bands, wall, mass, story, law, par, law_par, story_fields, isolator), what the run
+    reads (isolator: the isolator law's codes and rows); memory = (u, v, story_state, state,
+    isolator_state), what it carries between chunks; peaks =
     (peak_level, peak_story, peak_scalar, n_impacts); hist = (hist_row, every, h_u, h_acc,
     h_f, h_d) (run_simulation builds them; layout.py names their columns). Sums run in the
     order of the scalar kernel this loop replaced, and a member's result never depends on the
     batch. A member that has collapsed stops."""
     levels, law_tag = shape
-    ag, dt, op, bands, wall, mass, story, law, par, law_par, story_fields = model
-    u_all, v_all, story_state, state = memory
+    ag, dt, op, bands, wall, mass, story, law, par, law_par, story_fields, isolator = model
+    u_all, v_all, story_state, state, isolator_state = memory
     peak_level, peak_story, peak_scalar, n_impacts = peaks
     hist_row, every, h_u, h_acc, h_f, h_d = hist
     st = state[b]
@@ -115,9 +127,10 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     s_state = carray(data_pointer(story_state[b]), (n_levels - 1, MAX_STATE))
     p = par[b]
     comp = p[PLANAR.compliance]
-    k_el, k_slip, f_limit = p[PLANAR.k_elastic], p[PLANAR.k_slip], p[PLANAR.f_limit]
     gap = p[PLANAR.gap]
-    slow_drop, rate = p[PLANAR.slow_drop], p[PLANAR.rate]
+    iso_codes, iso_fields = isolator
+    iso_code = iso_codes[b]
+    iso_row = carray(data_pointer(iso_fields[b]), (ISOLATOR_FIELDS,))
     nonlinear = p[PLANAR.stories_nonlinear] != 0.0
     story_law = len(law_tag) - 1
     scale = p[PLANAR.scale]
@@ -125,7 +138,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     code = law[b]
     hrow = hist_row[b]
 
-    fp, v_imp = st[PLANAR_STATE.fp], st[PLANAR_STATE.v_imp]
+    v_imp = st[PLANAR_STATE.v_imp]
     delta_prev = st[PLANAR_STATE.delta_prev]
     in_contact = st[PLANAR_STATE.in_contact] != 0.0
     pk = peak_scalar[b]
@@ -149,11 +162,14 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     drift = carray(stack_doubles(levels), (n_levels - 1,))
     r = carray(stack_doubles(levels), (n_levels,))
     nxt = carray(stack_doubles(levels), (n_levels,))
+    iso_state = carray(stack_doubles(ISOLATOR_SLOTS), (ISOLATOR_STATE,))
+    for j in range(ISOLATOR_STATE):
+        iso_state[j] = isolator_state[b, j]
     fallen = False
     for step in range(s0, s1):
         a = ag[step] * scale  # x 1.0 is exact: unscaled members are unchanged
         # Structure without wall force: p - f(u_n), then the free velocities v_{n+1/2}.
-        chain[0] = isolator_force(u[0], fp, k_el)
+        chain[0] = isolator_force(iso_code, u[0], iso_state, iso_row)
         for i in range(n_levels - 1):
             drift[i] = u[i + 1] - u[i]
             # A story past its collapse drift, or a state no longer finite (NaN fails the
@@ -230,11 +246,8 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
             h_f[hrow, t] = force
             h_d[hrow, t] = max(delta, 0.0)
 
-        # Advance: the isolator's slip element sees this step's displacement increment, its
-        # limit at this step's sliding speed (exactly f_limit without speed dependence: the
-        # branch only spares the bilinear law an exp).
-        limit = f_limit if slow_drop == 0.0 else slip_limit(f_limit, slow_drop, rate, nxt[0])
-        fp = plastic_spring(fp, dt * nxt[0], k_slip, limit)
+        # Advance: the isolator law's state after this step, at its velocity.
+        isolator_advance(iso_code, iso_state, nxt[0], dt, iso_row)
         for i in range(n_levels):
             v[i] = nxt[i]
             u[i] = u[i] + dt * nxt[i]
@@ -243,7 +256,9 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
         u_all[b, i], v_all[b, i], peak_level[b, i] = u[i], v[i], pa[i]
     for i in range(n_levels - 1):
         peak_story[b, i] = pd[i]
-    st[PLANAR_STATE.fp], st[PLANAR_STATE.v_imp] = fp, v_imp
+    for j in range(ISOLATOR_STATE):
+        isolator_state[b, j] = iso_state[j]
+    st[PLANAR_STATE.v_imp] = v_imp
     st[PLANAR_STATE.delta_prev] = delta_prev
     st[PLANAR_STATE.in_contact] = 1.0 if in_contact else 0.0
     pk[PLANAR_PEAK_COLUMNS.peak_isolator_disp] = p_iso
@@ -326,6 +341,7 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
     story_state = np.array(arrays.story_state, dtype=np.float64, order="C")
     state = np.zeros((size, len(PLANAR_STATE)))
     state[:, PLANAR_STATE.v_imp] = 1.0
+    isolator_state = np.zeros((size, ISOLATOR_STATE))  # every law's state is zero at rest
     peaks = empty_peaks(size, n_levels)
     peak_scalar = np.zeros((size, len(PLANAR_PEAK_COLUMNS)))
     ag = np.ascontiguousarray(ag, dtype=np.float64)
@@ -337,8 +353,8 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
 
     model = (ag, float(dt), np.ascontiguousarray(op.transpose(0, 2, 1)), bands,
              np.ascontiguousarray(wall_response), np.ascontiguousarray(arrays.masses), story,
-             law, par, law_rows(contact), story_fields)
-    memory = (u, v, story_state, state)
+             law, par, law_rows(contact), story_fields, isolator_rows(arrays))
+    memory = (u, v, story_state, state, isolator_state)
     kept = (peaks["peak_total_accel"], peaks["peak_interstory_drift"], peak_scalar,
             peaks["n_impacts"])
     hist = (hist_row, every, h_u, h_acc, h_f, h_d)

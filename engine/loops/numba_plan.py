@@ -3,8 +3,9 @@
 The building moves in x and y (state arrays with a last axis of directions, the two directions'
 identical arithmetic on pairs, both in one vector register: numba_support.add2 and kin, the
 same bits as two scalar operations), with its step operator along x and along y (the same
-arrays for isotropic stories); the isolator's and the yielding stories' slip elements return
-radially (isolators/hysteresis.radial_return, the same function the NumPy loop calls); the moat
+arrays for isotropic stories); the isolator law in plan (compiled.isolator_force_xy and
+isolator_advance_xy, the law's own functions the NumPy loop calls) and the yielding stories'
+slip elements (isolators/hysteresis.radial_return, as the NumPy loop); the moat
 is two wall directions (rectangular: x and y, each wall on the side the slab moves towards) or
 one (circular: along the slab's radius), every impact law along the wall's normal through the
 laws' own `force_terms` (the planar kernel's dispatch), and the slab-wall friction along the
@@ -39,20 +40,25 @@ from .compiled import (
     LINK,
     PHYSICS_FILES,
     implicit_force,
+    isolator_advance_xy,
+    isolator_force_xy,
     law_terms,
     onset_weight,
     radial_return,
-    slip_limit,
     story_force,
 )
 from .layout import (
     CONTACT,
+    ISOLATOR_FIELDS,
+    ISOLATOR_SLOTS_XY,
+    ISOLATOR_STATE_XY,
     PLAN,
     PLAN_PEAK_COLUMNS,
     PLAN_STATE,
     PLAN_STORY,
     contact_state,
     finish_peaks,
+    isolator_rows,
     packed,
 )
 from .numba_support import (
@@ -110,8 +116,9 @@ def _friction(nx, w, comp, comp_y, limit, nrm_x, nrm_y):
 def _member(shape, b, s0, s1, model, memory, peaks, hist):
     """Steps s0 <= step < s1 of member b (see the module docstring). shape = (levels, pairs,
     circular, law_tag); model = (ag, dt, op, wall, story_k, mass, story, law, par, gaps,
-    law_par, story_fields), what the run reads; memory = (u, v, f_story, story_state, state,
-    wall_state), what it carries between chunks; peaks = (peak_level, peak_level_xy,
+    law_par, story_fields, isolator), what the run reads (isolator: the isolator law's codes
+    and rows); memory = (u, v, f_story, story_state, state, wall_state, isolator_state), what
+    it carries between chunks; peaks = (peak_level, peak_level_xy,
     peak_story, peak_story_xy, peak_iso_xy, peak_scalar, n_impacts, peak_wall); hist =
     (hist_row, every, h_u, h_acc, h_f, h_d) (run_plan builds them). Like the planar kernel,
     the member's state lives in scalars and arrays on the stack while it runs, each level's x
@@ -125,8 +132,9 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     uncoupled), its force compiled in for the member's law only (law_tag, as the planar
     kernel's). A member that has collapsed stops."""
     levels, pairs, circular, law_tag = shape
-    ag, dt, op, wall, story_k, mass, story, law, par, gaps_all, law_par, story_fields = model
-    u_all, v_all, f_story_all, story_state, state, wall_state = memory
+    (ag, dt, op, wall, story_k, mass, story, law, par, gaps_all, law_par, story_fields,
+     isolator) = model
+    u_all, v_all, f_story_all, story_state, state, wall_state, isolator_state = memory
     (peak_level, peak_level_xy, peak_story, peak_story_xy, peak_iso_xy, peak_scalar, n_impacts,
      peak_wall) = peaks
     hist_row, every, h_u, h_acc, h_f, h_d = hist
@@ -143,8 +151,9 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     comp, comp_y = p[PLAN.compliance], p[PLAN.compliance_y]
     anisotropic = p[PLAN.anisotropic] != 0.0
     mu_wall = p[PLAN.mu_wall]
-    k_el, k_slip, f_limit = p[PLAN.k_elastic], p[PLAN.k_slip], p[PLAN.f_limit]
-    slow_drop, rate = p[PLAN.slow_drop], p[PLAN.rate]
+    iso_codes, iso_fields = isolator
+    iso_code = iso_codes[b]
+    iso_row = carray(data_pointer(iso_fields[b]), (ISOLATOR_FIELDS,))
     stories_yield = p[PLAN.stories_yield] != 0.0
     cs, sn = p[PLAN.cos], p[PLAN.sin]
     k_post, k_slip_story = story[b, PLAN_STORY.story_k_post], story[b, PLAN_STORY.story_k_slip]
@@ -159,7 +168,9 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     codes = law[b]
     half_dt = 0.5 * dt
 
-    fpx, fpy = st[PLAN_STATE.fpx], st[PLAN_STATE.fpy]
+    iso_state = carray(stack_doubles(ISOLATOR_SLOTS_XY), (ISOLATOR_STATE_XY,))
+    for j in range(ISOLATOR_STATE_XY):
+        iso_state[j] = isolator_state[b, j]
     # per wall direction: impact velocity, previous indentation, in contact (1.0 or 0.0),
     # and the clear gap
     v_imp = carray(stack_doubles(levels), (2,))
@@ -220,7 +231,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
             st[PLAN_STATE.collapse_time] = step * dt
             break
         acc = (cs * ag[step, 0] - sn * ag[step, 1], sn * ag[step, 0] + cs * ag[step, 1])
-        store_pair(c, 0, add2(mul2((k_el, k_el), load_pair(u, 0)), (fpx, fpy)))
+        c[0, 0], c[0, 1] = isolator_force_xy(iso_code, u[0, 0], u[0, 1], iso_state, iso_row)
         for i in range(n_st):
             drift = load_pair(dr, i)
             if uniaxial:  # the law along x and along y, less what P-Delta takes
@@ -331,11 +342,9 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
         p_iso_x = max(p_iso_x, square[0])
         p_iso_y = max(p_iso_y, square[1])
 
-        # Advance: the slip elements see this step's increments, the isolator's limit at this
-        # step's sliding speed |v|.
-        limit = f_limit if slow_drop == 0.0 else slip_limit(
-            f_limit, slow_drop, rate, math.hypot(nx[0, 0], nx[0, 1]))
-        fpx, fpy = radial_return(fpx, fpy, dt * nx[0, 0], dt * nx[0, 1], k_slip, limit)
+        # Advance: the isolator law's state after this step, at its velocity; the stories'
+        # slip elements see this step's increments.
+        isolator_advance_xy(iso_code, iso_state, nx[0, 0], nx[0, 1], dt, iso_row)
         if stories_yield:
             for i in range(n_st):
                 fs[i, 0], fs[i, 1] = radial_return(
@@ -355,7 +364,8 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
             f_story_all[b, i, e] = fs[i, e]
             peak_story_xy[b, i, e] = pd[i, e]
         peak_story[b, i] = pd2[i]
-    st[PLAN_STATE.fpx], st[PLAN_STATE.fpy] = fpx, fpy
+    for j in range(ISOLATOR_STATE_XY):
+        isolator_state[b, j] = iso_state[j]
     for d in range(n_walls):
         ws[d, CONTACT.v_imp], ws[d, CONTACT.delta_prev] = v_imp[d], delta_prev[d]
         ws[d, CONTACT.in_contact] = inside[d]
@@ -422,8 +432,10 @@ def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, histor
     hist_row, every, rows, inverse = history_rows(history, size)
     hist = empty_plan_history(rows, n_steps, every, dt, n_levels)
     model = (np.ascontiguousarray(ag, dtype=np.float64), float(dt), op_xy, wall_xy, story_xy,
-             np.ascontiguousarray(arrays.masses), story, law, par, gaps, law_par, story_fields)
-    memory = (u, v, f_story, story_state, state, wall_state)
+             np.ascontiguousarray(arrays.masses), story, law, par, gaps, law_par, story_fields,
+             isolator_rows(arrays))
+    isolator_state = np.zeros((size, ISOLATOR_STATE_XY))  # every law's state is zero at rest
+    memory = (u, v, f_story, story_state, state, wall_state, isolator_state)
     kept = (peaks["peak_total_accel"], peaks["peak_total_accel_xy"],
             peaks["peak_interstory_drift"], peaks["peak_interstory_drift_xy"],
             peaks["peak_isolator_disp_xy"], scalar, peaks["n_impacts"],

@@ -7,8 +7,9 @@ numba_support.run_members), the cache keyed on the physics it compiles. What dif
 - the state is the 3L degrees of freedom (x, y, theta per level), padded to an even count and
   held as pairs, so that the dense step operator (3L x 6L, the columns of the transposed
   operator side by side) runs two rows per instruction (numba_support.add2 and kin);
-- the isolation is n bearings, each the isolator law's coupled slip element at its own
-  displacement and speed (compiled.radial_return, slip_limit), with its moment;
+- the isolation is n bearings, each the isolator law in plan at its own displacement and
+  speed (compiled.isolator_force_xy, isolator_advance_xy) with its share of the weight, and
+  its moment;
 - the moat is P contact points (torsion.ContactPoints), each its wall's law times its share
   (the same Contact.part arguments the NumPy loop builds, through compiled.law_terms): the
   points touching at a step are solved together, (I + D G / 2) F = E + D r on the points that
@@ -40,18 +41,21 @@ from . import compiled, layout, numba_contacts
 from .compiled import (
     JIT,
     PHYSICS_FILES,
+    isolator_advance_xy,
+    isolator_force_xy,
     law_terms,
     onset_weight,
-    radial_return,
-    slip_limit,
 )
 from .layout import (
     CONTACT,
+    ISOLATOR_FIELDS,
+    ISOLATOR_STATE_XY,
     TORSION,
     TORSION_PEAK_COLUMNS,
     TORSION_STATE,
     contact_state,
     finish_peaks,
+    isolator_rows,
     packed,
 )
 from .numba_contacts import point_arrays, solve_contacts
@@ -82,22 +86,23 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     """Steps s0 <= step < s1 of member b (the module docstring). shape = (levels, padded,
     slots); model = (ag, dt, op, respond, load, story_k, story_centre, collapse_square, par,
     bearings, point_wall, point_axis, codes, gaps, point_par, direction, tangent, coupling,
-    tangent_compliance, corners), what the run reads; memory = (u, v, f_plastic, state,
-    point_state), what it carries between chunks; peaks = (peak_level, peak_level_xy,
-    peak_story, peak_story_xy, peak_iso_xy, scalar, n_impacts, peak_wall, peak_point_force,
-    peak_point_indent); hist = (hist_row, every, h_u, h_acc, h_f, h_d, h_floor, h_floor_rot)
-    (run_torsion builds them). The state's 3L degrees of
-    freedom sit on the stack as Q pairs (Q = len(padded) / 2, the last lane of an odd 3L
-    unused, its operator rows 0): op (B, 6L, Q, 2) the transposed step operator, respond
-    (B, 3, Q, 2) its first three columns transposed; the P contact points' state and this
-    step's values too, on POINT_SLOTS-sized stack arrays (len(slots) of them: the kernel
-    compiles once per number of levels and multiple of POINT_SLOTS, P = len(point_wall) at run
-    time). A member that has collapsed stops."""
+    tangent_compliance, corners, isolator), what the run reads (isolator: the isolator law's
+    codes and rows, a bearing's share); memory = (u, v, isolator_state, state, point_state),
+    what it carries between chunks (isolator_state: per bearing); peaks = (peak_level,
+    peak_level_xy, peak_story, peak_story_xy, peak_iso_xy, scalar, n_impacts, peak_wall,
+    peak_point_force, peak_point_indent); hist = (hist_row, every, h_u, h_acc, h_f, h_d,
+    h_floor, h_floor_rot) (run_torsion builds them). The state's 3L degrees of freedom sit on
+    the stack as Q pairs (Q = len(padded) / 2, the last lane of an odd 3L unused, its operator
+    rows 0): op (B, 6L, Q, 2) the transposed step operator, respond (B, 3, Q, 2) its first three
+    columns transposed; the P contact points' state and this step's values too, on POINT_SLOTS-
+    sized stack arrays (len(slots) of them: the kernel compiles once per number of levels and
+    multiple of POINT_SLOTS, P = len(point_wall) at run time). A member that has collapsed
+    stops."""
     levels, padded, slots = shape
     (ag, dt, op, respond, load, story_k, story_centre, collapse_square, par, bearings,
      point_wall, point_axis, codes, gaps_all, point_par, direction, tangent, coupling,
-     tangent_compliance, corners) = model
-    u_all, v_all, f_plastic, state, point_state = memory
+     tangent_compliance, corners, isolator) = model
+    u_all, v_all, isolator_state, state, point_state = memory
     (peak_level, peak_level_xy, peak_story, peak_story_xy, peak_iso_xy, scalar, n_impacts,
      peak_wall, peak_point_force, peak_point_indent) = peaks
     hist_row, every, h_u, h_acc, h_f, h_d, h_floor, h_floor_rot = hist
@@ -117,11 +122,12 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     cq = collapse_square[b]
     p = par[b]
     cs, sn = p[TORSION.cos], p[TORSION.sin]
-    k_el, k_slip, f_limit = p[TORSION.k_elastic], p[TORSION.k_slip], p[TORSION.f_limit]
-    slow_drop, rate = p[TORSION.slow_drop], p[TORSION.rate]
+    iso_codes, iso_fields = isolator
+    iso_code = iso_codes[b]
+    iso_row = carray(data_pointer(iso_fields[b]), (ISOLATOR_FIELDS,))
     mu_wall = p[TORSION.mu_wall]
     bear = bearings[b]
-    fp = f_plastic[b]
+    fp = isolator_state[b]
     n_bearings = bear.shape[0]
     code = codes[b]
     pp = point_par[b]
@@ -230,8 +236,8 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
         sx, sy, sm = 0.0, 0.0, 0.0
         for k in range(n_bearings):
             bx, by = bear[k, 0], bear[k, 1]
-            fbx = k_el * (u0x - th * by) + fp[k, 0]
-            fby = k_el * (u0y + th * bx) + fp[k, 1]
+            fbx, fby = isolator_force_xy(iso_code, u0x - th * by, u0y + th * bx, fp[k],
+                                         iso_row)
             sx += fbx
             sy += fby
             sm += bx * fby - by * fbx
@@ -375,16 +381,11 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
             p_corner = max(p_corner, cx * cx + cy * cy)
         p_rot = max(p_rot, abs(th))
 
-        # Advance: each bearing's slip element with its own increment (and speed).
+        # Advance: each bearing's isolator law with its own velocity.
         w0x, w0y, w0t = nx[0], nx[1], nx[2]
         for k in range(n_bearings):
             bx, by = bear[k, 0], bear[k, 1]
-            vbx = w0x - w0t * by
-            vby = w0y + w0t * bx
-            limit = f_limit if slow_drop == 0.0 else slip_limit(
-                f_limit, slow_drop, rate, math.hypot(vbx, vby))
-            fp[k, 0], fp[k, 1] = radial_return(fp[k, 0], fp[k, 1], dt * vbx, dt * vby,
-                                               k_slip, limit)
+            isolator_advance_xy(iso_code, fp[k], w0x - w0t * by, w0y + w0t * bx, dt, iso_row)
         for i in range(n_pairs):
             w_pair = load_pair(nx2, i)
             store_pair(v2, i, w_pair)
@@ -449,15 +450,13 @@ def run_torsion(ag, dt, b, t, contacts, points, progress, scale, angle, history=
                                                         tangent))
     codes, gaps, point_par = point_arrays(contacts, points, size)
     n_bearings = t.bearings.shape[1]
-    # per bearing: the isolator's stiffnesses and force shared; cos and sin times the scale,
-    # as the NumPy loop forms them (the same bits)
-    par = packed(TORSION, b, size, k_elastic=b.k_elastic / n_bearings,
-                 k_slip=b.k_slip / n_bearings, f_limit=b.f_limit / n_bearings,
-                 cos=np.cos(angle) * scale, sin=np.sin(angle) * scale,
+    # cos and sin times the scale, as the NumPy loop forms them (the same bits)
+    par = packed(TORSION, b, size, cos=np.cos(angle) * scale, sin=np.sin(angle) * scale,
                  mu_wall=0.0 if mu_wall is None else mu_wall)
     corners = np.ascontiguousarray(np.array(CORNERS) * t.plan[:, None, :] / 2)
     u, v = np.zeros((size, n_levels, 3)), np.zeros((size, n_levels, 3))
-    f_plastic = np.zeros((size, n_bearings, 2))
+    # per bearing, every law's state zero at rest
+    isolator_state = np.zeros((size, n_bearings, ISOLATOR_STATE_XY))
     state = np.zeros((size, len(TORSION_STATE)))
     point_state = contact_state(size, n_points)
     n_walls = len(WALLS["rectangular"])
@@ -477,8 +476,8 @@ def run_torsion(ag, dt, b, t, contacts, points, progress, scale, angle, history=
              np.ascontiguousarray(points.axis, dtype=np.int64), codes, gaps, point_par,
              np.ascontiguousarray(g, dtype=np.float64),
              np.ascontiguousarray(tangent, dtype=np.float64), coupling, tangent_compliance,
-             corners)
-    memory = (u, v, f_plastic, state, point_state)
+             corners, isolator_rows(b, n_bearings))
+    memory = (u, v, isolator_state, state, point_state)
     kept = (peaks["peak_total_accel"], peaks["peak_total_accel_xy"],
             peaks["peak_interstory_drift"], peaks["peak_interstory_drift_xy"],
             peaks["peak_isolator_disp_xy"], scalar, peaks["n_impacts"],

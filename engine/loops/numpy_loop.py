@@ -12,10 +12,10 @@ import numpy as np
 
 from ..building import BuildingArrays
 from ..impact.contact import fill_force_terms, law_blocks
-from ..isolators.hysteresis import isolator_force, plastic_spring_force, slip_limit
 from ..results import empty_collapse, empty_peaks
 from ..scheme import implicit_force, onset_weight, step_operators
 from ..stories.registry import BY_CODE as STORY_LAWS_BY_CODE
+from .numpy_isolators import IsolatorBatch
 
 
 def ground_motion(accel, accel_dt: float, dt: float, n_steps: int) -> np.ndarray:
@@ -53,7 +53,7 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
     v_half = np.zeros((size, n_levels))
     rhs = np.zeros((size, 2 * n_levels))  # [p - f(u_n), v_{n-1/2}]
     chain = np.zeros((size, n_levels + 1))  # forces in isolator, stories 1..N, free end
-    f_plastic = np.zeros(size)
+    isolators = IsolatorBatch(b)
     # Nonlinear stories: each member's law (its `force`, called story by story: the law's
     # physics as written, for scalars) on its own copy of the initial state.
     state = b.story_state.copy()
@@ -61,9 +61,6 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
                  for m in np.flatnonzero(~b.story_linear)]
     collapse = empty_collapse(size)
     collapsed, collapse_time = collapse["collapsed"], collapse["collapse_time"]
-    # Decided once, not every step: whether any isolator's slip limit depends on speed
-    # (without, slip_limit is f_limit exactly: no exp needed).
-    any_speed = bool(np.any(b.slow_drop != 0))
     elastic = np.zeros(size)
     dashpot = np.zeros(size)
     v_imp = np.ones(size)
@@ -99,13 +96,14 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
             collapsed |= fallen
             collapse_time[fallen] = step * dt
             scale = np.where(collapsed, 0.0, scale)
-            for array in (u, v_half, f_plastic):
+            for array in (u, v_half):
                 array[fallen] = 0.0
+            isolators.reset(fallen)
             drift = np.diff(u, axis=1)
         a = ag[step] * scale  # (B,): x 1.0 is exact, unscaled members are unchanged
         u0 = u[:, 0]
         # Structure without wall force this step: p - f and the free velocities.
-        chain[:, 0] = isolator_force(u0, f_plastic, b.k_elastic)
+        chain[:, 0] = isolators.force(u0)
         np.multiply(b.story_k, drift, out=chain[:, 1:n_levels])
         for m, force in nonlinear:  # the law's force, less what P-Delta takes
             if not collapsed[m]:
@@ -158,11 +156,8 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
             hist["impact_force"][:, k] = force[hist_members]
             hist["indentation"][:, k] = np.maximum(delta[hist_members], 0.0)
 
-        # Advance: the isolator's slip element sees this step's displacement increment, its
-        # limit at this step's sliding speed.
-        limit = slip_limit(b.f_limit, b.slow_drop, b.rate, v_next[:, 0]) if any_speed \
-            else b.f_limit
-        f_plastic = plastic_spring_force(f_plastic, dt * v_next[:, 0], b.k_slip, limit)
+        # Advance: the isolator law's state after this step, at its velocity.
+        isolators.advance(v_next[:, 0], dt)
         v_half = v_next
         u = u + dt * v_next
         if progress is not None and step % report_every == 0:

@@ -5,9 +5,10 @@ The scheme is the planar one (engine/scheme.py) applied to each direction: the s
 last axis of directions (x, y; room for a rotation later). The building has its step operator
 along x and, when its stories differ along y (Building.story_stiffness_y), another along y;
 either way a force along x moves nothing along y. What couples the directions:
-- the isolator's and the yielding stories' slip elements, with a circular yield surface and
-  the exact radial return (isolators/hysteresis.radial_return), the friction pendulum's limit
-  at the sliding speed |v|;
+- the isolator law in plan (its force_xy and advance_xy: the bilinear and friction pendulum
+  laws' slip element with a circular yield surface and the exact radial return, the friction
+  pendulum's limit at the sliding speed |v|) and the yielding stories' slip elements, with
+  isolators/hysteresis.radial_return;
 - the moat: a rectangular one is two walls per axis, at +-clear gap along x (contact) and
   along y (contact_y), a corner loading both; a circular one pushes along the slab's radial
   direction n = u0 / |u0| with the radial indentation |u0| - clear gap. Every impact law acts
@@ -28,10 +29,11 @@ import numpy as np
 
 from ..building import BuildingArrays
 from ..impact.contact import fill_force_terms, law_blocks
-from ..isolators.hysteresis import radial_return, slip_limit
+from ..isolators.hysteresis import radial_return
 from ..results import DIRECTIONS, PEAKS, PLAN_PEAKS, WALLS, empty_collapse, empty_plan_history
 from ..scheme import implicit_force, onset_weight, step_operators
 from ..stories.registry import BY_CODE as STORY_LAWS_BY_CODE
+from .numpy_isolators import IsolatorBatch
 
 
 def ground_motion(accel, accel_dt: float, dt: float, n_steps: int) -> np.ndarray:
@@ -110,10 +112,10 @@ def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, an
     v_half = np.zeros((size, n_levels, n_dir))
     rhs = np.zeros((size, 2 * n_levels, n_dir))
     chain = np.zeros((size, n_levels + 1, n_dir))
-    f_plastic = np.zeros((size, n_dir))
+    isolators = IsolatorBatch(b, plan=True)
     f_story = np.zeros((size, n_levels - 1, n_dir))
     yields = b.story_yields
-    any_yields, any_speed = bool(yields.any()), bool(np.any(b.slow_drop != 0))
+    any_yields = bool(yields.any())
     collapse = empty_collapse(size)
     # Stories of a uniaxial law: the law along x and along y (uncoupled), each with its state.
     state = np.repeat(b.story_state[:, :, None, :], n_dir, axis=2)
@@ -139,13 +141,14 @@ def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, an
             collapse["collapsed"] |= fallen
             collapse["collapse_time"][fallen] = step * dt
             cos, sin = (np.where(collapse["collapsed"], 0.0, x) for x in (cos, sin))
-            for array in (u, v_half, f_plastic, f_story):
+            for array in (u, v_half, f_story):
                 array[fallen] = 0.0
+            isolators.reset(fallen)
             drift = np.diff(u, axis=1)
         a = np.column_stack([cos * ag[step, 0] - sin * ag[step, 1],
                              sin * ag[step, 0] + cos * ag[step, 1]])
         u0 = u[:, 0]
-        chain[:, 0] = b.k_elastic[:, None] * u0 + f_plastic
+        chain[:, 0, 0], chain[:, 0, 1] = isolators.force_xy(u0[:, 0], u0[:, 1])
         chain[:, 1:n_levels] = story_k * drift
         if any_yields:
             chain[yields, 1:n_levels] = (b.story_k_post[yields][:, :, None] * drift[yields]
@@ -209,14 +212,9 @@ def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, an
         raise_peak(peaks, "peak_interstory_drift", drift)
         raise_peak(peaks, "peak_isolator_disp", u0)
 
-        # Advance: the slip elements see this step's increments, the isolator's limit at this
-        # step's sliding speed |v|.
-        v0 = v_next[:, 0]
-        limit = slip_limit(b.f_limit, b.slow_drop, b.rate, np.hypot(v0[:, 0], v0[:, 1])) \
-            if any_speed else b.f_limit
-        f_plastic = np.column_stack(radial_return(f_plastic[:, 0], f_plastic[:, 1],
-                                                  dt * v0[:, 0], dt * v0[:, 1], b.k_slip,
-                                                  limit))
+        # Advance: the isolator law's state after this step, at its velocity; the stories'
+        # slip elements see this step's increments.
+        isolators.advance_xy(v_next[:, 0, 0], v_next[:, 0, 1], dt)
         if any_yields:
             inc = dt * np.diff(v_next[yields], axis=1)
             fx, fy = radial_return(f_story[yields][..., 0], f_story[yields][..., 1],

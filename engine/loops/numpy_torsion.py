@@ -6,9 +6,9 @@ The scheme is the planar one (engine/scheme.py) on the 3L degrees of freedom: th
 couples a level's translations and rotation where its mass centre is eccentric, the step
 operator is inverted once per member (scheme.step_operators' rule on full matrices). What
 the step adds to numpy_plan.py's:
-- the isolation's force is the sum of its bearings', each the isolator law's coupled slip
-  element (radial return) at the bearing's own displacement (u_x - theta Y, u_y + theta X) and
-  speed, with its moment about the plan's centre;
+- the isolation's force is the sum of its bearings', each the isolator law in plan with its
+  share of the weight (numpy_isolators.IsolatorBatch) at the bearing's own displacement
+  (u_x - theta Y, u_y + theta X) and velocity, with its moment about the plan's centre;
 - the moat is P contact points (torsion.ContactPoints), each its wall's law times its share;
   the points touching at a step are solved together, exactly: their forces F >= 0 satisfy
   (I + D G / 2) F = E + D r_free on the points that push (E, D the laws' elastic force and
@@ -27,10 +27,10 @@ import numpy as np
 
 from ..building import BuildingArrays
 from ..impact.contact import fill_force_terms, law_blocks
-from ..isolators.hysteresis import radial_return, slip_limit
 from ..results import PEAKS, PLAN_PEAKS, TORSION_PEAKS, WALLS, empty_collapse, empty_plan_history
 from ..scheme import full_step_operator, onset_weight
 from ..torsion import CORNERS, ContactPoints, TorsionArrays, corner_orbits, point_laws
+from .numpy_isolators import IsolatorBatch
 from .numpy_plan import raise_peak
 
 
@@ -108,16 +108,13 @@ def run_torsion(ag, dt, b: BuildingArrays, t: TorsionArrays, contacts, points: C
     wall_columns = [np.flatnonzero(points.wall == w) for w in range(len(WALLS["rectangular"]))]
     bearing_x, bearing_y = t.bearings[..., 0], t.bearings[..., 1]
     n_bearings = bearing_x.shape[1]
-    k_el, k_slip, f_limit = (x[:, None] / n_bearings for x in (b.k_elastic, b.k_slip,
-                                                               b.f_limit))
-    any_speed = bool(np.any(b.slow_drop != 0))
+    isolators = IsolatorBatch(b, plan=True, bearings=n_bearings)  # each bearing its share
     corners = np.array(CORNERS) * t.plan[:, None, :] / 2  # (B, 4, 2)
     cos, sin = np.cos(angle) * scale, np.sin(angle) * scale
 
     u = np.zeros((size, n_levels, 3))
     v_half = np.zeros((size, n_levels, 3))
     chain = np.zeros((size, n_levels + 1, 3))
-    f_plastic = np.zeros((size, n_bearings, 2))
     collapse = empty_collapse(size)
     peaks = {q.name: np.zeros((size, *q.trailing_shape(n_levels, len(WALLS["rectangular"]),
                                                        n_points)), dtype=q.dtype)
@@ -137,15 +134,16 @@ def run_torsion(ag, dt, b: BuildingArrays, t: TorsionArrays, contacts, points: C
             collapse["collapsed"] |= fallen
             collapse["collapse_time"][fallen] = step * dt
             cos, sin = (np.where(collapse["collapsed"], 0.0, x) for x in (cos, sin))
-            for array in (u, v_half, f_plastic):
+            for array in (u, v_half):
                 array[fallen] = 0.0
+            isolators.reset(fallen)
             drift = np.diff(u, axis=1)
         a = np.column_stack([cos * ag[step, 0] - sin * ag[step, 1],
                              sin * ag[step, 0] + cos * ag[step, 1]])
         u0 = u[:, 0]
         # The bearings at their own displacements, their forces and moments on the slab.
-        f_bx = k_el * (u0[:, :1] - u0[:, 2:] * bearing_y) + f_plastic[..., 0]
-        f_by = k_el * (u0[:, 1:2] + u0[:, 2:] * bearing_x) + f_plastic[..., 1]
+        f_bx, f_by = isolators.force_xy(u0[:, :1] - u0[:, 2:] * bearing_y,
+                                        u0[:, 1:2] + u0[:, 2:] * bearing_x)
         chain[:, 0] = np.column_stack([f_bx.sum(axis=1), f_by.sum(axis=1),
                                        (bearing_x * f_by - bearing_y * f_bx).sum(axis=1)])
         chain[:, 1:n_levels] = story_forces(t.story_k, t.story_centre, drift)
@@ -212,15 +210,10 @@ def run_torsion(ag, dt, b: BuildingArrays, t: TorsionArrays, contacts, points: C
             axis=1), out=peaks["peak_corner_disp"])
         np.maximum(peaks["peak_rotation"], np.abs(u0[:, 2]), out=peaks["peak_rotation"])
 
-        # Advance: each bearing's slip element with its own increment (and speed).
+        # Advance: each bearing's isolator law with its own velocity.
         v0 = v_next[:, 0]
-        vb_x = v0[:, :1] - v0[:, 2:] * bearing_y
-        vb_y = v0[:, 1:2] + v0[:, 2:] * bearing_x
-        limit = slip_limit(f_limit, b.slow_drop[:, None], b.rate[:, None],
-                           np.hypot(vb_x, vb_y)) if any_speed else f_limit
-        fx, fy = radial_return(f_plastic[..., 0], f_plastic[..., 1], dt * vb_x, dt * vb_y,
-                               k_slip, limit)
-        f_plastic = np.stack([fx, fy], axis=-1)
+        isolators.advance_xy(v0[:, :1] - v0[:, 2:] * bearing_y,
+                             v0[:, 1:2] + v0[:, 2:] * bearing_x, dt)
         v_half = v_next
         u = u + dt * v_next
         if progress is not None and step % report_every == 0:

@@ -10,27 +10,38 @@ import pytest
 import engine
 from engine import Building, Contact, Isolator
 from engine.isolators import registry
-from engine.isolators.hysteresis import isolator_force, plastic_spring_force, slip_limit
+from engine.isolators.hysteresis import slip_limit
 
 FP = dict(radius=2.0, mu_slow=0.05, mu_fast=0.10, rate=30.0)
 
 
 def test_friction_follows_constantinou():
-    """mu(v) W = (mu_fast - (mu_fast - mu_slow) exp(-rate |v|)) W through the hysteresis
-    fields of the friction pendulum."""
+    """mu(v) W = (mu_fast - (mu_fast - mu_slow) exp(-rate |v|)) W: the friction pendulum's
+    slip limit at each sliding speed, where its friction force stops (its own advance,
+    pushed far in one step)."""
     b = Building(isolator=Isolator.friction_pendulum(**FP))
     f = b.isolation.fields(b.total_mass, b.g)
+    row = b.isolation.row(b.total_mass, b.g)
+    law = registry.LAWS["friction_pendulum"]
     weight = b.g * b.total_mass
     for v in (0.0, 0.01, -0.05, 0.3, 5.0):
         mu = 0.10 - (0.10 - 0.05) * np.exp(-30.0 * abs(v))
         assert slip_limit(f["f_limit"], f["slow_drop"], f["rate"], v) == \
             pytest.approx(mu * weight, rel=1e-14)
+        state = np.zeros(len(law.STATE))
+        law.advance(state, v, 1.0 if v else 0.0, row)
+        assert abs(state[law.STATE.slip_force]) == pytest.approx(mu * weight if v else 0.0,
+                                                                 rel=1e-14)
     assert f["k_elastic"] == pytest.approx(weight / 2.0)
     assert f["k_slip"] == pytest.approx(0.10 * weight / 5e-4)
     assert b.isolation_zeta == 0.0 and b.yield_displacement == 5e-4
-    # the bilinear law's limit does not depend on speed: exactly f_limit
-    g = Building().isolation.fields(Building().total_mass, 9.81)
-    assert slip_limit(g["f_limit"], g["slow_drop"], g["rate"], 0.7) == g["f_limit"]
+    # the bilinear law's limit does not depend on speed: exactly f_limit, slow or fast
+    bilinear = registry.LAWS["bilinear"]
+    g_row = Building().isolation.row(Building().total_mass, 9.81)
+    for v in (0.01, 0.7, 30.0):
+        state = np.zeros(len(bilinear.STATE))
+        bilinear.advance(state, v, 1.0, g_row)
+        assert state[bilinear.STATE.slip_force] == g_row[bilinear.ROW.f_limit]
 
 
 def test_declarations_and_their_checks():
@@ -68,16 +79,17 @@ def test_declarations_and_their_checks():
 def _loop_energy(isolator, mass, g, amplitude, period=3.0, steps=2000):
     """J: the area of the isolator's hysteresis loop, integral of F du over one full cycle of
     u = amplitude sin(2 pi t / period), after the first quarter (the virgin loading), driven
-    through engine/isolators/hysteresis.py with the law's fields at each step's speed."""
-    f = isolator.fields(mass, g)
+    through the law's own advance and force (the functions both time loops run) at each step's
+    velocity."""
+    law = registry.LAWS[isolator.law]
+    row = isolator.row(mass, g)
     t = np.linspace(0.0, 1.25 * period, 5 * steps + 1)
     u = amplitude * np.sin(2 * np.pi * t / period)
-    speed = np.gradient(u, t)
-    f_slip, force = 0.0, np.zeros_like(u)
+    h = t[1] - t[0]
+    state, force = np.zeros(len(law.STATE)), np.zeros_like(u)
     for n in range(1, u.size):
-        limit = slip_limit(f["f_limit"], f["slow_drop"], f["rate"], speed[n])
-        f_slip = plastic_spring_force(f_slip, u[n] - u[n - 1], f["k_slip"], limit)
-        force[n] = isolator_force(u[n], f_slip, f["k_elastic"])
+        law.advance(state, (u[n] - u[n - 1]) / h, h, row)
+        force[n] = law.force(u[n], state, row)
     return float(np.trapezoid(force[steps:], u[steps:]))
 
 

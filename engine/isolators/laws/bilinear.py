@@ -5,7 +5,14 @@ Exact return mapping (engine/isolators/hysteresis.py); the limit does not depend
 """
 import numpy as np
 
+from ...layout import columns
 from ...parameters import Declaration, Parameter
+from ..hysteresis import (
+    isolator_force,
+    isolator_force_xy,
+    plastic_spring_force,
+    radial_return,
+)
 
 NAME = "bilinear"
 """The law's name in Isolator.of, building files and archives."""
@@ -65,12 +72,47 @@ def energy_per_cycle(mass, g, displacement, k1, k2, fy_ratio):
     return 4 * q_d * max(displacement - d_y, 0.0)
 
 
+ROW = columns("BilinearRow", "k_elastic", "k_slip", "f_limit")
+"""The constants the time loops read: the elastic spring K2 (N/m), the slip element's
+stiffness K1 - K2 (N/m) and its limit force (N)."""
+CARRIED = ROW._fields
+"""Every constant is proportional to the weight the bearing carries."""
+STATE = columns("BilinearState", "slip_force")
+"""Along one axis: the slip element's force (N)."""
+STATE_XY = columns("BilinearStateXY", "slip_force_x", "slip_force_y")
+"""In plan: the slip element's force along x and y (N)."""
+
+
 def fields(mass, g, k1, k2, fy_ratio):
-    """K2 elastic; K1 - K2 slipping at (K1 - K2) u_y, whatever the speed."""
+    """ROW by name: K2 elastic; K1 - K2 slipping at (K1 - K2) u_y, whatever the speed."""
     k_slip = k1 - k2
     return {"k_elastic": k2, "k_slip": k_slip,
-            "f_limit": k_slip * yield_displacement(mass, g, k1, k2, fy_ratio),
-            "slow_drop": 0.0, "rate": 0.0}
+            "f_limit": k_slip * yield_displacement(mass, g, k1, k2, fy_ratio)}
+
+
+def force(u, state, row):
+    """The isolator's force (N) at displacement u (m): the spring's plus the slip element's."""
+    return isolator_force(u, state[STATE.slip_force], row[ROW.k_elastic])
+
+
+def advance(state, velocity, dt, row):
+    """The slip element after a step of dt (s) at `velocity` (m/s), return-mapped."""
+    state[STATE.slip_force] = plastic_spring_force(
+        state[STATE.slip_force], dt * velocity, row[ROW.k_slip], row[ROW.f_limit])
+
+
+def force_xy(ux, uy, state, row):
+    """In plan: the force (N, x and y) at displacement (ux, uy) (m)."""
+    return isolator_force_xy(ux, uy, state[STATE_XY.slip_force_x],
+                             state[STATE_XY.slip_force_y], row[ROW.k_elastic])
+
+
+def advance_xy(state, vx, vy, dt, row):
+    """In plan: the slip element after a step of dt (s) at velocity (vx, vy) (m/s),
+    return-mapped onto its circle."""
+    state[STATE_XY.slip_force_x], state[STATE_XY.slip_force_y] = radial_return(
+        state[STATE_XY.slip_force_x], state[STATE_XY.slip_force_y], dt * vx, dt * vy,
+        row[ROW.k_slip], row[ROW.f_limit])
 
 
 def bounded(values, lambda_q, lambda_k):

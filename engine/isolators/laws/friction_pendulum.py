@@ -8,7 +8,17 @@ damping: no viscous isolation damping unless a zeta_iso is given (then on k_0 + 
 Exact return mapping (engine/isolators/hysteresis.py), the friction limit at the step's
 sliding speed.
 """
+import numpy as np
+
+from ...layout import columns
 from ...parameters import REQUIRED, Declaration, Parameter
+from ..hysteresis import (
+    isolator_force,
+    isolator_force_xy,
+    plastic_spring_force,
+    radial_return,
+    slip_limit,
+)
 
 NAME = "friction_pendulum"
 """The law's name in Isolator.of, building files and archives."""
@@ -74,12 +84,53 @@ def energy_per_cycle(mass, g, displacement, radius, mu_slow, mu_fast, rate, yiel
     return 4 * mu_fast * weight * displacement
 
 
+ROW = columns("FrictionPendulumRow", "k_elastic", "k_slip", "f_limit", "slow_drop", "rate")
+"""The constants the time loops read: the pendulum's stiffness W / R (N/m), the pre-slip
+stiffness k_0 (N/m), the fast friction force mu_fast W (N), its drop at low speed
+(mu_fast - mu_slow) / mu_fast and the rate of the change (s/m)."""
+CARRIED = ("k_elastic", "k_slip", "f_limit")
+"""The constants proportional to the weight the bearing carries."""
+STATE = columns("FrictionPendulumState", "slip_force")
+"""Along one axis: the friction force (N)."""
+STATE_XY = columns("FrictionPendulumStateXY", "slip_force_x", "slip_force_y")
+"""In plan: the friction force along x and y (N)."""
+
+
 def fields(mass, g, radius, mu_slow, mu_fast, rate, yield_disp):
-    """W / R elastic; k_0 slipping at mu(|v|) W = mu_fast W (1 - slow_drop exp(-rate |v|))."""
+    """ROW by name: W / R elastic; k_0 slipping at mu(|v|) W = mu_fast W (1 - slow_drop
+    exp(-rate |v|))."""
     weight = g * mass
     return {"k_elastic": weight / radius, "k_slip": mu_fast * weight / yield_disp,
             "f_limit": mu_fast * weight, "slow_drop": (mu_fast - mu_slow) / mu_fast,
             "rate": rate}
+
+
+def force(u, state, row):
+    """The bearing's force (N) at displacement u (m): the pendulum's plus the friction."""
+    return isolator_force(u, state[STATE.slip_force], row[ROW.k_elastic])
+
+
+def advance(state, velocity, dt, row):
+    """The friction after a step of dt (s) at `velocity` (m/s): return-mapped, its limit at
+    this speed (exactly mu_fast W where mu_slow = mu_fast)."""
+    limit = slip_limit(row[ROW.f_limit], row[ROW.slow_drop], row[ROW.rate], velocity)
+    state[STATE.slip_force] = plastic_spring_force(state[STATE.slip_force], dt * velocity,
+                                                   row[ROW.k_slip], limit)
+
+
+def force_xy(ux, uy, state, row):
+    """In plan: the force (N, x and y) at displacement (ux, uy) (m)."""
+    return isolator_force_xy(ux, uy, state[STATE_XY.slip_force_x],
+                             state[STATE_XY.slip_force_y], row[ROW.k_elastic])
+
+
+def advance_xy(state, vx, vy, dt, row):
+    """In plan: the friction after a step of dt (s) at velocity (vx, vy) (m/s), return-mapped
+    onto its circle, whose radius is the limit at the sliding speed |v|."""
+    limit = slip_limit(row[ROW.f_limit], row[ROW.slow_drop], row[ROW.rate], np.hypot(vx, vy))
+    state[STATE_XY.slip_force_x], state[STATE_XY.slip_force_y] = radial_return(
+        state[STATE_XY.slip_force_x], state[STATE_XY.slip_force_y], dt * vx, dt * vy,
+        row[ROW.k_slip], limit)
 
 
 def bounded(values, lambda_q, lambda_k):

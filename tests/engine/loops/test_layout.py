@@ -6,9 +6,11 @@ import dataclasses
 import numpy as np
 import pytest
 
-from engine.building import BuildingArrays
+from engine import Building, Isolator
+from engine.building import building_arrays
 from engine.impact.contact import Contact, law_arguments, law_rows
 from engine.impact.registry import LAW_MODULES, ROW_WIDTH
+from engine.isolators.registry import LAWS as ISOLATOR_LAWS
 from engine.layout import appended, columns
 from engine.loops import layout
 from engine.results import PEAKS, PLAN_PEAKS, TORSION_PEAKS
@@ -24,11 +26,27 @@ def test_columns_are_numbered_from_their_declaration():
     assert both._fields == ("a", "b", "c") and both.c == 2
 
 
-def test_the_isolator_columns_are_building_arrays_fields():
-    names = {f.name for f in dataclasses.fields(BuildingArrays)}
-    assert set(layout.ISOLATOR._fields) <= names
-    for member in (layout.PLANAR, layout.PLAN, layout.TORSION):
-        assert member._fields[:len(layout.ISOLATOR)] == layout.ISOLATOR._fields
+@pytest.mark.parametrize("law", list(ISOLATOR_LAWS.values()), ids=lambda m: m.NAME)
+def test_an_isolator_row_holds_its_law_by_name_and_a_bearing_its_share(law):
+    """isolator_rows packs each member's law code and ROW as the law declares it (fields by
+    name), zero beyond; with n bearings the CARRIED columns are 1/n, the others unchanged."""
+    iso = {"bilinear": Isolator.bilinear(), "friction_pendulum": Isolator.friction_pendulum(
+        radius=2.0, mu_slow=0.05, mu_fast=0.1, rate=30.0)}[law.NAME]
+    building = Building(isolator=iso)
+    arrays = building_arrays([Building(), building], 2)
+    codes, rows = layout.isolator_rows(arrays)
+    assert codes[1] == list(ISOLATOR_LAWS).index(law.NAME)
+    fields = iso.fields(building.total_mass, building.g)
+    assert list(fields) == list(law.ROW._fields)
+    assert rows.shape == (2, layout.ISOLATOR_FIELDS)
+    assert np.all(rows[1, len(law.ROW):] == 0.0)
+    for name, value in fields.items():
+        assert rows[1, getattr(law.ROW, name)] == value
+    _, shared = layout.isolator_rows(arrays, bearings=4)
+    for name, value in fields.items():
+        expected = value / 4 if name in law.CARRIED else value
+        assert shared[1, getattr(law.ROW, name)] == expected
+    assert set(law.CARRIED) <= set(law.ROW._fields)
 
 
 def test_the_scalar_peaks_are_the_results_declarations():
