@@ -221,8 +221,10 @@ class Building:
 
     @property
     def can_collapse(self) -> bool:
-        """Whether the building has a collapse criterion (collapse_drift_ratio)."""
-        return self.collapse_drift_ratio is not None
+        """Whether the building has a collapse criterion: a collapse_drift_ratio, or an
+        isolator with a displacement capacity."""
+        return self.collapse_drift_ratio is not None or bool(np.isfinite(
+            self.isolation.displacement_capacity(self.total_mass, self.g)))
 
     @property
     def collapse_drift(self) -> np.ndarray:
@@ -359,7 +361,8 @@ class BuildingArrays:
     P-Delta takes (Building.gravity_stiffness; exactly story_stiffness without p_delta); the
     isolator law (engine/isolators/): isolator_code (B,) its code, isolator_fields
     (B, MAX_FIELDS) its ROW (for the whole building: a building that twists shares the CARRIED
-    ones among its bearings); the story law (engine/stories/): story_linear (B,)
+    ones among its bearings), isolator_capacity (B,) m its displacement capacity (inf: none;
+    a bearing's, in a building that twists); the story law (engine/stories/): story_linear (B,)
     bool (the loops multiply by story_k), story_code (B,) its code, story_fields
     (B, L - 1, MAX_FIELDS) its constants, story_state (B, L - 1, MAX_STATE) its initial
     state, story_gravity (B, L - 1) N/m the P-Delta stiffness subtracted from a nonlinear
@@ -376,6 +379,7 @@ class BuildingArrays:
     story_k: np.ndarray
     isolator_code: np.ndarray
     isolator_fields: np.ndarray
+    isolator_capacity: np.ndarray
     story_linear: np.ndarray
     story_code: np.ndarray
     story_fields: np.ndarray
@@ -445,6 +449,7 @@ def _building_row(b: Building) -> dict:
     return {"masses": np.asarray(b.masses, float), "story_k": story_k,
             "isolator_code": b.isolation.code,
             "isolator_fields": b.isolation.row(b.total_mass, b.g),
+            "isolator_capacity": b.isolation.displacement_capacity(b.total_mass, b.g),
             "story_linear": law.is_linear, "story_code": law.code, "story_fields": fields,
             "story_state": state, "story_gravity": gravity, "story_k_post": post,
             "story_k_slip": slip, "story_f_limit": limit,

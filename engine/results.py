@@ -16,6 +16,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .layout import columns
+
 
 @dataclass(frozen=True)
 class Quantity:
@@ -24,7 +26,8 @@ class Quantity:
     name: its name in Result, in the archives and in code; units: UDUNITS string of its SI
     unit; long_name: one line (the archives' long_name); along: None, "floor" or "story" (see
     the module docstring); dtype: float64, or int64 for counts; wall: True for a quantity of
-    the moat-wall contact (zero where there is no wall).
+    the moat-wall contact (zero where there is no wall); flags: for a code, the meaning of
+    each of its values 0, 1, ... (the archives' CF flag_values and flag_meanings).
     """
 
     name: str
@@ -34,6 +37,7 @@ class Quantity:
     dtype: type = np.float64
     wall: bool = False
     direction: bool = False
+    flags: tuple[str, ...] = ()
 
     def trailing_shape(self, n_levels: int, n_walls: int = 1,
                        n_points: int = 1) -> tuple[int, ...]:
@@ -58,11 +62,22 @@ PEAKS: tuple[Quantity, ...] = (
 )
 """The peaks of every member, over every step of the run, in Result's order."""
 
+COLLAPSE_MODES = ("none", "story_drift", "isolator_capacity", "numerical_instability")
+"""How a run can end in collapse, by code: 0 it did not; 1 a story's drift past its collapse
+drift; 2 the isolator's displacement (a bearing's, in a building that twists) past its
+capacity; 3 a state no longer finite. At a step where several are met, the highest code."""
+MODE = columns("CollapseMode", *COLLAPSE_MODES)
+"""The codes by name (MODE.isolator_capacity == 2), as the loops write them."""
+
 COLLAPSE: tuple[Quantity, ...] = (
     Quantity("collapsed", "1", "the run ended in collapse: a story's drift ratio past the "
-             "building's collapse_drift_ratio, or a numerical instability", dtype=np.bool_),
+             "building's collapse_drift_ratio, the isolator past its displacement capacity, "
+             "or a numerical instability", dtype=np.bool_),
     Quantity("collapse_time", "s", "time at which the run ended in collapse (NaN: it did "
              "not)"),
+    Quantity("collapse_mode", "1", "how the run ended: " + ", ".join(
+        f"{code} {mode.replace('_', ' ')}" for code, mode in enumerate(COLLAPSE_MODES)),
+        dtype=np.int8, flags=COLLAPSE_MODES),
 )
 """How each member's run ended, beside its peaks (which stop at the step before a collapse:
 a collapsed run is a collapse, its peaks no amplification)."""
@@ -177,8 +192,10 @@ def run_quantities(moat: str | None = None, collapse: bool = False,
 
 
 def empty_collapse(size: int) -> dict[str, np.ndarray]:
-    """No member collapsed yet: collapsed (size,) False, collapse_time (size,) NaN."""
-    return {"collapsed": np.zeros(size, dtype=bool), "collapse_time": np.full(size, np.nan)}
+    """No member collapsed yet: collapsed (size,) False, collapse_time (size,) NaN,
+    collapse_mode (size,) 0."""
+    return {"collapsed": np.zeros(size, dtype=bool), "collapse_time": np.full(size, np.nan),
+            "collapse_mode": np.zeros(size, dtype=np.int8)}
 
 
 def empty_peaks(size: int, n_levels: int, moat: str | None = None,
@@ -210,9 +227,10 @@ class Result:
     peak_total_accel (B, levels) m/s^2, peak_interstory_drift (B, stories) m,
     peak_isolator_disp (B,) m, max_indentation (B,) m, max_impact_force (B,) N, n_impacts (B,),
     impact_energy (B,) J: work done on the wall contacts, i.e. energy dissipated by impacts
-    once contacts close; dt: the integration step (s); collapsed (B,) bool and collapse_time
-    (B,) s, NaN where none (COLLAPSE); history: None or a dict of time (T,) s,
-    members (M,) and every HISTORIES quantity, (M, T) or (M, T, levels).
+    once contacts close; dt: the integration step (s); collapsed (B,) bool, collapse_time
+    (B,) s, NaN where none, and collapse_mode (B,) int8 (COLLAPSE, COLLAPSE_MODES); history:
+    None or a dict of time (T,) s, members (M,) and every HISTORIES quantity, (M, T) or
+    (M, T, levels).
     """
 
     peak_total_accel: np.ndarray
@@ -226,6 +244,7 @@ class Result:
     history: dict | None = None
     collapsed: np.ndarray | None = None
     collapse_time: np.ndarray | None = None
+    collapse_mode: np.ndarray | None = None
 
     def peaks(self) -> dict[str, np.ndarray]:
         """Peak name -> array, in PEAKS order."""

@@ -82,7 +82,11 @@ def quantity_variable(q: Quantity, lead_dims: tuple[str, ...], values,
     quantity of a run in plan), labelled with its declaration."""
     dims = tuple(lead_dims) + ((q.along,) if q.along else ()) \
         + (("direction",) if q.direction else ())
-    return variable(dims, values, q.units, q.long_name if long_name is None else long_name)
+    labelled = variable(dims, values, q.units, q.long_name if long_name is None else long_name)
+    if q.flags:  # a code: its values' meanings, as CF flags
+        labelled.attrs["flag_values"] = np.arange(len(q.flags), dtype=q.dtype)
+        labelled.attrs["flag_meanings"] = " ".join(q.flags)
+    return labelled
 
 
 def block_long_name(q: Quantity, prefix: str) -> str:

@@ -306,10 +306,14 @@ def building_attributes(building: engine.Building) -> dict:
             "P-Delta: the weight of the levels above each story on its drift, a geometric "
             "stiffness -P_i / h_i in parallel with the story (the isolators carry none)")
     if building.can_collapse:
+        capacity = isolation.displacement_capacity(building.total_mass, building.g)
+        criteria = ([f"a story's drift exceeds {building.collapse_drift_ratio:g} of its "
+                     "height"] if building.collapse_drift_ratio is not None else []) + (
+            [f"the isolator's displacement exceeds its capacity, {capacity:g} m"]
+            if np.isfinite(capacity) else [])
         attrs["building_collapse_text"] = (
-            f"a run ends as collapsed when a story's drift exceeds "
-            f"{building.collapse_drift_ratio:g} of its height, or its state is no longer "
-            "finite; its peaks are those of the steps before")
+            f"a run ends as collapsed when {', or '.join(criteria)}, or its state is no "
+            "longer finite; its peaks are those of the steps before")
     attrs["building_yield_displacement"] = building.yield_displacement
     attrs["damping_decision"] = (
         f"paper: isolation dashpot {isolation.dashpot_text}, stiffness-proportional story "

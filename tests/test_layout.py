@@ -240,7 +240,8 @@ TESTED_IN = {
         ("engine.loops.numpy_plan", "engine.loops.numba_plan")),
     "tests/engine/test_torsion.py": (
         "a building that twists: its two loops against each other and against the plan run",
-        ("engine.loops.numpy_torsion", "engine.loops.numba_torsion")),
+        ("engine.loops.numpy_torsion", "engine.loops.numba_torsion",
+         "engine.loops.numba_bearings")),
     "tests/engine/test_impact.py": (
         "every impact law through the two-body simulator: realised COR, energy, the "
         "calibration rules, against an independent solution",

@@ -30,7 +30,10 @@ class Isolator:
         if law not in LAWS:
             raise EngineError(f"unknown isolator law {law!r}; choose one of {tuple(LAWS)}")
         declaration = LAWS[law].PARAMETERS
-        values = declaration.resolve(params)
+        # an optional parameter left unset (e.g. no displacement capacity) is left out, so
+        # that the isolator, its description and provenance are those it had without it
+        values = {name: value for name, value in declaration.resolve(params).items()
+                  if value is not None}
         for name, value in values.items():
             if not isinstance(declaration[name], Option):
                 if getattr(value, "ndim", 0) != 0:
@@ -72,6 +75,10 @@ class Isolator:
     def initial_stiffness(self, mass: float, g: float) -> float:
         """Stiffness before any slip, N/m (stability limit, damping rules)."""
         return LAWS[self.law].initial_stiffness(mass, g, **self.values)
+
+    def displacement_capacity(self, mass: float, g: float) -> float:
+        """Displacement (m) past which the bearing has failed (inf: no capacity)."""
+        return float(LAWS[self.law].displacement_capacity(mass, g, **self.values))
 
     def yield_displacement(self, mass: float, g: float) -> float:
         """Displacement at which the slip element starts to slip, m."""

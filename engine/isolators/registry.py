@@ -9,8 +9,8 @@ from . import laws as _laws_package
 
 LAW_INTERFACE = ("NAME", "ORDER", "PARAMETERS", "DEFAULT_ZETA", "DASHPOT_TEXT", "check",
                  "fields", "initial_stiffness", "yield_displacement", "effective_stiffness",
-                 "ROW", "CARRIED", "STATE", "STATE_XY", "force", "advance", "force_xy",
-                 "advance_xy")
+                 "displacement_capacity", "ROW", "CARRIED", "STATE", "STATE_XY", "force",
+                 "advance", "force_xy", "advance_xy")
 CODE_INTERFACE = ("post_yield_stiffness", "energy_per_cycle", "bounded")
 """What a law gives the code's equivalent-linear design (pipeline.motions.target.isolation_design)
 and its property bounds (pipeline.motions.bounds: `bounded(values, lambda_q, lambda_k)`):

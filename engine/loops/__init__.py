@@ -15,6 +15,7 @@ defaults (members outer, steps inner; compiled once per number of levels), with 
 the physics they compile for scalars (the contact solve, the impact, story and isolator laws'
 dispatch), layout.py, the columns of the arrays they pack (declared once),
 numba_contacts.py, the contact points of the twisting kernel and their solve,
+numba_bearings.py, its bearings,
 numpy_isolators.py, the isolator laws on a NumPy batch (the NumPy loops' twin of compiled.py's
 isolator dispatch), and
 numba_support.py, what they need of numba beyond @njit (a cache keyed on the physics, arrays

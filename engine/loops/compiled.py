@@ -12,16 +12,18 @@ from __future__ import annotations
 
 import types
 
+import numpy as np
 from numba import njit
 
 from .. import layout as columns
-from .. import scheme
+from .. import results, scheme
 from ..impact import registry
 from ..isolators import hysteresis
 from ..isolators import registry as isolator_registry
+from ..results import MODE
 from ..stories import registry as story_registry
 
-PHYSICS_FILES = [m.__file__ for m in (hysteresis, scheme, columns, registry,
+PHYSICS_FILES = [m.__file__ for m in (hysteresis, scheme, columns, results, registry,
                                       *registry.LAWS.values(), story_registry,
                                       *story_registry.LAWS.values(), isolator_registry,
                                       *isolator_registry.LAWS.values())]
@@ -39,6 +41,14 @@ option, private but stable since numba 0.2x)."""
 
 radial_return = njit(**LINK)(hysteresis.radial_return)
 implicit_force = njit(**LINK)(scheme.implicit_force)
+
+
+@njit(**LINK)
+def failed(mode, measure, code):
+    """The collapse mode (results.MODE) once a criterion of mode `code` failed on `measure`:
+    `code`, or numerical instability where the measure is not finite (NaN fails every
+    comparison); the higher of it and `mode`, the mode of the criteria failed before."""
+    return max(mode, code if np.isfinite(measure) else MODE.numerical_instability)
 onset_weight = njit(**LINK)(scheme.onset_weight)
 
 

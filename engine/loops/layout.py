@@ -17,18 +17,20 @@ from ..isolators.registry import BY_CODE, MAX_FIELDS, MAX_STATE, MAX_STATE_XY
 from ..layout import appended, columns
 from ..results import PEAKS, PLAN_PEAKS, TORSION_PEAKS
 
-PLANAR = columns("Planar", "compliance", "stories_nonlinear", "gap", "scale")
+PLANAR = columns("Planar", "compliance", "stories_nonlinear", "gap", "scale", "capacity")
 """numba_loop's per-member floats: the slab's compliance to a wall force (dt^2 / m, m/N), 1.0
-where the stories follow a nonlinear law, the clear gap (m) and the record's scale."""
+where the stories follow a nonlinear law, the clear gap (m), the record's scale and the
+isolator's displacement capacity (m, inf: none)."""
 PLAN = columns("Plan", "compliance", "compliance_y", "anisotropic", "mu_wall",
-               "stories_yield", "stories_uniaxial", "cos", "sin")
+               "stories_yield", "stories_uniaxial", "cos", "sin", "capacity_square")
 """numba_plan's per-member floats: the compliances along x and y (m/N), 1.0 where the
 building differs along y, the slab-wall friction coefficient, 1.0 where the stories yield in
 plan (a slip element) or follow a uniaxial law along each axis, and the record's direction
-(cos, sin) times its scale."""
-TORSION = columns("Torsion", "cos", "sin", "mu_wall")
+(cos, sin) times its scale, and the isolator's displacement capacity squared (m^2: no root per
+step)."""
+TORSION = columns("Torsion", "cos", "sin", "mu_wall", "capacity_square")
 """numba_torsion's per-member floats: the record's direction (cos, sin) times its scale, the
-slab-wall friction coefficient."""
+slab-wall friction coefficient, a bearing's displacement capacity squared (m^2)."""
 
 PLANAR_STORY = columns("PlanarStory", "story_k", "story_gravity", "collapse_drift")
 """numba_loop's per-story rows (B, 3, N): the linear stiffness (P-Delta folded in, N/m),
@@ -39,8 +41,9 @@ PLAN_STORY = columns("PlanStory", "story_k", "story_k_post", "story_k_slip", "st
 stiffnesses (N/m), the slip force (N), the collapse drift squared (m^2: no root per step),
 P-Delta's stiffness (N/m)."""
 
-RUN = columns("Run", "collapsed", "collapse_time")
-"""The state every kernel keeps of a member's run: 1.0 once it collapsed, and when (s)."""
+RUN = columns("Run", "collapsed", "collapse_time", "collapse_mode")
+"""The state every kernel keeps of a member's run: 1.0 once it collapsed, when (s) and how
+(results.MODE)."""
 CONTACT = columns("Contact", "v_imp", "delta_prev", "in_contact")
 """The state of one wall contact (a planar wall, a wall direction in plan, a contact point):
 its impact velocity (m/s, 1.0 before any impact), previous indentation (m), 1.0 in contact."""
@@ -133,4 +136,5 @@ def finish_peaks(peaks: dict, scalar: np.ndarray, layout, state: np.ndarray,
                 peaks[name] = np.sqrt(peaks[name])
     peaks["collapsed"] = state[:, RUN.collapsed] != 0.0
     peaks["collapse_time"] = np.where(peaks["collapsed"], state[:, RUN.collapse_time], np.nan)
+    peaks["collapse_mode"] = state[:, RUN.collapse_mode].astype(np.int8)
     return peaks

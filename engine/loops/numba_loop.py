@@ -23,7 +23,7 @@ from numba.np.unsafe.ndarray import to_fixed_tuple
 
 from ..impact.contact import law_rows
 from ..impact.registry import ROW_WIDTH
-from ..results import empty_peaks
+from ..results import MODE, empty_peaks
 from ..scheme import banded_operators, step_operators
 from ..stories.registry import MAX_FIELDS, MAX_STATE
 from . import compiled, layout
@@ -31,6 +31,7 @@ from .compiled import (
     JIT,
     LINK,
     PHYSICS_FILES,
+    failed,
     implicit_force,
     isolator_advance,
     isolator_force,
@@ -165,25 +166,29 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     iso_state = carray(stack_doubles(ISOLATOR_SLOTS), (ISOLATOR_STATE,))
     for j in range(ISOLATOR_STATE):
         iso_state[j] = isolator_state[b, j]
-    fallen = False
+    capacity = p[PLANAR.capacity]
+    mode = 0
     for step in range(s0, s1):
         a = ag[step] * scale  # x 1.0 is exact: unscaled members are unchanged
         # Structure without wall force: p - f(u_n), then the free velocities v_{n+1/2}.
         chain[0] = isolator_force(iso_code, u[0], iso_state, iso_row)
+        # The isolator past its capacity, a story past its collapse drift, or a state no
+        # longer finite ends the member's run below: its peaks are the steps' before.
+        if not abs(u[0]) <= capacity:
+            mode = failed(mode, u[0], MODE.isolator_capacity)
         for i in range(n_levels - 1):
             drift[i] = u[i + 1] - u[i]
-            # A story past its collapse drift, or a state no longer finite (NaN fails the
-            # comparison), ends the member's run below: its peaks are the steps' before.
             if not abs(drift[i]) <= collapse_drift[i]:
-                fallen = True
+                mode = failed(mode, drift[i], MODE.story_drift)
             if nonlinear:  # the story law's force, less what P-Delta takes
                 chain[i + 1] = story_force(story_law, drift[i], s_state[i], s_fields[i]) \
                     - gravity[i] * drift[i]
             else:
                 chain[i + 1] = k_story[i] * drift[i]
-        if fallen:
+        if mode > 0:
             st[PLANAR_STATE.collapsed] = 1.0
             st[PLANAR_STATE.collapse_time] = step * dt
+            st[PLANAR_STATE.collapse_mode] = mode
             break
         for i in range(n_levels - 1):
             r[i] = (chain[i + 1] - chain[i]) - m[i] * a
@@ -313,7 +318,8 @@ def threads() -> int:
 def member_parameters(arrays, contact, compliance, scale) -> np.ndarray:
     """(B, len(PLANAR)) float matrix of every per-member scalar the step reads."""
     return packed(PLANAR, arrays, len(contact), compliance=compliance,
-                  stories_nonlinear=~arrays.story_linear, gap=contact.clear_gap, scale=scale)
+                  stories_nonlinear=~arrays.story_linear, gap=contact.clear_gap, scale=scale,
+                  capacity=arrays.isolator_capacity)
 
 
 def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):

@@ -26,6 +26,7 @@ from numba import carray, njit
 from ..impact.contact import law_rows
 from ..results import (
     DIRECTIONS,
+    MODE,
     PEAKS,
     PLAN_HISTORIES,
     PLAN_PEAKS,
@@ -39,6 +40,7 @@ from .compiled import (
     JIT,
     LINK,
     PHYSICS_FILES,
+    failed,
     implicit_force,
     isolator_advance_xy,
     isolator_force_xy,
@@ -217,18 +219,24 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
             pd[i, e] = peak_story_xy[b, i, e]
         pd2[i] = peak_story[b, i]
 
+    capacity_square = p[PLAN.capacity_square]
     for step in range(s0, s1):
-        # A story whose drift vector is past its collapse drift, or a state no longer finite,
-        # ends the member's run (numba_loop.py's rule, on the drift's magnitude).
-        fallen = False
+        # The isolator or a story's drift vector past its limit, or a state no longer finite,
+        # ends the member's run (numba_loop.py's rule, on the vectors' magnitudes).
+        mode = 0
+        square = u[0, 0] * u[0, 0] + u[0, 1] * u[0, 1]
+        if not square <= capacity_square:
+            mode = failed(mode, square, MODE.isolator_capacity)
         for i in range(n_st):
             drift = sub2(load_pair(u, i + 1), load_pair(u, i))
             store_pair(dr, i, drift)
-            if not drift[0] * drift[0] + drift[1] * drift[1] <= collapse_square[i]:
-                fallen = True
-        if fallen:
+            square = drift[0] * drift[0] + drift[1] * drift[1]
+            if not square <= collapse_square[i]:
+                mode = failed(mode, square, MODE.story_drift)
+        if mode > 0:
             st[PLAN_STATE.collapsed] = 1.0
             st[PLAN_STATE.collapse_time] = step * dt
+            st[PLAN_STATE.collapse_mode] = mode
             break
         acc = (cs * ag[step, 0] - sn * ag[step, 1], sn * ag[step, 0] + cs * ag[step, 1])
         c[0, 0], c[0, 1] = isolator_force_xy(iso_code, u[0, 0], u[0, 1], iso_state, iso_row)
@@ -409,7 +417,8 @@ def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, histor
     par = packed(PLAN, arrays, size, compliance=compliance, compliance_y=compliance_y,
                  anisotropic=arrays_y is not None, mu_wall=0.0 if mu_wall is None else mu_wall,
                  stories_yield=arrays.story_yields, stories_uniaxial=arrays.story_uniaxial,
-                 cos=np.cos(angle) * scale, sin=np.sin(angle) * scale)
+                 cos=np.cos(angle) * scale, sin=np.sin(angle) * scale,
+                 capacity_square=arrays.isolator_capacity**2)
     n_dir = len(contacts)
     law = np.ascontiguousarray(np.stack([c.law for c in contacts], axis=1), dtype=np.int64)
     gaps = np.ascontiguousarray(np.stack([c.clear_gap for c in contacts], axis=1),

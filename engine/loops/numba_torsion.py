@@ -8,8 +8,7 @@ numba_support.run_members), the cache keyed on the physics it compiles. What dif
   held as pairs, so that the dense step operator (3L x 6L, the columns of the transposed
   operator side by side) runs two rows per instruction (numba_support.add2 and kin);
 - the isolation is n bearings, each the isolator law in plan at its own displacement and
-  speed (compiled.isolator_force_xy, isolator_advance_xy) with its share of the weight, and
-  its moment;
+  velocity with its share of the weight, and its moment (numba_bearings.py);
 - the moat is P contact points (torsion.ContactPoints), each its wall's law times its share
   (the same Contact.part arguments the NumPy loop builds, through compiled.law_terms): the
   points touching at a step are solved together, (I + D G / 2) F = E + D r on the points that
@@ -28,6 +27,7 @@ import numpy as np
 from numba import carray, njit
 
 from ..results import (
+    MODE,
     PEAKS,
     PLAN_PEAKS,
     TORSION_HISTORIES,
@@ -37,12 +37,11 @@ from ..results import (
 )
 from ..scheme import full_step_operator
 from ..torsion import CORNERS
-from . import compiled, layout, numba_contacts
+from . import compiled, layout, numba_bearings, numba_contacts
 from .compiled import (
     JIT,
     PHYSICS_FILES,
-    isolator_advance_xy,
-    isolator_force_xy,
+    failed,
     law_terms,
     onset_weight,
 )
@@ -58,6 +57,7 @@ from .layout import (
     isolator_rows,
     packed,
 )
+from .numba_bearings import bearing_forces, bearings_advance, bearings_past
 from .numba_contacts import point_arrays, solve_contacts
 from .numba_support import (
     add2,
@@ -72,7 +72,8 @@ from .numba_support import (
 )
 
 install_cache_locator(Path(__file__), [compiled.__file__, layout.__file__,
-                                       numba_contacts.__file__, *PHYSICS_FILES])
+                                       numba_bearings.__file__, numba_contacts.__file__,
+                                       *PHYSICS_FILES])
 
 # The kernel's packed arrays (layout.py): per member its floats (TORSION) and state (
 # TORSION_STATE), per contact point its law row (contact.law_rows) and CONTACT state, the
@@ -128,7 +129,6 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     mu_wall = p[TORSION.mu_wall]
     bear = bearings[b]
     fp = isolator_state[b]
-    n_bearings = bear.shape[0]
     code = codes[b]
     pp = point_par[b]
     pg = gaps_all[b]
@@ -216,31 +216,29 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     x = np.empty(n_points)
     per_wall = np.empty(4)
 
+    capacity_square = p[TORSION.capacity_square]
     for step in range(s0, s1):
-        # numpy_torsion's collapse rule, on the drift of the plan's centre.
-        fallen = False
+        # numpy_torsion's collapse rule, on each bearing's displacement and the drift of the
+        # plan's centre.
+        mode = 0
+        mode = bearings_past(mode, bear, u[0], u[1], u[2], capacity_square)
         for i in range(n_st):
             for d in range(3):
                 dr[3 * i + d] = u[3 * i + 3 + d] - u[3 * i + d]
             dx, dy = dr[3 * i], dr[3 * i + 1]
-            if not dx * dx + dy * dy <= cq[i]:
-                fallen = True
-        if fallen:
+            square = dx * dx + dy * dy
+            if not square <= cq[i]:
+                mode = failed(mode, square, MODE.story_drift)
+        if mode > 0:
             st[TORSION_STATE.collapsed] = 1.0
             st[TORSION_STATE.collapse_time] = step * dt
+            st[TORSION_STATE.collapse_mode] = mode
             break
         a0 = cs * ag[step, 0] - sn * ag[step, 1]
         a1 = sn * ag[step, 0] + cs * ag[step, 1]
         u0x, u0y, th = u[0], u[1], u[2]
         # The bearings at their own displacements, their forces and moments on the slab.
-        sx, sy, sm = 0.0, 0.0, 0.0
-        for k in range(n_bearings):
-            bx, by = bear[k, 0], bear[k, 1]
-            fbx, fby = isolator_force_xy(iso_code, u0x - th * by, u0y + th * bx, fp[k],
-                                         iso_row)
-            sx += fbx
-            sy += fby
-            sm += bx * fby - by * fbx
+        sx, sy, sm = bearing_forces(iso_code, iso_row, fp, bear, u0x, u0y, th)
         # The right-hand side: the chain of forces, less the ground's load.
         prev_x, prev_y, prev_t = sx, sy, sm
         for i in range(n_levels):
@@ -382,10 +380,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
         p_rot = max(p_rot, abs(th))
 
         # Advance: each bearing's isolator law with its own velocity.
-        w0x, w0y, w0t = nx[0], nx[1], nx[2]
-        for k in range(n_bearings):
-            bx, by = bear[k, 0], bear[k, 1]
-            isolator_advance_xy(iso_code, fp[k], w0x - w0t * by, w0y + w0t * bx, dt, iso_row)
+        bearings_advance(iso_code, iso_row, fp, bear, (nx[0], nx[1], nx[2]), dt)
         for i in range(n_pairs):
             w_pair = load_pair(nx2, i)
             store_pair(v2, i, w_pair)
@@ -452,6 +447,7 @@ def run_torsion(ag, dt, b, t, contacts, points, progress, scale, angle, history=
     n_bearings = t.bearings.shape[1]
     # cos and sin times the scale, as the NumPy loop forms them (the same bits)
     par = packed(TORSION, b, size, cos=np.cos(angle) * scale, sin=np.sin(angle) * scale,
+                 capacity_square=b.isolator_capacity**2,
                  mu_wall=0.0 if mu_wall is None else mu_wall)
     corners = np.ascontiguousarray(np.array(CORNERS) * t.plan[:, None, :] / 2)
     u, v = np.zeros((size, n_levels, 3)), np.zeros((size, n_levels, 3))

@@ -12,7 +12,7 @@ import numpy as np
 
 from ..building import BuildingArrays
 from ..impact.contact import fill_force_terms, law_blocks
-from ..results import empty_collapse, empty_peaks
+from ..results import MODE, empty_collapse, empty_peaks
 from ..scheme import implicit_force, onset_weight, step_operators
 from ..stories.registry import BY_CODE as STORY_LAWS_BY_CODE
 from .numpy_isolators import IsolatorBatch
@@ -88,13 +88,16 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
 
     for step in range(n_steps):
         drift = np.diff(u, axis=1)
-        # A story past its collapse drift, or a state no longer finite, ends the run: the
-        # member is set at rest, unshaken, from this step on, its peaks those of the steps
-        # before (NaN fails the comparison).
-        fallen = ~np.all(np.abs(drift) <= b.collapse_drift, axis=1) & ~collapsed
+        # The isolator past its capacity, a story past its collapse drift, or a state no
+        # longer finite ends the run: the member is set at rest, unshaken, from this step on,
+        # its peaks those of the steps before.
+        mode = collapse_modes(np.abs(u[:, :1]), b.isolator_capacity, np.abs(drift),
+                              b.collapse_drift)
+        fallen = (mode > 0) & ~collapsed
         if fallen.any():
             collapsed |= fallen
             collapse_time[fallen] = step * dt
+            collapse["collapse_mode"][fallen] = mode[fallen]
             scale = np.where(collapsed, 0.0, scale)
             for array in (u, v_half):
                 array[fallen] = 0.0
@@ -166,6 +169,21 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
         progress(n_steps, n_steps)
 
     return {**peaks, **collapse}, hist
+
+
+def collapse_modes(isolator, capacity, story, collapse_drift) -> np.ndarray:
+    """(B,) the collapse mode (results.MODE) of each member at this step, 0 where none: the
+    highest of isolator capacity where a bearing's displacement `isolator` (B, n) (m, or its
+    square) passes `capacity` (B,), story drift where a story's `story` (B, N) passes
+    `collapse_drift` (B, N), and numerical instability where a measure that fails is not
+    finite (NaN fails every comparison): compiled.failed's rule, member by member."""
+    iso_past = ~(isolator <= capacity[:, None])
+    story_past = ~(story <= collapse_drift)
+    unstable = np.any(iso_past & ~np.isfinite(isolator), axis=1) \
+        | np.any(story_past & ~np.isfinite(story), axis=1)
+    mode = np.where(np.any(iso_past, axis=1), MODE.isolator_capacity,
+                    np.where(np.any(story_past, axis=1), MODE.story_drift, 0))
+    return np.where(unstable, MODE.numerical_instability, mode).astype(np.int8)
 
 
 def run_two_body(contact, v, dt, m_eff, max_steps):

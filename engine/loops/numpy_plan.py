@@ -34,6 +34,7 @@ from ..results import DIRECTIONS, PEAKS, PLAN_PEAKS, WALLS, empty_collapse, empt
 from ..scheme import implicit_force, onset_weight, step_operators
 from ..stories.registry import BY_CODE as STORY_LAWS_BY_CODE
 from .numpy_isolators import IsolatorBatch
+from .numpy_loop import collapse_modes
 
 
 def ground_motion(accel, accel_dt: float, dt: float, n_steps: int) -> np.ndarray:
@@ -133,13 +134,17 @@ def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, an
     for step in range(n_steps):
         # The member's ground motion: the pair rotated by its angle, times its scale.
         drift = np.diff(u, axis=1)
-        # A story whose drift vector is past its collapse drift, or a state no longer finite,
-        # ends the run: the member is set at rest, unshaken (numpy_loop.py's rule).
-        fallen = ~np.all(drift[..., 0] * drift[..., 0] + drift[..., 1] * drift[..., 1]
-                         <= b.collapse_drift**2, axis=1) & ~collapse["collapsed"]
+        # The isolator or a story's drift vector past its limit, or a state no longer finite,
+        # ends the run: the member is set at rest, unshaken (numpy_loop.py's rule, squared).
+        mode = collapse_modes(u[:, :1, 0] * u[:, :1, 0] + u[:, :1, 1] * u[:, :1, 1],
+                              b.isolator_capacity**2,
+                              drift[..., 0] * drift[..., 0] + drift[..., 1] * drift[..., 1],
+                              b.collapse_drift**2)
+        fallen = (mode > 0) & ~collapse["collapsed"]
         if fallen.any():
             collapse["collapsed"] |= fallen
             collapse["collapse_time"][fallen] = step * dt
+            collapse["collapse_mode"][fallen] = mode[fallen]
             cos, sin = (np.where(collapse["collapsed"], 0.0, x) for x in (cos, sin))
             for array in (u, v_half, f_story):
                 array[fallen] = 0.0

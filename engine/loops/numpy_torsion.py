@@ -31,6 +31,7 @@ from ..results import PEAKS, PLAN_PEAKS, TORSION_PEAKS, WALLS, empty_collapse, e
 from ..scheme import full_step_operator, onset_weight
 from ..torsion import CORNERS, ContactPoints, TorsionArrays, corner_orbits, point_laws
 from .numpy_isolators import IsolatorBatch
+from .numpy_loop import collapse_modes
 from .numpy_plan import raise_peak
 
 
@@ -128,11 +129,18 @@ def run_torsion(ag, dt, b: BuildingArrays, t: TorsionArrays, contacts, points: C
     report_every = max(n_steps // 100, 1)
     for step in range(n_steps):
         drift = np.diff(u, axis=1)
-        fallen = ~np.all(drift[..., 0] * drift[..., 0] + drift[..., 1] * drift[..., 1]
-                         <= b.collapse_drift**2, axis=1) & ~collapse["collapsed"]
-        if fallen.any():  # numpy_plan.py's rule, on the drift of the plan's centre
+        # numpy_plan.py's rule, on each bearing's displacement and the drift of the plan's
+        # centre
+        ux = u[:, :1, 0] - u[:, :1, 2] * bearing_y
+        uy = u[:, :1, 1] + u[:, :1, 2] * bearing_x
+        mode = collapse_modes(ux * ux + uy * uy, b.isolator_capacity**2,
+                              drift[..., 0] * drift[..., 0] + drift[..., 1] * drift[..., 1],
+                              b.collapse_drift**2)
+        fallen = (mode > 0) & ~collapse["collapsed"]
+        if fallen.any():
             collapse["collapsed"] |= fallen
             collapse["collapse_time"][fallen] = step * dt
+            collapse["collapse_mode"][fallen] = mode[fallen]
             cos, sin = (np.where(collapse["collapsed"], 0.0, x) for x in (cos, sin))
             for array in (u, v_half):
                 array[fallen] = 0.0

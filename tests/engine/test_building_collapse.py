@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 import engine
-from engine import Building, Contact, Stories
+from engine import Building, Contact, History, Isolator, Stories, Torsion
+from engine.results import MODE
 
 T = np.arange(0.0, 6.0, 0.01)
 AG = 3.0 * np.sin(2 * np.pi * 0.7 * T) * np.exp(-0.05 * T)
@@ -62,6 +63,7 @@ def test_collapse_ends_the_run_at_the_same_step_in_both_loops(plan):
     a, b = runs["numba"], runs["numpy"]
     assert a.collapsed.tolist() == b.collapsed.tolist() == [False, True, True, True]
     np.testing.assert_array_equal(a.collapse_time, b.collapse_time)
+    assert a.collapse_mode.tolist() == b.collapse_mode.tolist() == [0] + [MODE.story_drift] * 3
     assert np.isnan(a.collapse_time[0]) and np.all(np.diff(a.collapse_time[1:]) < 0)
     # The peaks stop at the step before: no drift beyond the collapse drift is reported.
     limit = 0.05 * np.asarray(HEIGHTS)
@@ -85,6 +87,59 @@ def test_without_a_criterion_the_weak_building_runs_on():
     r = engine.simulate(AG, 0.01, Contact.none(1), b, scale=[1.5])
     assert not r.collapsed[0]
     assert r.peak_interstory_drift.max() > 0.05 * 4.0  # it went past the 5% above
+
+
+def _capped(capacity=None, torsion=None):
+    """The paper's building on bilinear isolators with a displacement capacity (m)."""
+    return Building(isolator=Isolator.bilinear(capacity=capacity), torsion=torsion)
+
+
+@pytest.mark.parametrize("plan", [False, True])
+def test_an_isolator_past_its_capacity_ends_the_run_at_that_step(plan):
+    """The run without capacity says when the isolator first passes 60% of its peak: with
+    that capacity the run stops at that very step, as an isolator-capacity collapse, in both
+    loops, its peaks those of the steps before; the paper's building (no capacity) cannot
+    collapse."""
+    ag = AG_XY if plan else AG
+    assert not _capped().can_collapse and _capped(1.0).can_collapse
+    for backend in ("numba", "numpy"):  # each loop against itself: the same bits
+        free = engine.simulate(ag, 0.01, Contact.none(1), _capped(), dt=2e-3,
+                               history=History(members=(0,)), backend=backend)
+        disp = free.history["isolator_disp"][0]
+        size = np.hypot(disp[:, 0], disp[:, 1]) if plan else np.abs(disp)
+        capacity = 0.6 * free.peak_isolator_disp[0]
+        stop = int(np.argmax(size > capacity))
+        r = engine.simulate(ag, 0.01, Contact.none(1), _capped(capacity), dt=2e-3,
+                            backend=backend)
+        assert r.collapsed[0] and r.collapse_mode[0] == MODE.isolator_capacity
+        assert r.collapse_time[0] == stop * 2e-3
+        assert r.peak_isolator_disp[0] == size[:stop].max() <= capacity
+
+
+def test_a_bearing_of_a_twisting_building_past_its_capacity_ends_the_run():
+    """Each bearing is checked at its own displacement: a slab that turns loses its corner
+    bearings no later than its centre would pass the capacity, in both loops alike."""
+    torsion = Torsion(plan_size=(30.0, 20.0), mass_offset=(3.0, 2.0))
+    free = engine.simulate(AG_XY, 0.01, Contact.none(1), _capped(torsion=torsion), dt=2e-3,
+                           history=History(members=(0,)))
+    disp = free.history["isolator_disp"][0]
+    capacity = 0.6 * free.peak_isolator_disp[0]
+    centre_stop = int(np.argmax(np.hypot(disp[:, 0], disp[:, 1]) > capacity)) * 2e-3
+    runs = [engine.simulate(AG_XY, 0.01, Contact.none(1), _capped(capacity, torsion),
+                            dt=2e-3, backend=backend) for backend in ("numba", "numpy")]
+    for r in runs:
+        assert r.collapse_mode[0] == MODE.isolator_capacity
+        assert r.collapse_time[0] <= centre_stop
+    assert runs[0].collapse_time[0] == runs[1].collapse_time[0]
+
+
+def test_a_state_no_longer_finite_is_a_numerical_instability():
+    """A record scaled past what floats hold makes the state infinite, then NaN: the run ends
+    as a numerical instability (not as a story's or the isolator's failure), in both loops."""
+    for backend in ("numba", "numpy"):
+        r = engine.simulate(AG, 0.01, Contact.none(1), Building(), scale=[1e306],
+                            backend=backend)
+        assert r.collapsed[0] and r.collapse_mode[0] == MODE.numerical_instability
 
 
 def test_the_building_says_what_is_wrong():

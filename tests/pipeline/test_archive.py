@@ -1,5 +1,6 @@
 """Archives written atomically (pipeline/archive.py's write_netcdf): a failed write leaves no
-archive, a writer killed before the rename never leaves a partial one."""
+archive, a writer killed before the rename never leaves a partial one; a code such as
+collapse_mode labelled as a CF flag variable."""
 import os
 import signal
 import subprocess
@@ -7,10 +8,16 @@ import sys
 import textwrap
 from pathlib import Path
 
+import numpy as np
 import pytest
 import xarray as xr
 
+import engine
+import pipeline
+from engine.results import COLLAPSE_MODES, MODE
 from tests.pipeline.small_sweep import (
+    DT,
+    RECORDS,
     Killed,
 )
 
@@ -72,3 +79,20 @@ def test_killed_writer_never_leaves_a_partial_archive(reference, tmp_path, exist
     assert len(leftovers) == 1  # hidden, never under the archive's name
     write_netcdf(reference, out)  # the next successful write sweeps it away
     assert not leftovers[0].exists()
+
+
+def test_an_archive_names_how_each_run_collapsed():
+    """A building whose isolators have a displacement capacity can collapse: its archive
+    carries collapse_mode beside collapsed, a CF flag variable, 2 (isolator capacity) exactly
+    where the run collapsed and 0 elsewhere; the paper's building carries neither."""
+    building = engine.Building(isolator=engine.Isolator.bilinear(capacity=0.08))
+    ds = pipeline.sweep(RECORDS, gap=[0.06, 0.5], thickness=0.03, n_bumpers=4, dt=DT,
+                        building=building, workers=1, quiet=True)
+    mode = ds["collapse_mode"]
+    assert mode.attrs["flag_meanings"] == " ".join(COLLAPSE_MODES)
+    assert list(mode.attrs["flag_values"]) == [0, 1, 2, 3]
+    fell = ds["collapsed"].values.astype(bool)
+    assert fell.any() and not fell.all()  # the far gap lets the isolator pass 8 cm
+    assert np.all(mode.values[fell] == MODE.isolator_capacity) and np.all(mode.values[~fell] == 0)
+    assert "capacity, 0.08 m" in ds.attrs["building_collapse_text"]
+

@@ -27,6 +27,8 @@ module holds:
                                       a batch's arrays in a NumPy loop)
     initial_stiffness(mass, g, **checked) -> N/m, before any slip (stability limit, damping)
     yield_displacement(mass, g, **checked) -> m, where the slip element starts to slip
+    displacement_capacity(mass, g, **checked) -> m, where the bearing meets its restrainer or
+                                      fails (inf: none): a run passing it is a collapse
     effective_stiffness(mass, g, displacement, **checked) -> N/m, the secant stiffness at a
                                       displacement (ASCE 7 chapter 17's k_eff)
 and, for the code's equivalent-linear design (pipeline.motions.target.isolation_design; a law

@@ -30,26 +30,34 @@ PARAMETERS = Declaration(
               equation="SPEC section 1", sweep="k2", plausible="[1e5, 1e11]"),
     Parameter("fy_ratio", "1", "isolator yield force Fy as a fraction of the building's weight",
               0.1, "(0, inf)", equation="SPEC section 1", sweep="fy_ratio"),
+    Parameter("capacity", "m", "displacement capacity: where the bearing meets its restrainer "
+              "or fails, a run passing it ends as a collapse (unset: none)", None, "(0, inf)",
+              plausible="[0.02, 5]"),
 )
 
 
-def check(k1, k2, fy_ratio):
+def check(k1, k2, fy_ratio, capacity=None):
     """The law's own consistency: 0 < K2 < K1 (ValueError otherwise)."""
     if not 0 < k2 < k1:
         raise ValueError(f"isolator stiffness needs 0 < k2 < k1, got k1={k1}, k2={k2}")
 
 
-def yield_displacement(mass, g, k1, k2, fy_ratio):
+def displacement_capacity(mass, g, k1, k2, fy_ratio, capacity=None):
+    """The displacement capacity (m): the `capacity` given, inf unset."""
+    return float("inf") if capacity is None else capacity
+
+
+def yield_displacement(mass, g, k1, k2, fy_ratio, capacity=None):
     """u_y = Fy / K1 (m), Fy = fy_ratio g M."""
     return fy_ratio * g * mass / k1
 
 
-def initial_stiffness(mass, g, k1, k2, fy_ratio):
+def initial_stiffness(mass, g, k1, k2, fy_ratio, capacity=None):
     """K1 (N/m)."""
     return k1
 
 
-def effective_stiffness(mass, g, displacement, k1, k2, fy_ratio):
+def effective_stiffness(mass, g, displacement, k1, k2, fy_ratio, capacity=None):
     """Secant stiffness (N/m) at displacement D (m, scalar or array): (K1 min(D, u_y) +
     K2 max(D - u_y, 0)) / D, the equivalent-linear isolator of ASCE 7 chapter 17."""
     u_y = yield_displacement(mass, g, k1, k2, fy_ratio)
@@ -57,12 +65,12 @@ def effective_stiffness(mass, g, displacement, k1, k2, fy_ratio):
         / displacement
 
 
-def post_yield_stiffness(mass, g, k1, k2, fy_ratio):
+def post_yield_stiffness(mass, g, k1, k2, fy_ratio, capacity=None):
     """K2 (N/m): the stiffness the secant stiffness tends to at large displacements."""
     return k2
 
 
-def energy_per_cycle(mass, g, displacement, k1, k2, fy_ratio):
+def energy_per_cycle(mass, g, displacement, k1, k2, fy_ratio, capacity=None):
     """Energy (J) dissipated per cycle at displacement amplitude D (m, one number): the area of
     the loop, 4 Q_d (D - D_y) past yield and 0 before, Q_d = (K1 - K2) D_y the characteristic
     strength (the loop's half-height), D_y = u_y (ASCE 7 chapter 17's E_M of a bilinear
@@ -83,7 +91,7 @@ STATE_XY = columns("BilinearStateXY", "slip_force_x", "slip_force_y")
 """In plan: the slip element's force along x and y (N)."""
 
 
-def fields(mass, g, k1, k2, fy_ratio):
+def fields(mass, g, k1, k2, fy_ratio, capacity=None):
     """ROW by name: K2 elastic; K1 - K2 slipping at (K1 - K2) u_y, whatever the speed."""
     k_slip = k1 - k2
     return {"k_elastic": k2, "k_slip": k_slip,

@@ -41,42 +41,52 @@ PARAMETERS = Declaration(
     Parameter("yield_disp", "m", "sliding displacement at which the pre-slip spring reaches "
               "mu_fast W (sets k_0 = mu_fast W / yield_disp)", 5e-4, "(0, inf)",
               equation="SPEC section 7", sweep="yield_disp", plausible="[1e-5, 0.05]"),
+    Parameter("capacity", "m", "displacement capacity: where the bearing meets its restrainer "
+              "or fails, a run passing it ends as a collapse (unset: none)", None, "(0, inf)",
+              plausible="[0.02, 5]"),
 )
 
 
-def check(radius, mu_slow, mu_fast, rate, yield_disp):
+def check(radius, mu_slow, mu_fast, rate, yield_disp, capacity=None):
     """mu_slow <= mu_fast (ValueError otherwise): friction rises with the sliding speed."""
     if not mu_slow <= mu_fast:
         raise ValueError(f"friction needs mu_slow <= mu_fast, got mu_slow={mu_slow}, "
                          f"mu_fast={mu_fast}")
 
 
-def yield_displacement(mass, g, radius, mu_slow, mu_fast, rate, yield_disp):
+def displacement_capacity(mass, g, radius, mu_slow, mu_fast, rate, yield_disp, capacity=None):
+    """The displacement capacity (m): the `capacity` given, inf unset."""
+    return float("inf") if capacity is None else capacity
+
+
+def yield_displacement(mass, g, radius, mu_slow, mu_fast, rate, yield_disp, capacity=None):
     """yield_disp (m): where the pre-slip spring reaches the fast friction force."""
     return yield_disp
 
 
-def initial_stiffness(mass, g, radius, mu_slow, mu_fast, rate, yield_disp):
+def initial_stiffness(mass, g, radius, mu_slow, mu_fast, rate, yield_disp, capacity=None):
     """k_0 + W / R (N/m), W = g M: pre-slip spring and pendulum together."""
     weight = g * mass
     return mu_fast * weight / yield_disp + weight / radius
 
 
-def effective_stiffness(mass, g, displacement, radius, mu_slow, mu_fast, rate, yield_disp):
+def effective_stiffness(mass, g, displacement, radius, mu_slow, mu_fast, rate, yield_disp,
+                        capacity=None):
     """Secant stiffness (N/m) at displacement D (m, past yield_disp): W / R + mu_fast W / D
     (the friction at the speeds of a design-level motion; ASCE 7 chapter 17's k_eff)."""
     weight = g * mass
     return weight / radius + mu_fast * weight / displacement
 
 
-def post_yield_stiffness(mass, g, radius, mu_slow, mu_fast, rate, yield_disp):
+def post_yield_stiffness(mass, g, radius, mu_slow, mu_fast, rate, yield_disp, capacity=None):
     """W / R (N/m), W = g M: the pendulum's stiffness, which the secant stiffness tends to at
     large displacements."""
     weight = g * mass
     return weight / radius
 
 
-def energy_per_cycle(mass, g, displacement, radius, mu_slow, mu_fast, rate, yield_disp):
+def energy_per_cycle(mass, g, displacement, radius, mu_slow, mu_fast, rate, yield_disp,
+                     capacity=None):
     """Energy (J) dissipated per cycle at displacement amplitude D (m): 4 mu W D with
     mu = mu_fast, W = g M (the friction effective_stiffness uses; the pre-slip displacement
     neglected, as there: ASCE 7 chapter 17's E_M of a sliding isolator)."""
@@ -96,7 +106,7 @@ STATE_XY = columns("FrictionPendulumStateXY", "slip_force_x", "slip_force_y")
 """In plan: the friction force along x and y (N)."""
 
 
-def fields(mass, g, radius, mu_slow, mu_fast, rate, yield_disp):
+def fields(mass, g, radius, mu_slow, mu_fast, rate, yield_disp, capacity=None):
     """ROW by name: W / R elastic; k_0 slipping at mu(|v|) W = mu_fast W (1 - slow_drop
     exp(-rate |v|))."""
     weight = g * mass
