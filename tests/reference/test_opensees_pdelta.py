@@ -12,9 +12,13 @@ checked on its own, then against the engine's ``p_delta`` / ``collapse_drift_rat
    - the PDelta and Corotational transformations agree on the yielding run (their difference
      is drift^2 / (2 h^2) of the P-Delta force);
    - the IDA collapses inside its range, and without P-Delta it does not collapse there.
-2. Cross-checks against the engine, on both loops ("numba", "numpy"; 10 s of Pacoima Dam read
-   from ../shared/records at dt 5e-4): SKIPPED while engine.Building does not take
-   ``p_delta``; they run by themselves once it does.
+2. Cross-checks against the engine's compiled loop (10 s of Pacoima Dam read from
+   ../shared/records at dt 5e-4; the NumPy loop gives its peaks, collapse flags and times with
+   P-Delta, yielding and elastic-perfectly-plastic stories and collapse, in a batch of
+   intensities: tests/engine/test_building_collapse.py::
+   test_collapse_ends_the_run_at_the_same_step_in_both_loops, to 1e-9, and with the elastic
+   wall: tests/engine/loops/test_numba_loop.py::test_backends_agree_on_every_peak): SKIPPED
+   while engine.Building does not take ``p_delta``; they run by themselves once it does.
    - the paper's building with yielding stories (yield forces 0.6 of the elastic stories'
      peak forces: ductilities 11, 7, 3.4, 3) and story heights 4, 3.5, 3.5, 3.5 m, free and
      pounding on an elastic wall: every peak within 0.5 % of OpenSees;
@@ -187,6 +191,7 @@ def test_opensees_ida_collapses_inside_its_range_by_pdelta(ground, ida_opensees)
 # ---------------------------------------------------------------- 2. against the engine
 
 
+@pytest.mark.parametrize("backend", ["numba"])  # the NumPy loop's numbers: module docstring
 def test_engine_yielding_stories_with_pdelta_match_opensees(engine_pdelta, ground,
                                                             yielding_opensees, backend):
     """The paper's building, yielding stories with P-Delta, free (member 0) and pounding on an
@@ -199,6 +204,7 @@ def test_engine_yielding_stories_with_pdelta_match_opensees(engine_pdelta, groun
     opd.assert_free_and_wall_match(result, yielding_opensees)
 
 
+@pytest.mark.parametrize("backend", ["numba"])  # the NumPy loop's numbers: module docstring
 def test_engine_collapses_in_an_ida_where_opensees_does(engine_pdelta, ground, ida_opensees,
                                                         backend):
     """The IDA as one batch (scale=): the first collapsing intensity of the engine and of
