@@ -87,6 +87,14 @@ def yielding_opensees(ground):
                                                       **common)}
 
 
+@pytest.fixture(scope="module")
+def plain_opensees(ground):
+    """The yielding run's 2-D model without the leaning column (p_delta=False)."""
+    ag, ag_dt = ground
+    return opd.opensees_pdelta_peaks(ag, ag_dt, story_yield=YIELD, story_height=HEIGHTS,
+                                     p_delta=False)
+
+
 def ida_opensees_run(ag, ag_dt, scale, p_delta=True):
     return opd.opensees_pdelta_peaks(ag, ag_dt, masses=MASSES, story_yield=IDA_YIELD,
                                      story_b=0.0, story_height=IDA_HEIGHT, p_delta=p_delta,
@@ -147,29 +155,27 @@ def test_pushover_slopes_are_k_minus_p_over_h(story, b, transformation):
                                rtol=0, atol=tol * 1e6)
 
 
-def test_without_the_leaning_column_the_model_is_the_existing_reference(ground):
+def test_without_the_leaning_column_the_model_is_the_existing_reference(ground,
+                                                                         plain_opensees):
     """p_delta=False: the 2-D model (yielding stories) gives opensees_reference's peaks to
     round-off: the P-Delta mechanism is the only difference. Measured: 0."""
     ag, ag_dt = ground
-    mine = opd.opensees_pdelta_peaks(ag, ag_dt, story_yield=YIELD, story_height=HEIGHTS,
-                                     p_delta=False)
+    mine = plain_opensees
     theirs = osr.opensees_peaks(ag, ag_dt, dt=5e-4, story_yield=YIELD)
     for name in PEAKS:
         np.testing.assert_allclose(mine[name], theirs[name], rtol=1e-9, err_msg=name)
 
 
-def test_pdelta_and_corotational_agree_and_pdelta_matters(ground, yielding_opensees):
+def test_pdelta_and_corotational_agree_and_pdelta_matters(yielding_opensees, plain_opensees):
     """The yielding run: the Corotational column within 1e-4 of the PDelta one (measured
     1.6e-5), both far from the run without P-Delta (drifts up to 15 % apart), which the
     cross-check therefore tells apart."""
-    ag, ag_dt = ground
     pd, corot = yielding_opensees["none"], yielding_opensees["corotational"]
     for name in PEAKS:
         np.testing.assert_allclose(corot[name], pd[name], rtol=1e-4, err_msg=name)
     assert np.all(pd["peak_story_ductility"] > 2.5)
     assert not pd["collapsed"] and math.isnan(pd["collapse_time"])
-    plain = opd.opensees_pdelta_peaks(ag, ag_dt, story_yield=YIELD, story_height=HEIGHTS,
-                                      p_delta=False)
+    plain = plain_opensees
     assert np.max(np.abs(pd["peak_interstory_drift"] / plain["peak_interstory_drift"] - 1)) \
         > 10 * RTOL
 
