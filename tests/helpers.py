@@ -48,8 +48,9 @@ def assert_udunits(ds) -> None:
 
 NUMPY_SECONDS = 15.0
 """s of a record that the heavy engine tests run on the NumPy loop (~1e4 member-steps/s at
-B = 1, 2000x slower than the kernel): the strong motion, where every peak of the paper's
-records lies (`strong_motion` checks that on the kernel)."""
+B = 1, 2000x slower than the kernel), and the OpenSees cross-checks on both: the strong
+motion, where every peak of the paper's records lies (`strong_part` checks that on the
+kernel)."""
 
 
 def strong_motion(record, backend: str, contact):

@@ -2,16 +2,15 @@
 independent references (tests/reference/): OpenSeesPy at the engine's step, and a solve_ivp
 model with every yield and slip switch located as an event.
 
-First 10 s of each record: every peak lies there (the engine's, OpenSees' and solve_ivp's
-peaks on the first 10 s are those of the first 15 s to the last bit, measured; the last at
-9.0 s, N8 and N8-yielding). Tolerances are the issue's bounds, each
-above the worst deviation measured (in brackets, kernel at dt 0.5 ms): no pounding 0.02%
-against OpenSees [N = 1: 0.0034%, 8: 0.011%, 20: 0.0019%]; elastic pounding 0.1% [0.018%];
-yielding stories (OpenSees Steel01) 0.1% [0.011%]; friction pendulum (OpenSees
-flatSliderBearing, VelDependent friction, constant weight, a W/R spring in parallel) 0.5%
-[0.12%], and 0.5% against solve_ivp [0.19%]. Against solve_ivp the bilinear cases are within
-0.05% [0.032%]: a fixed step cannot sample an acceleration peak at a yield corner exactly
-(the references' own notes).
+First 10 s of each record: every peak lies there (the engine's, OpenSees' and solve_ivp's peaks
+on the first 10 s are those of the first 15 s to the last bit, measured; the last at 9.0 s, N8
+and N8-yielding). Tolerances are the issue's bounds, each above the worst deviation measured
+(in brackets, kernel at dt 0.5 ms): no pounding 0.02% against OpenSees [N = 1: 0.0034%, 8:
+0.011%, 20: 0.0019%]; elastic pounding 0.1% [0.018%]; yielding stories (OpenSees Steel01) 0.1%
+[0.011%]; friction pendulum (OpenSees flatSliderBearing, VelDependent friction, constant
+weight, a W/R spring in parallel) 0.5% [0.12%], and 0.5% against solve_ivp [0.19%]. Against
+solve_ivp the bilinear cases are within 0.05% [0.032%]: a fixed step cannot sample an
+acceleration peak at a yield corner exactly (the references' own notes).
 """
 from __future__ import annotations
 
