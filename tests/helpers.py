@@ -48,19 +48,23 @@ def assert_udunits(ds) -> None:
 
 NUMPY_SECONDS = 15.0
 """s of a record that the heavy engine tests run on the NumPy loop (~1e4 member-steps/s at
-B = 1, 2000x slower than the kernel): the strong motion, where every peak of the paper's
-records lies (`strong_motion` checks that on the kernel)."""
+B = 1, 2000x slower than the kernel), and the OpenSees cross-checks on both: the strong
+motion, where every peak of the paper's records lies (`strong_part` checks that on the
+kernel)."""
 
 
 def strong_motion(record, backend: str, contact):
     """The record as an engine test should run it on `backend`: whole on the kernel; on the
-    NumPy loop its first NUMPY_SECONDS, after checking with the kernel that the segment holds
-    every peak of the whole record for `contact`."""
+    NumPy loop its `strong_part`."""
+    return record if backend != "numpy" else strong_part(record, contact)
+
+
+def strong_part(record, contact):
+    """The record's first NUMPY_SECONDS, after checking with the kernel that they hold every
+    peak of the whole record for `contact` (the impact counts among them)."""
     import engine
     from pipeline.histories import segment
 
-    if backend != "numpy":
-        return record
     part = segment(record, NUMPY_SECONDS)
     whole = engine.simulate(record.accel, record.dt, contact, backend="numba")
     cut = engine.simulate(part.accel, part.dt, contact, backend="numba")

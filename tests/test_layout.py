@@ -7,6 +7,7 @@ mirrors the packages (engine/loops/numba_loop.py is tested in
 tests/engine/loops/test_numba_loop.py), every module has its test file there or is in the one
 table of exceptions, TESTED_IN, and every test file mirrors a module or is in that table."""
 import ast
+import functools
 import importlib.util
 import sys
 from collections import defaultdict
@@ -32,7 +33,13 @@ def modules() -> dict[str, Path]:
 
 
 MODULES = modules()
-TREES = {name: ast.parse(path.read_text(), str(path)) for name, path in MODULES.items()}
+
+
+@functools.cache
+def module_trees() -> dict[str, ast.Module]:
+    """Dotted name -> syntax tree of every module, parsed once, when a test first asks (not at
+    collection: every pytest-xdist worker collects this file, one runs it)."""
+    return {name: ast.parse(path.read_text(), str(path)) for name, path in MODULES.items()}
 
 
 def imports(name: str, tree: ast.Module):
@@ -65,12 +72,15 @@ def imports(name: str, tree: ast.Module):
                 yield node.lineno, target, tuple(taken)
 
 
-EDGES = {name: list(imports(name, tree)) for name, tree in TREES.items()}
+@functools.cache
+def module_imports() -> dict[str, list]:
+    """Dotted name -> `imports` of every module, found once (see `module_trees`)."""
+    return {name: list(imports(name, tree)) for name, tree in module_trees().items()}
 
 
 def test_data_flows_one_way():
     order = {package: rank for rank, package in enumerate(PACKAGES)}
-    wrong = [f"{name}:{line} imports {target}" for name, edges in EDGES.items()
+    wrong = [f"{name}:{line} imports {target}" for name, edges in module_imports().items()
              for line, target, _ in edges
              if order[target.split(".")[0]] > order[name.split(".")[0]]]
     assert not wrong, "\n".join(wrong)
@@ -117,7 +127,7 @@ def test_every_pipeline_module_has_a_level():
 
 def test_pipeline_packages_import_in_order():
     wrong = []
-    for name, edges in EDGES.items():
+    for name, edges in module_imports().items():
         if name.split(".")[0] != "pipeline":
             continue
         rank, level = pipeline_level(name)
@@ -135,7 +145,7 @@ def test_pipeline_packages_import_in_order():
 
 def test_no_import_circle():
     graph = defaultdict(set)
-    for name, edges in EDGES.items():
+    for name, edges in module_imports().items():
         for _, target, _ in edges:
             if target in MODULES and target != name:
                 graph[name].add(target)
@@ -159,7 +169,7 @@ def test_no_import_circle():
 
 def test_no_private_name_imported_from_another_module():
     private = [f"{name}:{line} takes {', '.join(n for n in taken if n.startswith('_'))} "
-               f"from {target}" for name, edges in EDGES.items()
+               f"from {target}" for name, edges in module_imports().items()
                for line, target, taken in edges
                if target != name and any(n.startswith("_") for n in taken)]
     assert not private, "\n".join(private)
@@ -193,7 +203,7 @@ def constants(tree: ast.Module):
 
 def test_no_constant_written_twice():
     where = defaultdict(list)
-    for module, tree in TREES.items():
+    for module, tree in module_trees().items():
         for name, value in constants(tree):
             where[name, value].append(module)
     twice = {f"{name} = {value}": found for (name, value), found in where.items()
@@ -381,7 +391,8 @@ def mirrored(path: Path) -> str | None:
 def test_every_module_has_its_tests_where_the_mirror_says():
     listed = {name for _, names in TESTED_IN.values() for name in names}
     covered = {mirrored(path) for path in files_of_tests()}
-    missing = [f"{name}: no {mirror(name).relative_to(PROJECT)}" for name, tree in TREES.items()
+    missing = [f"{name}: no {mirror(name).relative_to(PROJECT)}"
+               for name, tree in module_trees().items()
                if defines_code(tree) and name not in covered and name not in listed]
     assert not missing, "\n".join(missing)
 
@@ -434,7 +445,7 @@ def test_no_function_takes_more_than_twelve_parameters():
     belongs together: a declared layout, a dataclass, a component (issue 36)."""
     over = [f"{MODULES[name].relative_to(PROJECT)}:{node.lineno} "
             f"{getattr(node, 'name', 'lambda')} takes {parameter_count(node)}"
-            for name, tree in TREES.items() for node in ast.walk(tree)
+            for name, tree in module_trees().items() for node in ast.walk(tree)
             if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda))
             and parameter_count(node) > MAX_PARAMETERS]
     assert not over, f"more than {MAX_PARAMETERS} parameters:\n" + "\n".join(over)

@@ -2,14 +2,15 @@
 independent references (tests/reference/): OpenSeesPy at the engine's step, and a solve_ivp
 model with every yield and slip switch located as an event.
 
-First 15 s of each record (every peak lies there). Tolerances are the issue's bounds, each
-above the worst deviation measured (in brackets, kernel at dt 0.5 ms): no pounding 0.02%
-against OpenSees [N = 1: 0.0034%, 8: 0.011%, 20: 0.0019%]; elastic pounding 0.1% [0.018%];
-yielding stories (OpenSees Steel01) 0.1% [0.011%]; friction pendulum (OpenSees
-flatSliderBearing, VelDependent friction, constant weight, a W/R spring in parallel) 0.5%
-[0.12%], and 0.5% against solve_ivp [0.19%]. Against solve_ivp the bilinear cases are within
-0.05% [0.032%]: a fixed step cannot sample an acceleration peak at a yield corner exactly
-(the references' own notes).
+First 10 s of each record: every peak lies there (the engine's, OpenSees' and solve_ivp's peaks
+on the first 10 s are those of the first 15 s to the last bit, measured; the last at 9.0 s, N8
+and N8-yielding). Tolerances are the issue's bounds, each above the worst deviation measured
+(in brackets, kernel at dt 0.5 ms): no pounding 0.02% against OpenSees [N = 1: 0.0034%, 8:
+0.011%, 20: 0.0019%]; elastic pounding 0.1% [0.018%]; yielding stories (OpenSees Steel01) 0.1%
+[0.011%]; friction pendulum (OpenSees flatSliderBearing, VelDependent friction, constant
+weight, a W/R spring in parallel) 0.5% [0.12%], and 0.5% against solve_ivp [0.19%]. Against
+solve_ivp the bilinear cases are within 0.05% [0.032%]: a fixed step cannot sample an
+acceleration peak at a yield corner exactly (the references' own notes).
 """
 from __future__ import annotations
 
@@ -23,7 +24,7 @@ from engine import Building, Contact, Isolator
 from tests.reference import independent_building as ib
 from tests.reference.opensees_reference import opensees_peaks
 
-SECONDS = 15.0
+SECONDS = 10.0
 DT = 5e-4
 PEAKS = ("peak_total_accel", "peak_interstory_drift", "peak_isolator_disp", "max_impact_force")
 FP = dict(radius=2.0, mu_slow=0.05, mu_fast=0.10, rate=30.0)
@@ -115,14 +116,10 @@ def test_against_solve_ivp(name, tolerance):
     assert max(worst.values()) < tolerance, worst
 
 
-# Not N8-yielding: the two loops on 8 yielding stories (with a friction pendulum and walls,
-# the stronger case) are tests/engine/test_isolators.py::test_both_loops_agree_on_any_height[8].
-@pytest.mark.parametrize("name", ["friction"])
-def test_numpy_loop_gives_the_kernel_numbers(name):
-    fast, ref = run(name, "numba"), run(name, "numpy")
-    for peak in PEAKS:
-        np.testing.assert_allclose(getattr(fast, peak), getattr(ref, peak), rtol=1e-9,
-                                   atol=1e-9 * np.abs(getattr(ref, peak)).max(), err_msg=peak)
+# The compiled loop is checked here. The NumPy loop gives its numbers, to 1e-9, with a
+# friction pendulum on 1, 8 and 20 yielding stories against walls (the stronger case of the
+# friction and N8-yielding cases): tests/engine/test_isolators.py::
+# test_both_loops_agree_on_any_height.
 
 
 def test_story_ductility_against_steel01():

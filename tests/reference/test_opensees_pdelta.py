@@ -12,9 +12,13 @@ checked on its own, then against the engine's ``p_delta`` / ``collapse_drift_rat
    - the PDelta and Corotational transformations agree on the yielding run (their difference
      is drift^2 / (2 h^2) of the P-Delta force);
    - the IDA collapses inside its range, and without P-Delta it does not collapse there.
-2. Cross-checks against the engine, on both loops ("numba", "numpy"; 10 s of Pacoima Dam read
-   from ../shared/records at dt 5e-4): SKIPPED while engine.Building does not take
-   ``p_delta``; they run by themselves once it does.
+2. Cross-checks against the engine's compiled loop (10 s of Pacoima Dam read from
+   ../shared/records at dt 5e-4; the NumPy loop gives its peaks, collapse flags and times with
+   P-Delta, yielding and elastic-perfectly-plastic stories and collapse, in a batch of
+   intensities: tests/engine/test_building_collapse.py::
+   test_collapse_ends_the_run_at_the_same_step_in_both_loops, to 1e-9, and with the elastic
+   wall: tests/engine/loops/test_numba_loop.py::test_backends_agree_on_every_peak): SKIPPED
+   while engine.Building does not take ``p_delta``; they run by themselves once it does.
    - the paper's building with yielding stories (yield forces 0.6 of the elastic stories'
      peak forces: ductilities 11, 7, 3.4, 3) and story heights 4, 3.5, 3.5, 3.5 m, free and
      pounding on an elastic wall: every peak within 0.5 % of OpenSees;
@@ -83,6 +87,14 @@ def yielding_opensees(ground):
                                                       **common)}
 
 
+@pytest.fixture(scope="module")
+def plain_opensees(ground):
+    """The yielding run's 2-D model without the leaning column (p_delta=False)."""
+    ag, ag_dt = ground
+    return opd.opensees_pdelta_peaks(ag, ag_dt, story_yield=YIELD, story_height=HEIGHTS,
+                                     p_delta=False)
+
+
 def ida_opensees_run(ag, ag_dt, scale, p_delta=True):
     return opd.opensees_pdelta_peaks(ag, ag_dt, masses=MASSES, story_yield=IDA_YIELD,
                                      story_b=0.0, story_height=IDA_HEIGHT, p_delta=p_delta,
@@ -143,29 +155,27 @@ def test_pushover_slopes_are_k_minus_p_over_h(story, b, transformation):
                                rtol=0, atol=tol * 1e6)
 
 
-def test_without_the_leaning_column_the_model_is_the_existing_reference(ground):
+def test_without_the_leaning_column_the_model_is_the_existing_reference(ground,
+                                                                         plain_opensees):
     """p_delta=False: the 2-D model (yielding stories) gives opensees_reference's peaks to
     round-off: the P-Delta mechanism is the only difference. Measured: 0."""
     ag, ag_dt = ground
-    mine = opd.opensees_pdelta_peaks(ag, ag_dt, story_yield=YIELD, story_height=HEIGHTS,
-                                     p_delta=False)
+    mine = plain_opensees
     theirs = osr.opensees_peaks(ag, ag_dt, dt=5e-4, story_yield=YIELD)
     for name in PEAKS:
         np.testing.assert_allclose(mine[name], theirs[name], rtol=1e-9, err_msg=name)
 
 
-def test_pdelta_and_corotational_agree_and_pdelta_matters(ground, yielding_opensees):
+def test_pdelta_and_corotational_agree_and_pdelta_matters(yielding_opensees, plain_opensees):
     """The yielding run: the Corotational column within 1e-4 of the PDelta one (measured
     1.6e-5), both far from the run without P-Delta (drifts up to 15 % apart), which the
     cross-check therefore tells apart."""
-    ag, ag_dt = ground
     pd, corot = yielding_opensees["none"], yielding_opensees["corotational"]
     for name in PEAKS:
         np.testing.assert_allclose(corot[name], pd[name], rtol=1e-4, err_msg=name)
     assert np.all(pd["peak_story_ductility"] > 2.5)
     assert not pd["collapsed"] and math.isnan(pd["collapse_time"])
-    plain = opd.opensees_pdelta_peaks(ag, ag_dt, story_yield=YIELD, story_height=HEIGHTS,
-                                      p_delta=False)
+    plain = plain_opensees
     assert np.max(np.abs(pd["peak_interstory_drift"] / plain["peak_interstory_drift"] - 1)) \
         > 10 * RTOL
 
@@ -187,6 +197,7 @@ def test_opensees_ida_collapses_inside_its_range_by_pdelta(ground, ida_opensees)
 # ---------------------------------------------------------------- 2. against the engine
 
 
+@pytest.mark.parametrize("backend", ["numba"])  # the NumPy loop's numbers: module docstring
 def test_engine_yielding_stories_with_pdelta_match_opensees(engine_pdelta, ground,
                                                             yielding_opensees, backend):
     """The paper's building, yielding stories with P-Delta, free (member 0) and pounding on an
@@ -199,6 +210,7 @@ def test_engine_yielding_stories_with_pdelta_match_opensees(engine_pdelta, groun
     opd.assert_free_and_wall_match(result, yielding_opensees)
 
 
+@pytest.mark.parametrize("backend", ["numba"])  # the NumPy loop's numbers: module docstring
 def test_engine_collapses_in_an_ida_where_opensees_does(engine_pdelta, ground, ida_opensees,
                                                         backend):
     """The IDA as one batch (scale=): the first collapsing intensity of the engine and of

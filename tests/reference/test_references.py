@@ -17,9 +17,9 @@ are checked against them, they are checked here:
    stories, yielding stories, and yielding stories pounding on a Hertzdamp wall), and the
    paper's building on a friction pendulum under Olive View (free, and pounding).
 
-Records: the paper's (pipeline.records.paper_record), first 15 s (10 s for N = 1). The
-measured deviations are written next to each case; the assertions allow a margin (and never
-more than the 0.5 % asked of the references).
+Records: the paper's (pipeline.records.paper_record), first 10 s: every peak of every case
+lies there (see CASES). The measured deviations are written next to each case; the assertions
+allow a margin (and never more than the 0.5 % asked of the references).
 """
 import math
 
@@ -312,14 +312,19 @@ def test_one_story_yielding_matches_a_very_fine_solve_ivp_run():
 # its steps, so it misses the corner by up to the slope times the distance to the nearest
 # step (first order; it does not shrink while the steps keep straddling the corner alike:
 # eight-elastic gives 3.6e-4, 3.5e-4, 3.5e-4, 0.6e-4 at dt 0.5, 0.25, 0.125, 0.0625 ms).
+# First 10 s of each record: both models give the same peaks, impact counts and ductilities
+# on the first 10 s as on the first 15 s, to the last bit (measured; each case's last peak
+# comes between 8 and 9 s under Pacoima Dam, before 8 s under Olive View), so the deviations
+# above are those of the first 15 s; the friction pendulum still switches 38 (free) and 46
+# (walls) times.
 CASES = {
-    "eight-elastic": ("pacoima", 15.0, EIGHT, None, 5e-4, 1e-3),
-    "eight-yielding": ("pacoima", 15.0, dict(EIGHT, story_yield=EIGHT_YIELD), None, 2.5e-4,
+    "eight-elastic": ("pacoima", 10.0, EIGHT, None, 5e-4, 1e-3),
+    "eight-yielding": ("pacoima", 10.0, dict(EIGHT, story_yield=EIGHT_YIELD), None, 2.5e-4,
                        2e-3),
-    "eight-yielding-wall": ("pacoima", 15.0, dict(EIGHT, story_yield=EIGHT_YIELD), 0.25,
+    "eight-yielding-wall": ("pacoima", 10.0, dict(EIGHT, story_yield=EIGHT_YIELD), 0.25,
                             2.5e-4, 1e-3),
-    "fp": ("olive_view", 15.0, dict(isolator=FP), None, 2.5e-4, 5e-3),
-    "fp-wall": ("olive_view", 15.0, dict(isolator=FP), 0.15, 2.5e-4, 1e-3),
+    "fp": ("olive_view", 10.0, dict(isolator=FP), None, 2.5e-4, 5e-3),
+    "fp-wall": ("olive_view", 10.0, dict(isolator=FP), 0.15, 2.5e-4, 1e-3),
 }
 K_HERTZ = 2.75e10  # N/m^1.5, COR 0.5
 

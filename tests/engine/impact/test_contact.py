@@ -73,13 +73,15 @@ def test_independent_walls_from_the_spec_hold_the_engine_contact_numbers():
 
 
 # (a) key, samples of the record used (window [0, (N - 1) dt]), contact, crushed?
+# Pacoima Dam's first 8 s: both models give the same peaks and impact counts there as on its
+# first 12 s, to the last bit (measured; the engine's last peak comes before 4.5 s).
 BUILDING_CASES = {
     # 3 impacts at 2.9, 3.5, 4.1 s; v_imp up to 1.23 m/s; indentation 5.03 cm > delta_u 4 cm.
-    "pacoima-bumper-crushed": ("pacoima", 1201, lambda: Contact.bumper(0.20), True),
+    "pacoima-bumper-crushed": ("pacoima", 801, lambda: Contact.bumper(0.20), True),
     # 1 impact at 6.9 s, v_imp 0.60 m/s, indentation 3.71 cm < delta_u.
     "olive_view-bumper": ("olive_view", 501, lambda: Contact.bumper(0.15), False),
     # 1 impact at 3.6 s, v_imp 0.57 m/s, indentation 6.1 mm, 14.1 MN.
-    "pacoima-hertzdamp": ("pacoima", 1201,
+    "pacoima-hertzdamp": ("pacoima", 801,
                           lambda: Contact.hertzdamp(0.24, k=2.75e10, cor=0.5), None),
 }
 # Measured largest deviation of any peak, engine (dt 0.5 ms) vs independent model:

@@ -63,6 +63,10 @@ def test_named_ratios():
     assert rubber_bumper.compression_ratio(0.75, 1.0, shape_factor_cal=0.75) == 1.0
 
 
+# The compiled loop: the NumPy loop gives engine.two_body's numbers to 1e-9 for the bumper law,
+# whose shape correction sets its stiffness before the loop runs
+# (tests/engine/loops/test_numba_loop.py::test_two_body_backends_agree).
+@pytest.mark.parametrize("backend", ["numba"])
 def test_shape_corrected_pad_realises_the_same_cor(backend):
     """The damping calibration holds with the shape: the COR of a pure power law with C_imp =
     c / v_imp^e does not depend on its stiffness, so a pad of S 0.5 (half Eq. 11's k) and one
