@@ -67,7 +67,7 @@ class Building:
                                "weight (the shorthand isolator)", kind="shorthand")
     zeta_iso: float | None = declared(
         None, "1", "isolation damping ratio on the isolator's initial stiffness (None: the "
-        "isolator law's default: bilinear 0.05, friction pendulum 0)", valid="[0, 1)",
+        "isolator law's default: bilinear 0.05, the friction pendulums 0)", valid="[0, 1)",
         optional=True)
     zeta_sup: float = declared(0.02, "1", "superstructure damping ratio", valid="[0, 1)")
     damping: str = declared("paper", None, "the damping rule (see the class docstring)",
@@ -295,12 +295,14 @@ class Building:
     @property
     def yield_force(self) -> float:
         """Isolator force (N) where it starts to yield or slide: Fy = fy_ratio * g * total
-        mass for the bilinear law, mu_fast W + W yield_disp / R for a friction pendulum."""
+        mass for the bilinear law, mu_fast W + W yield_disp / R for a friction pendulum, mu1 W
+        for a triple friction pendulum."""
         return self.isolator_stiffness * self.yield_displacement
 
     @property
     def isolator_stiffness(self) -> float:
-        """The isolator's initial stiffness (N/m): K1, or k_0 + W/R for a friction pendulum."""
+        """The isolator's initial stiffness (N/m): K1, k_0 + W/R for a friction pendulum,
+        mu1 W / yield_disp for a triple friction pendulum."""
         return self.isolation.initial_stiffness(self.total_mass, self.g)
 
     def stiffness_matrix(self, isolator_stiffness: float | None = None) -> np.ndarray:

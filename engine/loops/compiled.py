@@ -18,12 +18,12 @@ from numba import njit
 from .. import layout as columns
 from .. import results, scheme
 from ..impact import registry
-from ..isolators import hysteresis
+from ..isolators import hysteresis, series
 from ..isolators import registry as isolator_registry
 from ..results import MODE
 from ..stories import registry as story_registry
 
-PHYSICS_FILES = [m.__file__ for m in (hysteresis, scheme, columns, results, registry,
+PHYSICS_FILES = [m.__file__ for m in (hysteresis, series, scheme, columns, results, registry,
                                       *registry.LAWS.values(), story_registry,
                                       *story_registry.LAWS.values(), isolator_registry,
                                       *isolator_registry.LAWS.values())]
@@ -91,9 +91,9 @@ def _link_story(code, force, otherwise):
     return njit(**STORY_LINK)(dispatch)
 
 
-SHARED_PHYSICS = (hysteresis.__name__,)
-"""Modules whose physics a law may call (the slip element of isolators/hysteresis.py):
-compiled with the law like its own helpers."""
+SHARED_PHYSICS = (hysteresis.__name__, series.__name__)
+"""Modules whose physics a law may call (the slip element of isolators/hysteresis.py, the
+elements in series of isolators/series.py): compiled with the law like its own helpers."""
 
 
 def compiled_in_module(function):

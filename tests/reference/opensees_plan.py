@@ -58,6 +58,21 @@ The model (``-ndm 3 -ndf 6``)
   radial return onto mu(|v|) W, with |v| its half-step speed (``isolator_path`` with the
   engine's speeds: the same forces to round-off); ``singleFPBearing`` is not used
   for the reasons the planar reference gives (second-order terms the engine leaves out).
+* Triple friction pendulum, coupled: ``TripleFrictionPendulum`` (3-D, Dao et al. 2013;
+  TripleFrictionPendulum.cpp) with L1 L2 L3 d1 d2 d3, W, uy = yield_disp, kvt 1 N/m, minFv
+  0.1 N, tol 1e-10, three ``Coulomb`` friction models (mu1 inner, mu2 lower, mu3 upper
+  outer), the vertical material an ``InitStressMaterial`` of initial stress -W around the
+  stiff ``Elastic`` (the vertical DOF is fixed: N = W throughout), the rotations ``Elastic``
+  0. The element uses global X, Y as its shear directions (no orientation). What it
+  implements (read from the source): three elements in series, each a circular plasticity
+  with kinematic hardening (E = 3 mu1 / uy, yield mu_i, post-yield stiffness 1 / (2 L1),
+  1 / (L2 - L1), 1 / (L3 - L1), all per unit W) in parallel with a circular gap spring of
+  stiffness E past 2 (L1 d3 / L3 + d1), d2 (1 - L1 / L2), d3 (1 - L1 / L3), solved by its
+  own nested Newton iterations to tol (which leave the model's Newton at ~1e-9 m: its test
+  is ``NormDispIncr`` 1e-8 m with this element, 1e-10 m otherwise; a tol of 1e-13 makes the
+  element's iterations fail). The engine's law: the same elements
+  (tests/engine/isolators/laws/test_triple_friction_pendulum.py holds them to the same
+  forces along paths in plan, ``isolator_path``).
 * Walls: none, or a rectangular moat of elastic walls: four ``zeroLength`` elements between
   ground and level 0, in WALLS order +x, -x, +y, -y, each an ``ElasticPPGap`` (stiffness k,
   a yield force of 1e30 N that is never reached, gap +-g, eta 0, ``noDamage``) in ``-dir 1``
@@ -69,9 +84,10 @@ The model (``-ndm 3 -ndf 6``)
   responses are relative to the ground; total acceleration = ``nodeAccel`` + a_g(t) per
   direction, a_g interpolated at the analysis time with the same linear rule.
 * Analysis: ``Transient``, ``Newmark`` gamma 1/2, beta 1/4 (average acceleration), fixed
-  step dt (default the engine's 0.5 ms), ``Newton`` with ``NormDispIncr`` 1e-10 m, the
-  planar reference's fallbacks (ModifiedNewton -initial, KrylovNewton, then halved steps
-  down to dt / 2**8). Peaks are taken over the converged (sub)steps.
+  step dt (default the engine's 0.5 ms), ``Newton`` with ``NormDispIncr`` 1e-10 m (1e-8 m
+  with the triple friction pendulum, above), the planar reference's fallbacks
+  (ModifiedNewton -initial, KrylovNewton, then halved steps down to dt / 2**8). Peaks are
+  taken over the converged (sub)steps.
 
 Peaks (the engine's PlanResult names): peak_total_accel (N+1,) m/s^2, peak_interstory_drift
 (N,) m, peak_isolator_disp m (resultants: the peak of |a_j(t)|, |u_j(t) - u_{j-1}(t)|,
@@ -104,6 +120,9 @@ _FY_NEVER = 1e30  # N, the walls' "yield" force: never reached
 _AXIAL_K = 1e15  # N/m, the friction pendulum's axial material (its deformation stays 0)
 _MAX_HALVINGS = 8
 _ORIENT = (0.0, 0.0, 1.0, 1.0, 0.0, 0.0)  # bearings: local x = global Z, local y = global X
+_TFP_MIN_FV = 0.1  # N, the triple friction pendulum's least normal force (never reached)
+_TFP_TOL = 1e-8  # its relative tolerance (1e-10 and below: its own iterations fail, it glitches)
+_TFP_NORM = 1e-10  # m, Newton's tolerance with it
 
 
 def _node_tags(n_levels: int) -> tuple[int, ...]:
@@ -141,6 +160,14 @@ def _isolator(bld: dict, level0: int):
         qd = float(iso["Fy"]) * (1.0 - k2 / k1)  # the hysteretic part's yield force
         ops.element("elastomericBearingPlasticity", 1, _GROUND, level0, k1, qd, k2 / k1, 0.0,
                     2.0, "-P", 30, "-T", 32, "-My", 32, "-Mz", 32, "-orient", *_ORIENT)
+    elif iso["kind"] == "triple_friction_pendulum":
+        w = float(iso["weight"])
+        for tag, mu in enumerate((iso["mu1"], iso["mu2"], iso["mu3"]), start=1):
+            ops.frictionModel("Coulomb", tag, float(mu))
+        ops.uniaxialMaterial("InitStressMaterial", 31, 30, -w)  # constant compression W
+        ops.element("TripleFrictionPendulum", 1, _GROUND, level0, 1, 2, 3, 31, 32, 32, 32,
+                    *(float(iso[key]) for key in ("L1", "L2", "L3", "d1", "d2", "d3")), w,
+                    float(iso["yield_disp"]), 1.0, _TFP_MIN_FV, _TFP_TOL)
     else:
         w = float(iso["weight"])
         ops.frictionModel("VelDependent", 1, float(iso["mu_slow"]), float(iso["mu_fast"]),
@@ -201,7 +228,8 @@ def build_model(pair, pair_dt, *, walls=None, masses=None, story_k=None, isolato
     ops.constraints("Plain")
     ops.numberer("Plain")
     ops.system("BandGeneral")
-    ops.test("NormDispIncr", 1e-10, 50)
+    ops.test("NormDispIncr", _TFP_NORM if bld["isolator"]["kind"] == "triple_friction_pendulum"
+             else 1e-10, 50)
     ops.algorithm("Newton")
     ops.integrator("Newmark", 0.5, 0.25)
     ops.analysis("Transient")

@@ -52,6 +52,11 @@ The building (``building(...)`` resolves every number; defaults: the paper's)
   quasi-statically (static ``DisplacementControl``, the slider's velocity set by
   ``setNodeVel``): it reproduces the closed-form loops to round-off
   (tests/reference/test_references.py).
+* Isolator ``{"kind": "triple_friction_pendulum", "L1", "L2", "L3", "d1", "d2", "d3", "mu1",
+  "mu2", "mu3", "yield_disp" (default 0.5 mm, OpenSees' uy), "weight" (default W = g M_tot)}``:
+  resolved here (its reference stiffness k_ref = mu1 W / yield_disp, the element's initial
+  one; no isolation dashpot by default), modelled by opensees_plan.py only: the
+  ``TripleFrictionPendulum`` element is 3-D (its description there).
 
 Other modelling choices
 -----------------------
@@ -138,6 +143,7 @@ _ZETA_B = 0.05
 _ZETA_S = 0.02
 _STORY_B = 0.02
 _YIELD_DISP = 5e-4  # m, friction pendulum pre-slip displacement
+_TFP_KEYS = ("L1", "L2", "L3", "d1", "d2", "d3", "mu1", "mu2", "mu3")
 MAX_STORIES = 30
 
 
@@ -208,7 +214,10 @@ def building(masses=None, story_k=None, isolator=None, story_yield=None, story_b
     (a scalar is used for every story); isolator: None (the paper's bilinear isolator) or a
     dict, ``{"kind": "bilinear", "K1": N/m, "K2": N/m, "fy_ratio": 1}`` (missing keys take
     200e6, 25e6, 0.1) or ``{"kind": "friction_pendulum", "radius": m, "mu_slow", "mu_fast",
-    "rate": s/m, "yield_disp": m (default 5e-4), "weight": N (default g M_tot)}``;
+    "rate": s/m, "yield_disp": m (default 5e-4), "weight": N (default g M_tot)}`` or
+    ``{"kind": "triple_friction_pendulum", "L1", "L2", "L3": m, "d1", "d2", "d3": m, "mu1",
+    "mu2", "mu3", "yield_disp": m (default 5e-4), "weight": N (default g M_tot)}`` (3-D
+    only: opensees_plan.py models it);
     story_yield: None (elastic stories) or F_1..F_N, N (np.inf: that story stays elastic);
     story_b: post-yield stiffness ratio (scalar or per story); zeta_iso: isolation damping
     ratio (default 0.05 bilinear, 0 friction pendulum); zeta_sup: story damping ratio.
@@ -247,6 +256,17 @@ def building(masses=None, story_k=None, isolator=None, story_yield=None, story_b
         iso["k0"] = iso["mu_fast"] * iso["weight"] / iso["yield_disp"]
         iso["k_pendulum"] = iso["weight"] / iso["radius"]
         k_ref = iso["k0"] + iso["k_pendulum"]
+        zeta_default = 0.0
+    elif kind == "triple_friction_pendulum":
+        for key in _TFP_KEYS:
+            if key not in iso:
+                raise ValueError(f"the triple friction pendulum needs {key!r}")
+        iso.setdefault("yield_disp", _YIELD_DISP)
+        iso.setdefault("weight", G * m_tot)
+        if not (iso["L1"] < iso["L2"] and iso["L1"] < iso["L3"]
+                and 0 < iso["mu1"] <= iso["mu2"] <= iso["mu3"]):
+            raise ValueError("need L1 < L2, L1 < L3 and 0 < mu1 <= mu2 <= mu3")
+        k_ref = iso["mu1"] * iso["weight"] / iso["yield_disp"]  # the element's initial
         zeta_default = 0.0
     else:
         raise ValueError(f"unknown isolator kind {kind!r}")

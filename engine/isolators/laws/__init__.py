@@ -4,7 +4,8 @@ and nothing else.
 
 A law's physics is its own, written once for both time loops (for scalars and for arrays
 alike: the NumPy loops call it on batches, the compiled loops compile it); the bilinear and
-friction pendulum laws are made of the slip element of engine/isolators/hysteresis.py. A law
+friction pendulum laws are made of the slip element of engine/isolators/hysteresis.py, the
+triple friction pendulum of the elements in series of engine/isolators/series.py. A law
 module holds:
     NAME: str, ORDER: int          its name and place in listings
     PARAMETERS: Declaration        its parameters, once (engine.parameters)

@@ -31,7 +31,9 @@ def test_an_isolator_row_holds_its_law_by_name_and_a_bearing_its_share(law):
     """isolator_rows packs each member's law code and ROW as the law declares it (fields by
     name), zero beyond; with n bearings the CARRIED columns are 1/n, the others unchanged."""
     iso = {"bilinear": Isolator.bilinear(), "friction_pendulum": Isolator.friction_pendulum(
-        radius=2.0, mu_slow=0.05, mu_fast=0.1, rate=30.0)}[law.NAME]
+        radius=2.0, mu_slow=0.05, mu_fast=0.1, rate=30.0),
+           "triple_friction_pendulum": Isolator.triple_friction_pendulum(
+        L1=0.3, L2=2.0, L3=2.0, d1=0.05, d2=0.3, d3=0.3, mu1=0.02, mu2=0.04, mu3=0.08)}[law.NAME]
     building = Building(isolator=iso)
     arrays = building_arrays([Building(), building], 2)
     codes, rows = layout.isolator_rows(arrays)
