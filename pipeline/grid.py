@@ -17,7 +17,8 @@ is what resumable runs key on.
 
 The building's isolator parameters can be swept too (ISOLATOR_PARAMS, declared by the isolator
 laws the same way: k1, k2, fy_ratio for the bilinear law; radius, mu_slow, mu_fast, rate,
-yield_disp for the friction pendulum). A member then carries the values that replace the
+yield_disp for the friction pendulum; L1, L2, L3, d1, d2, d3, mu1, mu2, mu3, yield_disp for the
+triple friction pendulum). A member then carries the values that replace the
 building's own (NaN: the building's), and `buildings_for` makes each member's engine Building.
 
 Blocks of members, each run for every record:

@@ -58,7 +58,8 @@ PARTS = {
     "mass": "the effective impact mass m_eff, kg",
     "isolator": "the building's isolator parameters a sweep can vary, every isolator law's "
                 "declared `sweep` names (k1, k2, fy_ratio, radius, mu_slow, mu_fast, rate, "
-                "yield_disp), replacing the building's own (NaN: the building's)",
+                "yield_disp, L1, L2, L3, d1, d2, d3, mu1, mu2, mu3), replacing the building's "
+                "own (NaN: the building's)",
     "plan": "the parameters of runs in plan only: the record pair's incidence angle "
             "(degrees) and the slab-wall friction mu_wall (engine.plan.PLAN_PARAMETERS; NaN: "
             "a planar run)",

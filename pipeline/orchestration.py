@@ -117,7 +117,8 @@ def sweep(records, **keywords):
         law's declared default (engine.impact.LAWS[impact].PARAMETERS, where each law states
         what wall_k means for it); thickness, cavity, strain, n_bumpers apply to bumpers only.
     k1, k2 (N/m), fy_ratio (-) for a bilinear isolator; radius (m), mu_slow, mu_fast (-), rate
-        (s/m), yield_disp (m) for a friction pendulum: the building's isolator parameters
+        (s/m), yield_disp (m) for a friction pendulum; L1, L2, L3, d1, d2, d3 (m), mu1, mu2,
+        mu3 (-), yield_disp (m) for a triple friction pendulum: the building's isolator parameters
         (pipeline.members.ISOLATOR_PARAMS, declared in engine/isolators/laws/), which replace the
         building's own, held fixed or swept the same way (None: the building's). The
         baseline and unconstrained runs are then made once per isolator too.

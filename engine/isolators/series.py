@@ -33,8 +33,10 @@ STATE = (*(f"deformation_{e}" for e in ELEMENTS), *(f"slip_{e}" for e in ELEMENT
 force they carry (N)."""
 STATE_XY = (*(f"deformation_{e}_{a}" for e in ELEMENTS for a in "xy"),
             *(f"slip_{e}_{a}" for e in ELEMENTS for a in "xy"), "bearing_force_x",
-            "bearing_force_y")
-"""In plan: the same, x and y each."""
+            "bearing_force_y", "stiffness_xx", "stiffness_xy", "stiffness_yy")
+"""In plan: the same, x and y each; then the series' tangent stiffness (N/m, xx, xy, yy)
+where the last step ended, the next step's first Newton step (zero at rest: the first step
+starts with an evaluation)."""
 
 EVENTS = 8
 """Sub-steps of a step along one axis: one per event, at most two per element in a step
@@ -50,12 +52,12 @@ TOLERANCE = 1e-14
 ARMIJO = 1e-4
 """The share of the decrease its slope promises that a backtracked Newton step must give
 (where it does not at least halve the mismatch)."""
-STUCK = 1e-9
-"""A step in plan starts on the committed tangent, an element whose slip force is within this
-share of its limit (squared) taken as sliding on."""
+_TINY = 1e-30
+"""The least length (m) or force (N) a direction is taken from, and divided by (a zero one
+stays zero, and its reciprocal finite)."""
 _FAR = 1e100
-"""The distance (m) to an event that does not come; the first mismatch of a step in plan (a
-large finite number: blended by 0 and 1, it must not be inf)."""
+"""The distance (m) to an event that does not come, and the energy a Newton step in plan must
+first beat (large finite numbers: blended by 0 and 1, they must not be inf)."""
 
 
 def elements(row):
@@ -85,15 +87,17 @@ def _stiffness(x, y, element):
     return tangent, to_slide, to_stop
 
 
-def _moved(x, y, push, tangent, to_slide, to_stop, element):
-    """(x, y) of the element after a force increment push (N) at its tangent: an event
-    reached lands exactly (the slip force at its limit, the deformation at the stop)."""
+def _moved(x, y, push, move, events, element):
+    """(x, y) of the element after a force increment push (N) that moves it by `move` (m),
+    events = (its tangent, deformation to sliding, to its stop): an event reached lands
+    exactly (the slip force at its limit, the deformation at the stop)."""
+    tangent, to_slide, to_stop = events
     _, slip, limit, gap, _ = element
     slid = push >= tangent * to_slide
     stopped = push >= tangent * to_stop
-    y = np.minimum(y + slip * (push / tangent) + 2.0 * limit * slid, limit)
+    y = np.minimum(y + slip * move + 2.0 * limit * slid, limit)
     mark = gap * (1.0 - 2.0 * (x < -gap))
-    x = np.maximum(x + push / tangent, mark * stopped - _FAR * (1.0 - stopped))
+    x = np.maximum(x + move, mark * stopped - _FAR * (1.0 - stopped))
     return x, y
 
 
@@ -110,19 +114,18 @@ def step_along(state, du, elements):
     for sub in range(EVENTS):
         if settled(rest):
             break
-        k1, slide1, stop1 = _stiffness(x1, y1, e1)
-        k2, slide2, stop2 = _stiffness(x2, y2, e2)
-        k3, slide3, stop3 = _stiffness(x3, y3, e3)
-        needed = rest / (1.0 / k1 + 1.0 / k2 + 1.0 / k3)  # the force that takes up the rest
-        event = np.minimum(np.minimum(k1 * np.minimum(slide1, stop1),
-                                      k2 * np.minimum(slide2, stop2)),
-                           k3 * np.minimum(slide3, stop3)) + _FAR * (sub == EVENTS - 1)
+        a1, a2, a3 = _stiffness(x1, y1, e1), _stiffness(x2, y2, e2), _stiffness(x3, y3, e3)
+        c1, c2, c3 = 1.0 / a1[0], 1.0 / a2[0], 1.0 / a3[0]  # compliances
+        needed = rest / (c1 + c2 + c3)  # the force that takes up the rest
+        event = np.minimum(np.minimum(a1[0] * np.minimum(a1[1], a1[2]),
+                                      a2[0] * np.minimum(a2[1], a2[2])),
+                           a3[0] * np.minimum(a3[1], a3[2])) + _FAR * (sub == EVENTS - 1)
         push = np.minimum(needed, event)
-        moved = push / k1 + push / k2 + push / k3
-        rest = np.maximum(rest - moved, 0.0) * (needed > event)
-        x1, y1 = _moved(x1, y1, push, k1, slide1, stop1, e1)
-        x2, y2 = _moved(x2, y2, push, k2, slide2, stop2, e2)
-        x3, y3 = _moved(x3, y3, push, k3, slide3, stop3, e3)
+        m1, m2, m3 = push * c1, push * c2, push * c3
+        rest = np.maximum(rest - (m1 + m2 + m3), 0.0) * (needed > event)
+        x1, y1 = _moved(x1, y1, push, m1, a1, e1)
+        x2, y2 = _moved(x2, y2, push, m2, a2, e2)
+        x3, y3 = _moved(x3, y3, push, m3, a3, e3)
         carried = carried + push
     state[0], state[1], state[2] = sign * x1, sign * x2, sign * x3
     state[3], state[4], state[5] = sign * y1, sign * y2, sign * y3
@@ -142,12 +145,12 @@ def _tangent(dx, dy, plastic, element, sticking):
     pendulum, slip, limit, gap, stop = element
     ex, ey = dx - px, dy - py
     apart = np.sqrt(ex * ex + ey * ey)
-    free = 1.0 / np.maximum(apart, 1e-300)
+    free = 1.0 / np.maximum(apart, _TINY)
     nx, ny = ex * free, ey * free
     grip = slip * sticking + limit * free * (1.0 - sticking)  # the slip force per (d - p)
     sliding = limit * free * (1.0 - sticking)  # dropped from the tangent along d - p
     reach = np.sqrt(dx * dx + dy * dy)
-    outward = 1.0 / np.maximum(reach, 1e-300)
+    outward = 1.0 / np.maximum(reach, _TINY)
     excess = np.maximum(1.0 - gap * outward, 0.0)  # the stop's force is stop excess d
     radial = stop * (1.0 - excess) * (reach > gap)  # its tangent's extra along d
     mx, my = dx * outward, dy * outward
@@ -210,34 +213,61 @@ def _carrying(fx, fy, plastic, element):
     """One element carrying the force F = (fx, fy) (N), p = `plastic` (p_x, p_y) its committed
     plastic slip (m): (its deformation x, y (m), its slip force x, y (N), the xx, xy, yy of its
     compliance, the inverse of its consistent tangent (m/N), its complementary energy F.d -
-    its energy (J), whose gradient is d). Sticking (the slip element elastic, its force
-    slip (d - p) within its limit), d lies
-    along F + slip p with (pendulum + slip) |d| + stop max(|d| - gap, 0) = |F + slip p|.
-    Sliding, the slip force is limit n: without the stop n lies along m = F - pendulum p and
-    d = (F - limit n) / pendulum, which holds where it lies inside the stop's circle and
-    slides (|m| (pendulum + slip) >= limit slip); else `_past_stop` (from there, or from the
-    sticking deformation where it would not slide). element: (pendulum, slip, limit, gap,
-    stop) and 1 / pendulum, 1 / (pendulum + slip), 1 / (pendulum + slip + stop)."""
+    its energy (J), whose gradient is d). Force driven and exact. Sticking (the slip element
+    elastic, its force slip (d - p) within its limit), d lies along q = F + slip p with
+    (pendulum + slip) |d| + stop max(|d| - gap, 0) = |q|. Sliding, the slip force is limit n:
+    without the stop n lies along m = F - pendulum p and d = (F - limit n) / pendulum, which
+    holds where d lies inside the stop's circle and slides (|m| - limit >= limit pendulum /
+    slip); else `_past_stop`, from there or, where it would not slide, from the sticking
+    deformation (it slides by little then). element: (pendulum, slip, limit, gap, stop) and
+    1 / pendulum, 1 / (pendulum + slip), 1 / (pendulum + slip + stop), limit^2 / slip."""
     px, py = plastic
-    pendulum, slip, limit, gap, stop = element[:5]
-    easy, stiff, stopped = element[5:]  # 1 / pendulum, 1 / (pendulum + slip), 1 / (... + stop)
+    pendulum, slip, limit, gap, stop, easy, stiff, stopped, spent = element
+    # sticking: radial along q, the stop's tangent along it too
     qx, qy = fx + slip * px, fy + slip * py
     size = np.sqrt(qx * qx + qy * qy)
-    scale = np.minimum(stiff, (1.0 + stop * gap / np.maximum(size, 1e-300)) * stopped)
+    inward = 1.0 / np.maximum(size, _TINY)
+    scale = np.minimum(stiff, (1.0 + stop * gap * inward) * stopped)
     ex, ey = qx * scale, qy * scale
-    sticking = (slip * (ex - px)) ** 2 + (slip * (ey - py)) ** 2 <= limit * limit
+    wide = (ex - px) ** 2 + (ey - py) ** 2
+    sticking = slip * slip * wide <= limit * limit
+    reach = size * scale
+    excess = np.maximum(1.0 - gap / np.maximum(reach, _TINY), 0.0)
+    radial = stop * (1.0 - excess) * (reach > gap)
+    ux, uy = qx * inward, qy * inward
+    even = pendulum + slip + stop * excess
+    beyond = np.maximum(reach - gap, 0.0)
+    kept = 0.5 * (pendulum * reach * reach + stop * beyond * beyond + slip * wide)
+    # sliding inside the circle: n along m, |d - p| = (|m| - limit) / pendulum
     mx, my = fx - pendulum * px, fy - pendulum * py
     pull = np.sqrt(mx * mx + my * my)
-    across = limit / np.maximum(pull, 1e-300)
-    sx, sy = (fx - mx * across) * easy, (fy - my * across) * easy
-    # past the stop where it lies outside the circle, or would not slide without the stop
-    # (from the sticking deformation then: it was sliding by little)
-    unslid = pull < limit * slip * stiff
-    sx, sy = ex * unslid + sx * (1.0 - unslid), ey * unslid + sy * (1.0 - unslid)
-    dx, dy = _past_stop(sx, sy, (fx, fy), plastic, element[:5],
-                        ((sx * sx + sy * sy > gap * gap) | unslid) * (1.0 - sticking))
-    dx, dy = ex * sticking + dx * (1.0 - sticking), ey * sticking + dy * (1.0 - sticking)
-    kxx, kxy, kyy, _, _, sx, sy, held = _tangent(dx, dy, plastic, element[:5], sticking)
+    toward = 1.0 / np.maximum(pull, _TINY)
+    nx, ny = mx * toward, my * toward
+    lx, ly = (fx - limit * nx) * easy, (fy - limit * ny) * easy
+    apart = (pull - limit) * easy
+    across = limit / np.maximum(apart, 1e-12)  # the slip force's stiffness across n
+    moved = 0.5 * pendulum * (lx * lx + ly * ly) + limit * apart - 0.5 * spent
+    sliding = 1.0 - sticking
+    dx, dy = ex * sticking + lx * sliding, ey * sticking + ly * sliding
+    sx, sy = slip * (ex - px) * sticking + limit * nx * sliding, \
+        slip * (ey - py) * sticking + limit * ny * sliding
+    kxx = (even + radial * ux * ux) * sticking + (pendulum + across * ny * ny) * sliding
+    kxy = radial * ux * uy * sticking - across * nx * ny * sliding
+    kyy = (even + radial * uy * uy) * sticking + (pendulum + across * nx * nx) * sliding
+    held = kept * sticking + moved * sliding
+    # past the stop, or sliding by so little that without the stop it would not slide
+    unslid = apart * slip < limit
+    past = ((lx * lx + ly * ly > gap * gap) | unslid) * sliding
+    if not settled(past):
+        bx, by = _past_stop(ex * unslid + lx * (1.0 - unslid), ey * unslid + ly * (1.0 - unslid),
+                            (fx, fy), plastic, element[:5], past)
+        k = _tangent(bx, by, plastic, element[:5], 0.0)
+        other = 1.0 - past
+        dx, dy = bx * past + dx * other, by * past + dy * other
+        kxx, kxy, kyy = k[0] * past + kxx * other, k[1] * past + kxy * other, \
+            k[2] * past + kyy * other
+        sx, sy = k[5] * past + sx * other, k[6] * past + sy * other
+        held = k[7] * past + held * other
     cxx, cxy, cyy = _inverse(kxx, kxy, kyy)
     return dx, dy, sx, sy, cxx, cxy, cyy, fx * dx + fy * dy - held
 
@@ -257,36 +287,33 @@ def _series(fx, fy, plastic, elements):
             w1 + w2 + w3)
 
 
-def _committed(state, plastic, elements):
-    """(xx, xy, yy of the series' tangent stiffness (N/m), the elements' energy (J)) at the
-    committed state, an element whose slip force is within STUCK of its limit (squared) taken
-    as sliding on: its tangent is the one it keeps when the bearing moves on as it moved (a
-    sticking one would overshoot the force)."""
-    axx, axy, ayy, held = 0.0, 0.0, 0.0, 0.0
+def _stored(state, elements):
+    """J: the energy the three elements hold in the committed state (STATE_XY's columns),
+    their pendulums', stops' and slip elements' (|s|^2 / (2 slip)): the potential of a step's
+    solve at its start."""
+    held = 0.0
     for k in range(3):
-        _, _, limit, _, _ = elements[k]
-        sx, sy = state[6 + 2 * k], state[7 + 2 * k]
-        sticking = sx * sx + sy * sy < limit * limit * (1.0 - STUCK)
-        kxx, kxy, kyy, _, _, _, _, energy = _tangent(state[2 * k], state[2 * k + 1], plastic[k],
-                                                     elements[k], sticking)
-        cxx, cxy, cyy = _inverse(kxx, kxy, kyy)
-        axx, axy, ayy, held = axx + cxx, axy + cxy, ayy + cyy, held + energy
-    kxx, kxy, kyy = _inverse(axx, axy, ayy)
-    return kxx, kxy, kyy, held
+        pendulum, slip, _, gap, stop = elements[k]
+        dx, dy, sx, sy = state[2 * k], state[2 * k + 1], state[6 + 2 * k], state[7 + 2 * k]
+        reach = np.sqrt(dx * dx + dy * dy)
+        beyond = np.maximum(reach - gap, 0.0)
+        held = held + 0.5 * (pendulum * reach * reach + stop * beyond * beyond
+                             + (sx * sx + sy * sy) / slip)
+    return held
 
 
 def _derived(element):
-    """An element's constants with 1 / pendulum, 1 / (pendulum + slip) and 1 / (pendulum +
-    slip + stop) (`_carrying`'s)."""
+    """An element's constants with those `_carrying` reads: 1 / pendulum, 1 / (pendulum +
+    slip), 1 / (pendulum + slip + stop), limit^2 / slip."""
     pendulum, slip, limit, gap, stop = element
     return (pendulum, slip, limit, gap, stop, 1.0 / pendulum, 1.0 / (pendulum + slip),
-            1.0 / (pendulum + slip + stop))
+            1.0 / (pendulum + slip + stop), limit * limit / slip)
 
 
 def step_in_plan(state, dux, duy, elements):
     """In plan: the elements after the bearing moves by (dux, duy) (m), state (STATE_XY's
     columns) updated in place: the force F they all carry, by Newton's method from the
-    committed one (its first step on the committed tangent, `_committed`), until their
+    committed one (its first step on the tangent where the last step ended), until their
     deformations add up to the bearing's to TOLERANCE (at most NEWTON evaluations); a Newton
     step that neither lowers the convex function whose gradient is the mismatch enough
     (ARMIJO) nor halves the mismatch is halved (a step from sticking to sliding, or onto a
@@ -297,9 +324,9 @@ def step_in_plan(state, dux, duy, elements):
                (state[2] - state[8] / e2[1], state[3] - state[9] / e2[1]),
                (state[4] - state[10] / e3[1], state[5] - state[11] / e3[1]))
     fx, fy = state[12], state[13]
-    kxx, kxy, kyy, held = _committed(state, plastic, elements)
+    kxx, kxy, kyy = state[14], state[15], state[16]
     rx, ry = -dux, -duy  # the mismatch at the committed force
-    size, energy = rx * rx + ry * ry, -held - (fx * dux + fy * duy)
+    size, energy = rx * rx + ry * ry, -_stored(state, elements) - (fx * dux + fy * duy)
     gx, gy = -(kxx * rx + kxy * ry), -(kxy * rx + kyy * ry)
     step = 1.0
     derived = (_derived(e1), _derived(e2), _derived(e3))
@@ -319,7 +346,9 @@ def step_in_plan(state, dux, duy, elements):
         fx, fy = tx * taken + fx * kept, ty * taken + fy * kept
         rx, ry = qx * taken + rx * kept, qy * taken + ry * kept
         size, energy = trial * taken + size * kept, lower * taken + energy * kept
-        gx = -(out[12] * qx + out[13] * qy) * taken + gx * kept
-        gy = -(out[13] * qx + out[14] * qy) * taken + gy * kept
+        kxx, kxy = out[12] * taken + kxx * kept, out[13] * taken + kxy * kept
+        kyy = out[14] * taken + kyy * kept
+        gx, gy = -(kxx * rx + kxy * ry), -(kxy * rx + kyy * ry)
         step = taken + 0.5 * step * kept
     state[12], state[13] = fx, fy
+    state[14], state[15], state[16] = kxx, kxy, kyy

@@ -21,7 +21,9 @@ engine/isolators/laws/): bilinear: Q_d and K_d = k2 scaled, the
 yield displacement u_y kept (the lead core's elastic stiffness goes with the bearing: k1 =
 Q_d / u_y + K_d), so that k1, k2 and fy_ratio all scale by lambda when both factors are equal;
 friction pendulum: mu_slow and mu_fast scaled by the Q_d factor (friction is its characteristic
-strength), the radius (K_d = W / R, geometry) and the pre-slip displacement kept.
+strength), the radius (K_d = W / R, geometry) and the pre-slip displacement kept; triple
+friction pendulum: mu1, mu2 and mu3 scaled by the Q_d factor, the radii, the displacement
+limits and the pre-slip displacement kept.
 """
 from __future__ import annotations
 

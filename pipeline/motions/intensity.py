@@ -39,7 +39,8 @@ def isolated_period(displacement, building=None):
     T_eff = 2 pi sqrt(M / k_eff): M the total mass (kg; the superstructure taken as rigid on
     the isolators), k_eff the secant stiffness of the building's isolator at D (N/m; the
     isolator law's effective_stiffness: for the bilinear law (k1 min(D, u_y) + k2 max(D - u_y,
-    0)) / D, u_y its yield displacement; for the friction pendulum W / R + mu_fast W / D).
+    0)) / D, u_y its yield displacement; for the friction pendulum W / R + mu_fast W / D; for
+    the triple friction pendulum its rigid-plastic backbone's F(D) / D).
     This is the effective period at the design displacement of the equivalent-linear
     isolator design (ASCE 7 chapter 17, T = 2 pi sqrt(W / (k_eff g))).
 

@@ -136,6 +136,21 @@ def test_stories_heights_p_delta_and_collapse_from_a_file(tmp_path):
         check_plausible(building_from(["story_height=0.035,0.035,0.035,0.035"]))
 
 
+def test_a_triple_friction_pendulum_from_a_file(tmp_path):
+    """Any law of the registry in the [isolator] table: the triple friction pendulum's
+    parameters by their declared names, a contradiction refused naming them."""
+    b = read_building(_written(tmp_path, "[isolator]\nlaw = \"triple_friction_pendulum\"\n"
+                                         "L1 = 0.3\nL2 = 2.0\nL3 = 2.0\nd1 = 0.05\nd2 = 0.3\n"
+                                         "d3 = 0.3\nmu1 = 0.02\nmu2 = 0.04\nmu3 = 0.08\n"))
+    assert b == engine.Building(isolator=engine.Isolator.triple_friction_pendulum(
+        L1=0.3, L2=2.0, L3=2.0, d1=0.05, d2=0.3, d3=0.3, mu1=0.02, mu2=0.04, mu3=0.08))
+    assert b.isolation_zeta == 0.0
+    with pytest.raises(BuildingError, match="mu1 <= mu2 <= mu3"):
+        read_building(_written(tmp_path, "[isolator]\nlaw = \"triple_friction_pendulum\"\n"
+                                         "L1 = 0.3\nL2 = 2.0\nL3 = 2.0\nd1 = 0.05\nd2 = 0.3\n"
+                                         "d3 = 0.3\nmu1 = 0.05\nmu2 = 0.04\nmu3 = 0.08\n"))
+
+
 def _written(folder, text):
     path = folder / "x.toml"
     path.write_text(text)

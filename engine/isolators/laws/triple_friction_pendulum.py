@@ -206,7 +206,8 @@ STATE = columns("TripleFrictionPendulumState", *series.STATE)
 """Along one axis: each element's deformation (m) and slip element's force (N), and the
 bearing's force (N)."""
 STATE_XY = columns("TripleFrictionPendulumStateXY", *series.STATE_XY)
-"""In plan: the same along x and y."""
+"""In plan: the same along x and y, and the series' tangent stiffness (N/m) where the last
+step ended (the next step's first Newton step)."""
 
 
 def fields(mass, g, **values):
