@@ -65,7 +65,7 @@ def _stopped(parts: Path, sig: int, already: int = 0) -> tuple[int, str, float]:
                             env=_env(), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             text=True, preexec_fn=_interruptible)
     deadline = time.monotonic() + 300
-    while len(list(work.glob("*.npz"))) <= already:  # its first pair's batch is kept
+    while len(list(work.glob("*.npz"))) <= already:  # until a pair of its own is kept
         assert proc.poll() is None, proc.communicate()
         assert time.monotonic() < deadline
         time.sleep(0.05)
