@@ -1,6 +1,7 @@
 """Sweeps on a TLS dask cluster on localhost (a private certificate authority made here, a
 `dask scheduler` and a `dask worker` started with its certificates), and every address or
-certificate mistake failing as one ClusterError line within TIME_BOUND, leaving nothing behind.
+certificate mistake failing as one ClusterError line before any simulation, leaving nothing
+behind.
 
 One scheduler (with its dashboard), one worker and one plain HTTP server serve the whole module:
 starting processes is most of the time these tests take."""
@@ -15,7 +16,6 @@ import shutil
 import subprocess
 import sys
 import threading
-import time
 from functools import partial
 from pathlib import Path
 
@@ -28,6 +28,7 @@ from pipeline.cluster import add_tls_options, apply_tls_options
 from pipeline.errors import ClusterError
 from pipeline.histories import segment
 from pipeline.records import load_record
+from tests.pipeline.small_sweep import no_compute
 from tests.pipeline.test_cluster import (
     ENV,
     GRID,
@@ -39,7 +40,6 @@ from tests.pipeline.test_cluster import (
     _worker,
 )
 
-TIME_BOUND = 10.0  # s: every refused address or certificate, from the call to the error
 TLS_KEYS = ("distributed.comm.tls.ca-file", "distributed.comm.tls.client.cert",
             "distributed.comm.tls.client.key")
 
@@ -257,8 +257,8 @@ REFUSALS = [
                          [case[1:] for case in REFUSALS], ids=[case[0] for case in REFUSALS])
 def test_refused_in_one_line(address, certificates, message, tls_cluster, http_port, pki,
                              record, tmp_path, capfd, monkeypatch):
-    """Each address or certificate mistake: one ClusterError line naming it, within
-    TIME_BOUND, before anything is written, and nothing on stderr. Refused before any dask
+    """Each address or certificate mistake: one ClusterError line naming it, before any
+    simulation and before anything is written, and nothing on stderr. Refused before any dask
     Client exists: one that fails to start prints tracebacks when collected, at exit."""
     files = {**pki, "missing": str(tmp_path / "missing.pem")}
     settings = dict(zip(TLS_KEYS, [files[name] for name in certificates] if certificates
@@ -266,13 +266,11 @@ def test_refused_in_one_line(address, certificates, message, tls_cluster, http_p
     out = tmp_path / "run" / "x.nc"
     out.parent.mkdir()
     monkeypatch.setattr("distributed.Client", _no_client)
-    start = time.monotonic()
+    no_compute(monkeypatch)
     with dask.config.set(settings), pytest.raises(ClusterError, match=message) as caught:
         pipeline.sweep([record], gap=0.2, quiet=True, out=out,
                        scheduler=address(tls_cluster[0], tls_cluster[1], http_port))
-    elapsed = time.monotonic() - start
     assert "\n" not in str(caught.value)
-    assert elapsed < TIME_BOUND, f"{elapsed:.1f} s"
     assert not list(out.parent.iterdir()), "the refused run left files behind"
     assert capfd.readouterr().err == ""
 
@@ -317,16 +315,14 @@ def test_tls_options(pki, tmp_path):
 
 
 def test_command_line_dashboard_address(tmp_path):
-    """The common slip on the command line: exit status 2, one line, within TIME_BOUND with
-    the interpreter's start-up."""
-    start = time.monotonic()
+    """The common slip on the command line: exit status 2, one line, no output written
+    (the timeout only guards against a hang)."""
     done = subprocess.run([sys.executable, "-m", "studies.sweep", "--records", "kobe",
                            "--gap-cm", "30", "--scheduler", "http://127.0.0.1:8787",
                            "--out", str(tmp_path / "out")],
                           cwd=tmp_path, env=ENV, capture_output=True, text=True,
                           timeout=60)
-    elapsed = time.monotonic() - start
     assert done.returncode == 2, done.stderr
     assert len(done.stderr.splitlines()) == 1, done.stderr
     assert "is a web address (the dashboard's" in done.stderr
-    assert elapsed < TIME_BOUND, f"{elapsed:.1f} s"
+    assert not (tmp_path / "out").exists()
