@@ -33,7 +33,7 @@ class IsolatorBatch:
             if bearings is not None:
                 row = row[..., None]
             width = len(law.STATE_XY if plan else law.STATE)
-            state = np.zeros((width, rows[members].shape[0], *trailing))
+            state = np.zeros((width, row.shape[1], *trailing))
             self.blocks.append((law, members, row, state))
 
     def force(self, u: np.ndarray) -> np.ndarray:

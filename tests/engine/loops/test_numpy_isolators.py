@@ -30,7 +30,7 @@ STEPS = 300
 
 def _batch():
     """Members of mixed laws, and a path (STEPS, members, 2) of velocities (m/s) whose
-    displacements reach about 0.3 m: every member slips and unloads in both directions (the
+    displacements pass 0.1 m: every member slips and unloads in both directions (the
     triple friction pendulums: every element slides, and the second one's elements pass their
     stops)."""
     arrays = building_arrays([Building(isolator=iso) for iso in ISOLATORS], len(ISOLATORS))
