@@ -19,6 +19,7 @@ import shutil
 import signal
 import tempfile
 import threading
+from contextlib import contextmanager
 from pathlib import Path
 
 from .errors import SweepError
@@ -142,7 +143,7 @@ class Staged:
                 os.fsync(f.fileno())  # the bytes are on disk before the names point at them
             os.chmod(tmp, 0o666 & ~_umask())  # mkstemp made it private; an output is not
         replaced = []
-        with _sigint_held():
+        with sigint_held():
             for tmp, target in self.pending:
                 if tmp.is_dir() and target.is_dir():  # a folder cannot be renamed over one
                     old = Path(tempfile.mkdtemp(dir=target.parent,
@@ -171,18 +172,27 @@ def _remove(path: Path) -> None:
         path.unlink(missing_ok=True)
 
 
-class _sigint_held:
+@contextmanager
+def sigint_held():
     """Ctrl-C (SIGINT) waits until the block ends, then takes effect (main thread only; a
-    kill -9 cannot be held, but then the renames done so far are whole files each)."""
-
-    def __enter__(self):
-        self.held = threading.current_thread() is threading.main_thread()
-        if self.held:
-            signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
-
-    def __exit__(self, *exc):
-        if self.held:
-            signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+    kill -9 cannot be held, but then the renames done so far are whole files each). The
+    signal's handler is swapped for the block, not the thread's signal mask: the compiled
+    kernel's worker threads leave SIGINT unblocked, the operating system may deliver it to one
+    of them, and Python would run its handler in the main thread inside the block all the
+    same. Off the main thread (no handler can be set there) the block runs as it is."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    caught = []
+    previous = signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    if caught and callable(previous):  # default_int_handler raises KeyboardInterrupt
+        previous(signal.SIGINT, None)
+    elif caught and previous == signal.SIG_DFL:
+        raise KeyboardInterrupt
 
 
 def _umask() -> int:

@@ -27,17 +27,15 @@ memory manager drops extra replicas within seconds), and every batch of the reco
 """
 from __future__ import annotations
 
-import signal
-import threading
 import uuid
 from collections import Counter
-from contextlib import contextmanager
 from typing import Protocol
 
 import numpy as np
 
 from ..errors import Interrupted
 from ..progress import Progress
+from ..writing import sigint_held
 from .batches import Batch, record_batch_sizes
 from .dask_client import client, silence_dask
 
@@ -97,26 +95,9 @@ def _run_here(store: Store, batches: list[Batch], progress: Progress) -> None:
         output = function(store.records[batch.record].accel, *args,
                           progress=lambda step, steps, b=batch:
                           progress.running(b.key, b.size * step / steps))
-        with _uninterrupted():  # a batch kept is a batch counted: Interrupted says so
+        with sigint_held():  # a batch kept is a batch counted: Interrupted says so
             store.accept(batch, output)
             progress.advance(batch.size, batch.key)
-
-
-@contextmanager
-def _uninterrupted():
-    """Ctrl-C held back for the block (POSIX, main thread): it lands right after it, so that a
-    batch written to the work folder is always counted among those kept (the interrupt's
-    message would otherwise under-count by one batch). Elsewhere (Windows) the block runs as it
-    is."""
-    block = getattr(signal, "pthread_sigmask", None)
-    if block is None or threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    previous = block(signal.SIG_BLOCK, {signal.SIGINT})
-    try:
-        yield
-    finally:
-        block(signal.SIG_SETMASK, previous)
 
 
 def _run_on_dask(store: Store, batches: list[Batch], workers: int, scheduler,
@@ -150,7 +131,7 @@ def _run_on_dask(store: Store, batches: list[Batch], workers: int, scheduler,
             for future in as_completed(list(futures), loop=dask.loop):
                 batch = futures.pop(future)
                 output = future.result()
-                with _uninterrupted():
+                with sigint_held():
                     store.accept(batch, output)
                     progress.advance(batch.size, batch.key)
                 # Forgotten by the scheduler once accepted: a result held by a worker that dies

@@ -1,11 +1,12 @@
 """Archives written atomically (pipeline/archive.py's write_netcdf): a failed write leaves no
 archive, a writer killed before the rename never leaves a partial one; a code such as
-collapse_mode labelled as a CF flag variable."""
+collapse_mode labelled as a CF flag variable; Ctrl-C held back while a write is made whole."""
 import os
 import signal
 import subprocess
 import sys
 import textwrap
+import threading
 from pathlib import Path
 
 import numpy as np
@@ -79,6 +80,34 @@ def test_killed_writer_never_leaves_a_partial_archive(reference, tmp_path, exist
     assert len(leftovers) == 1  # hidden, never under the archive's name
     write_netcdf(reference, out)  # the next successful write sweeps it away
     assert not leftovers[0].exists()
+
+
+def test_ctrl_c_waits_for_the_block_even_when_another_thread_receives_it():
+    """A Ctrl-C delivered to a thread other than the main one (the compiled kernel's worker
+    threads leave SIGINT unblocked) takes effect after the held block, not inside it: a batch
+    written is then always a batch counted. Holding it by the main thread's signal mask alone
+    let it through inside the block."""
+    from pipeline.writing import sigint_held
+
+    worker, delivered = threading.Event(), threading.Event()
+
+    def receive():  # a thread started before the block: SIGINT unblocked in it
+        worker.wait()
+        signal.pthread_kill(threading.get_ident(), signal.SIGINT)
+        delivered.set()
+
+    thread = threading.Thread(target=receive)
+    thread.start()
+    finished = False
+    with pytest.raises(KeyboardInterrupt):
+        with sigint_held():
+            worker.set()
+            delivered.wait()
+            for _ in range(1000):  # bytecodes enough for Python to run a pending handler
+                os.getpid()
+            finished = True
+    thread.join()
+    assert finished
 
 
 def test_an_archive_names_how_each_run_collapsed():
