@@ -245,7 +245,7 @@ def _carrying(fx, fy, plastic, element):
     nx, ny = mx * toward, my * toward
     lx, ly = (fx - limit * nx) * easy, (fy - limit * ny) * easy
     apart = (pull - limit) * easy
-    across = limit / np.maximum(apart, 1e-12)  # the slip force's stiffness across n
+    across = limit / np.maximum(apart, _TINY)  # the slip force's stiffness across n
     moved = 0.5 * pendulum * (lx * lx + ly * ly) + limit * apart - 0.5 * spent
     sliding = 1.0 - sticking
     dx, dy = ex * sticking + lx * sliding, ey * sticking + ly * sliding

@@ -10,6 +10,7 @@ JIT: the options of the cached kernels; LINK: those of the functions compiled in
 """
 from __future__ import annotations
 
+import functools
 import types
 
 import numpy as np
@@ -96,11 +97,13 @@ SHARED_PHYSICS = (hysteresis.__name__, series.__name__)
 elements in series of isolators/series.py): compiled with the law like its own helpers."""
 
 
+@functools.cache
 def compiled_in_module(function):
     """`function` (a story law's force) compiled for scalars with STORY_LINK, with the plain
     functions of its own module (and of SHARED_PHYSICS) that it calls compiled alongside (a
     law may write its physics as several small functions; numba would otherwise refuse them
-    as untyped globals). The module itself is left as it is."""
+    as untyped globals). The module itself is left as it is. Once per function: a helper
+    several functions call (the series solve's) is compiled once for all of them."""
     module_name = function.__module__
     scope = dict(function.__globals__)
     for name in function.__code__.co_names:

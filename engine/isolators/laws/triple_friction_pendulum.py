@@ -84,6 +84,7 @@ PARAMETERS = Declaration(
               plausible="[1e-5, 0.05]"),
 )
 
+
 def _elements(mass, g, values):
     """((pendulum stiffness N/m, friction force N, gap m) of the inner, lower and upper
     elements, the pre-slip and stop stiffness E N/m) of the law's values (by name)."""
