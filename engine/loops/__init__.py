@@ -17,9 +17,9 @@ dispatch), layout.py, the columns of the arrays they pack (declared once),
 numba_contacts.py, the contact points of the twisting kernel and their solve,
 numba_bearings.py, its bearings,
 numpy_isolators.py, the isolator laws on a NumPy batch (the NumPy loops' twin of compiled.py's
-isolator dispatch), and
+isolator laws), and
 numba_support.py, what they need of numba beyond @njit (a cache keyed on the physics, arrays
-on the stack, pairs in one register, members on threads). The loops import only the scheme,
+on the stack, pairs in one register, members on threads, a kernel a law). The loops import only the scheme,
 the laws, the isolator's hysteresis, the torsion model and the result schema, and call the
 same physics functions; engine.simulate picks one (engine/backends.py).
 """

@@ -1,10 +1,11 @@
 """The physics the compiled loops (numba_loop.py, numba_plan.py, numba_torsion.py) call,
 compiled for scalars from the modules that write it once: the stories' slip element in plan
 (isolators/hysteresis.py), the scheme's contact solve and onset weight (scheme.py), and the
-impact laws' force terms, the story laws' forces and the isolator laws' forces and state, each
-chained into one dispatch on a member's law code (the registries): law_terms(code, delta,
-rate, v_imp, row) with the member's packed law row (impact.contact.law_rows),
-story_force(code, drift, state, row), isolator_force(code, u, state, row) and its kin.
+impact laws' force terms and the story laws' forces, each chained into one dispatch on a
+member's law code (the registries): law_terms(code, delta, rate, v_imp, row) with the
+member's packed law row (impact.contact.law_rows), story_force(code, drift, state, row); the
+isolator laws' force and state, the members' law resolved when a kernel compiles
+(isolator_force(tag, u, state, row) and its kin, tag = numba_support.law_tag(code)).
 
 JIT: the options of the cached kernels; LINK: those of the functions compiled into them.
 """
@@ -15,6 +16,7 @@ import types
 
 import numpy as np
 from numba import njit
+from numba.extending import overload
 
 from .. import layout as columns
 from .. import results, scheme
@@ -128,38 +130,39 @@ def _story_dispatch():
 story_force = _story_dispatch()
 
 
-def _otherwise(function):
-    """The end of a chain: `function` for every code not matched before."""
-    def dispatch(law, *args):
-        return function(*args)
-    return njit(**STORY_LINK)(dispatch)
+def compiled_isolator(code: int, name: str):
+    """The isolator law `code`'s function `name` (force, advance, force_xy, advance_xy),
+    compiled for scalars (compiled_in_module)."""
+    return compiled_in_module(getattr(isolator_registry.BY_CODE[code], name))
 
 
-def _link_law(code, function, otherwise):
-    """A dispatch that runs `function` for members of law `code`, else `otherwise`."""
-    def dispatch(law, *args):
-        if law == code:
+def _isolator_by_tag(name):
+    """The isolator laws' function `name`, called as name(tag, *args) in a kernel: the law of code
+    len(tag) - 1 (numba_support.law_tag), resolved when the kernel compiles, so that a kernel holds
+    its members' law alone. A chain of every law, as the story laws', compiled each law into every
+    kernel: a bilinear building's kernel then took 40% longer to compile (twice as long in plan) for
+    the triple friction pendulum's solve, and its twisting step ran 5-9% slower."""
+    def by_tag(tag, *args):
+        raise TypeError(f"isolator_{name} is called inside a compiled kernel only; "
+                        f"compiled_isolator(code, {name!r}) is the law's function")
+
+    by_tag.__name__ = by_tag.__qualname__ = f"isolator_{name}"
+
+    @overload(by_tag, jit_options=STORY_LINK)
+    def typed(tag, *args):
+        function = compiled_isolator(len(tag.types) - 1, name)
+
+        def resolved(tag, *args):
             return function(*args)
-        return otherwise(law, *args)
-    return njit(**STORY_LINK)(dispatch)
+        return resolved
+    return by_tag
 
 
-def _isolator_dispatch(name):
-    """The isolator laws' function `name` (force, advance, force_xy, advance_xy), dispatched
-    on the member's isolator law code: every law of the isolator registry, chained (the last
-    law ends the chain), each compiled as the story laws are (compiled_in_module)."""
-    laws = isolator_registry.BY_CODE
-    dispatch = _otherwise(compiled_in_module(getattr(laws[-1], name)))
-    for code in range(len(laws) - 2, -1, -1):
-        dispatch = _link_law(code, compiled_in_module(getattr(laws[code], name)), dispatch)
-    return dispatch
-
-
-isolator_force = _isolator_dispatch("force")
-"""isolator_force(code, u, state, row) -> N: the member's isolator law's force."""
-isolator_advance = _isolator_dispatch("advance")
-"""isolator_advance(code, state, velocity, dt, row): its state committed after a step."""
-isolator_force_xy = _isolator_dispatch("force_xy")
-"""isolator_force_xy(code, ux, uy, state, row) -> (N, N): in plan."""
-isolator_advance_xy = _isolator_dispatch("advance_xy")
-"""isolator_advance_xy(code, state, vx, vy, dt, row): in plan."""
+isolator_force = _isolator_by_tag("force")
+"""isolator_force(tag, u, state, row) -> N: the isolator law's force."""
+isolator_advance = _isolator_by_tag("advance")
+"""isolator_advance(tag, state, velocity, dt, row): its state committed after a step."""
+isolator_force_xy = _isolator_by_tag("force_xy")
+"""isolator_force_xy(tag, ux, uy, state, row) -> (N, N): in plan."""
+isolator_advance_xy = _isolator_by_tag("advance_xy")
+"""isolator_advance_xy(tag, state, vx, vy, dt, row): in plan."""

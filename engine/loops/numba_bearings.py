@@ -12,14 +12,14 @@ from .compiled import LINK, failed, isolator_advance_xy, isolator_force_xy
 
 
 @njit(**LINK)
-def bearing_forces(code, row, state, bearings, ux, uy, theta):
+def bearing_forces(tag, row, state, bearings, ux, uy, theta):
     """The bearings' force on the slab (N, x and y) and moment about the plan's centre (N m)
     at the slab's displacement (ux, uy) m and rotation theta rad; state (n, STATE_XY) each
     bearing's, bearings (n, 2) their positions (m)."""
     sx, sy, sm = 0.0, 0.0, 0.0
     for k in range(bearings.shape[0]):
         bx, by = bearings[k, 0], bearings[k, 1]
-        fbx, fby = isolator_force_xy(code, ux - theta * by, uy + theta * bx, state[k], row)
+        fbx, fby = isolator_force_xy(tag, ux - theta * by, uy + theta * bx, state[k], row)
         sx += fbx
         sy += fby
         sm += bx * fby - by * fbx
@@ -27,12 +27,12 @@ def bearing_forces(code, row, state, bearings, ux, uy, theta):
 
 
 @njit(**LINK)
-def bearings_advance(code, row, state, bearings, velocity, dt):
+def bearings_advance(tag, row, state, bearings, velocity, dt):
     """Each bearing's state after a step of dt (s) at the slab's velocity (vx, vy, omega)."""
     vx, vy, omega = velocity
     for k in range(bearings.shape[0]):
         bx, by = bearings[k, 0], bearings[k, 1]
-        isolator_advance_xy(code, state[k], vx - omega * by, vy + omega * bx, dt, row)
+        isolator_advance_xy(tag, state[k], vx - omega * by, vy + omega * bx, dt, row)
 
 
 @njit(**LINK)

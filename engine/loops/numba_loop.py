@@ -52,6 +52,7 @@ from .layout import (
     packed,
 )
 from .numba_support import (
+    by_law,
     data_pointer,
     history_rows,
     install_cache_locator,
@@ -96,10 +97,11 @@ def _solve_banded(bd, r, v, out, n_levels, dt):
 @njit(**JIT)
 def _member(shape, b, s0, s1, model, memory, peaks, hist):
     """Steps s0 <= step < s1 of member b: the NumPy loop's step, on scalars and the member's
-    own small arrays (L levels, L - 1 stories). shape = (levels, law_tag): `levels` a tuple of
-    L zeros, so that L is a compile-time constant; `law_tag` a tuple of (story law code + 1)
-    zeros, so that the member's story law is one too and its force is the only one compiled
-    into this kernel: one compilation per number of levels and story law. model = (ag, dt,
+    own small arrays (L levels, L - 1 stories). shape = (levels, law_tag, isolator_tag): `levels`
+    a tuple of L zeros, so that L is a compile-time constant; `law_tag` and `isolator_tag` the
+    member's story law and isolator law (numba_support.law_tag), so that they are constants
+    too and their physics alone is compiled into this kernel: one compilation per number of
+    levels, story law and isolator law. model = (ag, dt,
     op, bands, wall, mass, story, law, par, law_par, story_fields, isolator), what the run
     reads (isolator: the isolator law's codes and rows); memory = (u, v, story_state, state,
     isolator_state), what it carries between chunks; peaks =
@@ -107,7 +109,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     h_f, h_d) (run_simulation builds them; layout.py names their columns). Sums run in the
     order of the scalar kernel this loop replaced, and a member's result never depends on the
     batch. A member that has collapsed stops."""
-    levels, law_tag = shape
+    levels, law_tag, isolator_tag = shape
     ag, dt, op, bands, wall, mass, story, law, par, law_par, story_fields, isolator = model
     u_all, v_all, story_state, state, isolator_state = memory
     peak_level, peak_story, peak_scalar, n_impacts = peaks
@@ -129,8 +131,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     p = par[b]
     comp = p[PLANAR.compliance]
     gap = p[PLANAR.gap]
-    iso_codes, iso_fields = isolator
-    iso_code = iso_codes[b]
+    iso_fields = isolator[1]
     iso_row = carray(data_pointer(iso_fields[b]), (ISOLATOR_FIELDS,))
     nonlinear = p[PLANAR.stories_nonlinear] != 0.0
     story_law = len(law_tag) - 1
@@ -171,7 +172,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     for step in range(s0, s1):
         a = ag[step] * scale  # x 1.0 is exact: unscaled members are unchanged
         # Structure without wall force: p - f(u_n), then the free velocities v_{n+1/2}.
-        chain[0] = isolator_force(iso_code, u[0], iso_state, iso_row)
+        chain[0] = isolator_force(isolator_tag, u[0], iso_state, iso_row)
         # The isolator past its capacity, a story past its collapse drift, or a state no
         # longer finite ends the member's run below: its peaks are the steps' before.
         if not abs(u[0]) <= capacity:
@@ -252,7 +253,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
             h_d[hrow, t] = max(delta, 0.0)
 
         # Advance: the isolator law's state after this step, at its velocity.
-        isolator_advance(iso_code, iso_state, nxt[0], dt, iso_row)
+        isolator_advance(isolator_tag, iso_state, nxt[0], dt, iso_row)
         for i in range(n_levels):
             v[i] = nxt[i]
             u[i] = u[i] + dt * nxt[i]
@@ -364,13 +365,11 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
     kept = (peaks["peak_total_accel"], peaks["peak_interstory_drift"], peak_scalar,
             peaks["n_impacts"])
     hist = (hist_row, every, h_u, h_acc, h_f, h_d)
-    codes = arrays.story_code
 
     def steps(members, s0, s1):
-        # One kernel per story law (law_tag): each member runs the one its stories follow.
-        for code in np.unique(codes[members]):
-            _run((levels, (0,) * (int(code) + 1)), members[codes[members] == code], s0, s1,
-                 model, memory, kept, hist)
+        # One kernel per story law and isolator law: each member runs the one of its laws.
+        for tags, chosen in by_law(members, arrays.story_code, arrays.isolator_code):
+            _run((levels, *tags), chosen, s0, s1, model, memory, kept, hist)
     run_members(size, n_steps, progress, steps)
 
     result = finish_peaks(peaks, peak_scalar, PLANAR_PEAK_COLUMNS, state)

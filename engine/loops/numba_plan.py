@@ -65,6 +65,7 @@ from .layout import (
 )
 from .numba_support import (
     add2,
+    by_law,
     data_pointer,
     div2,
     history_rows,
@@ -117,23 +118,22 @@ def _friction(nx, w, comp, comp_y, limit, nrm_x, nrm_y):
 @njit(**JIT)
 def _member(shape, b, s0, s1, model, memory, peaks, hist):
     """Steps s0 <= step < s1 of member b (see the module docstring). shape = (levels, pairs,
-    circular, law_tag); model = (ag, dt, op, wall, story_k, mass, story, law, par, gaps,
-    law_par, story_fields, isolator), what the run reads (isolator: the isolator law's codes
-    and rows); memory = (u, v, f_story, story_state, state, wall_state, isolator_state), what
-    it carries between chunks; peaks = (peak_level, peak_level_xy,
-    peak_story, peak_story_xy, peak_iso_xy, peak_scalar, n_impacts, peak_wall); hist =
-    (hist_row, every, h_u, h_acc, h_f, h_d) (run_plan builds them). Like the planar kernel,
-    the member's state lives in scalars and arrays on the stack while it runs, each level's x
-    and y side by side (a last axis of 2, as the operators: op (2L, L, 2), the operator along
-    x and along y transposed, wall (L, 2), story_k (L - 1, 2)), and the two directions'
-    identical arithmetic done on pairs, both lanes at once (numba_support.add2 and kin). Peaks
-    are kept squared, per direction and resultant: the square root of the largest square is
-    the largest magnitude, bit for bit (sqrt(x * x) == |x| in binary floating point), and
-    run_plan roots them at the end. Stories of a uniaxial law (one without plan_fields,
-    engine/stories/) act along x and y each on their own (two springs of the law per story,
-    uncoupled), its force compiled in for the member's law only (law_tag, as the planar
-    kernel's). A member that has collapsed stops."""
-    levels, pairs, circular, law_tag = shape
+    circular, law_tag, isolator_tag); model = (ag, dt, op, wall, story_k, mass, story, law, par,
+    gaps, law_par, story_fields, isolator), what the run reads (isolator: the isolator law's codes
+    and rows); memory = (u, v, f_story, story_state, state, wall_state, isolator_state), what it
+    carries between chunks; peaks = (peak_level, peak_level_xy, peak_story, peak_story_xy,
+    peak_iso_xy, peak_scalar, n_impacts, peak_wall); hist = (hist_row, every, h_u, h_acc, h_f, h_d)
+    (run_plan builds them). Like the planar kernel, the member's state lives in scalars and arrays
+    on the stack while it runs, each level's x and y side by side (a last axis of 2, as the
+    operators: op (2L, L, 2), the operator along x and along y transposed, wall (L, 2), story_k (L -
+    1, 2)), and the two directions' identical arithmetic done on pairs, both lanes at once
+    (numba_support.add2 and kin). Peaks are kept squared, per direction and resultant: the square
+    root of the largest square is the largest magnitude, bit for bit (sqrt(x * x) == |x| in binary
+    floating point), and run_plan roots them at the end. Stories of a uniaxial law (one without
+    plan_fields, engine/stories/) act along x and y each on their own (two springs of the law per
+    story, uncoupled), its force compiled in for the member's law only (law_tag, as the planar
+    kernel's), and so is its isolator law's (isolator_tag). A member that has collapsed stops."""
+    levels, pairs, circular, law_tag, isolator_tag = shape
     (ag, dt, op, wall, story_k, mass, story, law, par, gaps_all, law_par, story_fields,
      isolator) = model
     u_all, v_all, f_story_all, story_state, state, wall_state, isolator_state = memory
@@ -153,8 +153,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     comp, comp_y = p[PLAN.compliance], p[PLAN.compliance_y]
     anisotropic = p[PLAN.anisotropic] != 0.0
     mu_wall = p[PLAN.mu_wall]
-    iso_codes, iso_fields = isolator
-    iso_code = iso_codes[b]
+    iso_fields = isolator[1]
     iso_row = carray(data_pointer(iso_fields[b]), (ISOLATOR_FIELDS,))
     stories_yield = p[PLAN.stories_yield] != 0.0
     cs, sn = p[PLAN.cos], p[PLAN.sin]
@@ -239,7 +238,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
             st[PLAN_STATE.collapse_mode] = mode
             break
         acc = (cs * ag[step, 0] - sn * ag[step, 1], sn * ag[step, 0] + cs * ag[step, 1])
-        c[0, 0], c[0, 1] = isolator_force_xy(iso_code, u[0, 0], u[0, 1], iso_state, iso_row)
+        c[0, 0], c[0, 1] = isolator_force_xy(isolator_tag, u[0, 0], u[0, 1], iso_state, iso_row)
         for i in range(n_st):
             drift = load_pair(dr, i)
             if uniaxial:  # the law along x and along y, less what P-Delta takes
@@ -352,7 +351,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
 
         # Advance: the isolator law's state after this step, at its velocity; the stories'
         # slip elements see this step's increments.
-        isolator_advance_xy(iso_code, iso_state, nx[0, 0], nx[0, 1], dt, iso_row)
+        isolator_advance_xy(isolator_tag, iso_state, nx[0, 0], nx[0, 1], dt, iso_row)
         if stories_yield:
             for i in range(n_st):
                 fs[i, 0], fs[i, 1] = radial_return(
@@ -452,12 +451,13 @@ def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, histor
     written = (hist_row, every, hist["isolator_disp"], hist["total_accel"],
                hist["impact_force"], hist["indentation"])
     circular = moat == "circular"
-    codes = arrays.story_code  # one kernel per story law (law_tag), as the planar loop
+    # One kernel per story law and isolator law, as the planar loop.
     run_members(size, n_steps, progress,
                 lambda members, s0, s1: [
-                    _run((levels, pairs, circular, (0,) * (int(code) + 1)),
-                         members[codes[members] == code], s0, s1, model, memory, kept, written)
-                    for code in np.unique(codes[members])])
+                    _run((levels, pairs, circular, *tags), chosen, s0, s1, model, memory, kept,
+                         written)
+                    for tags, chosen in by_law(members, arrays.story_code,
+                                               arrays.isolator_code)])
     peaks = finish_peaks(peaks, scalar, PLAN_PEAK_COLUMNS, state, rooted=True)
     if history is None:
         return peaks, None

@@ -219,3 +219,22 @@ def run_members(size: int, n_steps: int, progress, steps) -> None:
     finally:
         if pool is not None:
             pool.shutdown()
+
+
+def law_tag(code: int) -> tuple:
+    """A law's code as a kernel's argument whose type holds it: (code + 1) zeros, so that the
+    code is a compile-time constant of the kernel (len(tag) - 1) and the law's physics alone
+    is compiled into it."""
+    return (0,) * (int(code) + 1)
+
+
+def by_law(members, *codes):
+    """The members (an index array) grouped by their laws, for one kernel call a group:
+    (tags, those members) for each combination of the law codes met, `codes` each a (B,)
+    int array of the batch (the story law's, the isolator law's); tags the codes as
+    law_tag makes them, one a code. The groups run in turn; a member's result does
+    not depend on the others'."""
+    keys = np.stack([np.asarray(c)[members] for c in codes], axis=1)
+    for key in np.unique(keys, axis=0):
+        yield (tuple(law_tag(k) for k in key),
+               members[np.all(keys == key, axis=1)])

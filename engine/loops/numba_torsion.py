@@ -61,6 +61,7 @@ from .numba_bearings import bearing_forces, bearings_advance, bearings_past
 from .numba_contacts import point_arrays, solve_contacts
 from .numba_support import (
     add2,
+    by_law,
     data_pointer,
     history_rows,
     install_cache_locator,
@@ -84,9 +85,9 @@ multiple): the slab's corners, or two pads a wall, are 8."""
 
 @njit(**JIT)
 def _member(shape, b, s0, s1, model, memory, peaks, hist):
-    """Steps s0 <= step < s1 of member b (the module docstring). shape = (levels, padded,
-    slots); model = (ag, dt, op, respond, load, story_k, story_centre, collapse_square, par,
-    bearings, point_wall, point_axis, codes, gaps, point_par, direction, tangent, coupling,
+    """Steps s0 <= step < s1 of member b (the module docstring). shape = (levels, padded, slots,
+    isolator_tag); model = (ag, dt, op, respond, load, story_k, story_centre, collapse_square,
+    par, bearings, point_wall, point_axis, codes, gaps, point_par, direction, tangent, coupling,
     tangent_compliance, corners, isolator), what the run reads (isolator: the isolator law's
     codes and rows, a bearing's share); memory = (u, v, isolator_state, state, point_state),
     what it carries between chunks (isolator_state: per bearing); peaks = (peak_level,
@@ -97,9 +98,9 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     rows 0): op (B, 6L, Q, 2) the transposed step operator, respond (B, 3, Q, 2) its first three
     columns transposed; the P contact points' state and this step's values too, on POINT_SLOTS-
     sized stack arrays (len(slots) of them: the kernel compiles once per number of levels and
-    multiple of POINT_SLOTS, P = len(point_wall) at run time). A member that has collapsed
-    stops."""
-    levels, padded, slots = shape
+    multiple of POINT_SLOTS, P = len(point_wall) at run time, and per isolator law: the
+    bearings' law, numba_support.law_tag). A member that has collapsed stops."""
+    levels, padded, slots, isolator_tag = shape
     (ag, dt, op, respond, load, story_k, story_centre, collapse_square, par, bearings,
      point_wall, point_axis, codes, gaps_all, point_par, direction, tangent, coupling,
      tangent_compliance, corners, isolator) = model
@@ -123,8 +124,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     cq = collapse_square[b]
     p = par[b]
     cs, sn = p[TORSION.cos], p[TORSION.sin]
-    iso_codes, iso_fields = isolator
-    iso_code = iso_codes[b]
+    iso_fields = isolator[1]
     iso_row = carray(data_pointer(iso_fields[b]), (ISOLATOR_FIELDS,))
     mu_wall = p[TORSION.mu_wall]
     bear = bearings[b]
@@ -238,7 +238,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
         a1 = sn * ag[step, 0] + cs * ag[step, 1]
         u0x, u0y, th = u[0], u[1], u[2]
         # The bearings at their own displacements, their forces and moments on the slab.
-        sx, sy, sm = bearing_forces(iso_code, iso_row, fp, bear, u0x, u0y, th)
+        sx, sy, sm = bearing_forces(isolator_tag, iso_row, fp, bear, u0x, u0y, th)
         # The right-hand side: the chain of forces, less the ground's load.
         prev_x, prev_y, prev_t = sx, sy, sm
         for i in range(n_levels):
@@ -380,7 +380,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
         p_rot = max(p_rot, abs(th))
 
         # Advance: each bearing's isolator law with its own velocity.
-        bearings_advance(iso_code, iso_row, fp, bear, (nx[0], nx[1], nx[2]), dt)
+        bearings_advance(isolator_tag, iso_row, fp, bear, (nx[0], nx[1], nx[2]), dt)
         for i in range(n_pairs):
             w_pair = load_pair(nx2, i)
             store_pair(v2, i, w_pair)
@@ -482,9 +482,11 @@ def run_torsion(ag, dt, b, t, contacts, points, progress, scale, angle, history=
     written = (hist_row, every, hist["isolator_disp"], hist["total_accel"],
                hist["impact_force"], hist["indentation"], hist["floor_disp"],
                hist["floor_rotation"])
-    run_members(size, n_steps, progress,
-                lambda members, s0, s1: _run((levels, padded, slots), members, s0, s1, model,
-                                             memory, kept, written))
+    run_members(size, n_steps, progress,  # one kernel per isolator law, as the planar loop
+                lambda members, s0, s1: [
+                    _run((levels, padded, slots, *tags), chosen, s0, s1, model, memory, kept,
+                         written)
+                    for tags, chosen in by_law(members, b.isolator_code)])
     peaks = finish_peaks(peaks, scalar, TORSION_PEAK_COLUMNS, state, rooted=True)
     if history is None:
         return peaks, None

@@ -1,9 +1,11 @@
 """The isolator laws' physics, written once: on a NumPy batch (numpy_isolators.IsolatorBatch,
-every law's members at once) and compiled for one member at a time (compiled.isolator_force
-and its kin, dispatched on the law's code) the same numbers, bit for bit, along a random path
+every law's members at once) and compiled for one member at a time (the law's functions as a
+kernel compiles them, compiled.compiled_isolator) the same numbers, bit for bit, along a random path
 through yield and back, along one axis and in plan, per member and per bearing; and the
 state each law keeps is the one it declares."""
 from __future__ import annotations
+
+import functools
 
 import numpy as np
 import pytest
@@ -42,7 +44,7 @@ def _batch():
 
 
 @pytest.mark.parametrize("bearings", [None, 3], ids=["one", "bearings"])
-def test_the_numpy_batch_and_the_compiled_dispatch_agree_bit_for_bit_in_plan(bearings):
+def test_the_numpy_batch_and_the_compiled_law_agree_bit_for_bit_in_plan(bearings):
     arrays, velocity = _batch()
     batch = IsolatorBatch(arrays, plan=True, bearings=bearings)
     codes, rows = isolator_rows(arrays, bearings or 1)
@@ -59,11 +61,11 @@ def test_the_numpy_batch_and_the_compiled_dispatch_agree_bit_for_bit_in_plan(bea
         fx, fy = batch.force_xy(ux.reshape(shape), uy.reshape(shape))
         for m in range(len(ISOLATORS)):
             for k in range(n):
-                sx, sy = compiled.isolator_force_xy(codes[m], ux[m, k], uy[m, k], states[m, k],
-                                                    rows[m])
+                sx, sy = compiled.compiled_isolator(codes[m], "force_xy")(
+                    ux[m, k], uy[m, k], states[m, k], rows[m])
                 assert (np.reshape(fx, (-1, n))[m, k], np.reshape(fy, (-1, n))[m, k]) == (sx, sy)
-                compiled.isolator_advance_xy(codes[m], states[m, k], vx[step, m, k],
-                                             vy[step, m, k], DT, rows[m])
+                compiled.compiled_isolator(codes[m], "advance_xy")(
+                    states[m, k], vx[step, m, k], vy[step, m, k], DT, rows[m])
         batch.advance_xy(vx[step].reshape(shape), vy[step].reshape(shape), DT)
         ux, uy = ux + DT * vx[step], uy + DT * vy[step]
         largest = max(largest, np.abs(ux).max())
@@ -85,7 +87,7 @@ def _slip_limits(isolator, width):
     return out
 
 
-def test_the_numpy_batch_and_the_compiled_dispatch_agree_bit_for_bit_along_one_axis():
+def test_the_numpy_batch_and_the_compiled_law_agree_bit_for_bit_along_one_axis():
     arrays, velocity = _batch()
     batch = IsolatorBatch(arrays)
     codes, rows = isolator_rows(arrays)
@@ -96,8 +98,9 @@ def test_the_numpy_batch_and_the_compiled_dispatch_agree_bit_for_bit_along_one_a
     for step in range(STEPS):
         force = batch.force(u)
         for m in range(len(ISOLATORS)):
-            assert force[m] == compiled.isolator_force(codes[m], u[m], states[m], rows[m])
-            compiled.isolator_advance(codes[m], states[m], velocity[step, m, 0], DT, rows[m])
+            law = functools.partial(compiled.compiled_isolator, codes[m])
+            assert force[m] == law("force")(u[m], states[m], rows[m])
+            law("advance")(states[m], velocity[step, m, 0], DT, rows[m])
         batch.advance(velocity[step, :, 0], DT)
         u = u + DT * velocity[step, :, 0]
         slipped = np.maximum(slipped, np.abs(states) / limits)
