@@ -12,14 +12,15 @@ twist, each with one interface:
 numpy_loop.py, numpy_plan.py and numpy_torsion.py are the readable references (vectorised over
 the batch, no compiler); numba_loop.py, numba_plan.py and numba_torsion.py the compiled
 defaults (members outer, steps inner; compiled once per number of levels), with compiled.py,
-the physics they compile for scalars (the contact solve, the impact, story and isolator laws'
-dispatch), layout.py, the columns of the arrays they pack (declared once),
+the physics they compile for scalars (the contact solve, the impact laws' dispatch, the story
+and isolator laws resolved per kernel), layout.py, the columns of the arrays they pack
+(declared once),
 numba_contacts.py, the contact points of the twisting kernel and their solve,
 numba_bearings.py, its bearings,
 numpy_isolators.py, the isolator laws on a NumPy batch (the NumPy loops' twin of compiled.py's
 isolator laws), and
 numba_support.py, what they need of numba beyond @njit (a cache keyed on the physics, arrays
-on the stack, pairs in one register, members on threads, a kernel a law). The loops import only the scheme,
-the laws, the isolator's hysteresis, the torsion model and the result schema, and call the
-same physics functions; engine.simulate picks one (engine/backends.py).
+on the stack, pairs in one register, members on threads, a kernel per law). The loops import
+only the scheme, the laws, the isolator's hysteresis, the torsion model and the result
+schema, and call the same physics functions; engine.simulate picks one (engine/backends.py).
 """

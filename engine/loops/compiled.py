@@ -1,11 +1,11 @@
 """The physics the compiled loops (numba_loop.py, numba_plan.py, numba_torsion.py) call,
 compiled for scalars from the modules that write it once: the stories' slip element in plan
 (isolators/hysteresis.py), the scheme's contact solve and onset weight (scheme.py), and the
-impact laws' force terms and the story laws' forces, each chained into one dispatch on a
-member's law code (the registries): law_terms(code, delta, rate, v_imp, row) with the
-member's packed law row (impact.contact.law_rows), story_force(code, drift, state, row); the
-isolator laws' force and state, the members' law resolved when a kernel compiles
-(isolator_force(tag, u, state, row) and its kin, tag = numba_support.law_tag(code)).
+impact laws' force terms, chained into one dispatch on a member's law code (the registry):
+law_terms(code, delta, rate, v_imp, row) with the member's packed law row
+(impact.contact.law_rows); the story laws' forces and the isolator laws' forces and state,
+the members' law resolved when a kernel compiles (story_force(tag, drift, state, row),
+isolator_force(tag, u, state, row) and its kin, tag = numba_support.law_tag(code)).
 
 JIT: the options of the cached kernels; LINK: those of the functions compiled into them.
 """
@@ -81,19 +81,6 @@ def _law_dispatch():
 law_terms = _law_dispatch()
 
 
-def _no_story(code, drift, state, row):
-    return 0.0
-
-
-def _link_story(code, force, otherwise):
-    """A dispatch that runs a story law's force for stories of law `code`, else `otherwise`."""
-    def dispatch(law, drift, state, row):
-        if law == code:
-            return force(drift, state, row)
-        return otherwise(law, drift, state, row)
-    return njit(**STORY_LINK)(dispatch)
-
-
 SHARED_PHYSICS = (hysteresis.__name__, series.__name__)
 """Modules whose physics a law may call (the slip element of isolators/hysteresis.py, the
 elements in series of isolators/series.py): compiled with the law like its own helpers."""
@@ -118,39 +105,33 @@ def compiled_in_module(function):
     return njit(**STORY_LINK)(rebuilt)
 
 
-def _story_dispatch():
-    """The story force (N) of the member's story law, dispatched on its code: every law of
-    the story registry, chained."""
-    dispatch = njit(**STORY_LINK)(_no_story)
-    for code, module in enumerate(story_registry.LAWS.values()):
-        dispatch = _link_story(code, compiled_in_module(module.force), dispatch)
-    return dispatch
-
-
-story_force = _story_dispatch()
+def compiled_law(laws, code: int, name: str):
+    """The function `name` of law `code` of `laws` (a registry's laws in code order), compiled
+    for scalars (compiled_in_module)."""
+    return compiled_in_module(getattr(laws[code], name))
 
 
 def compiled_isolator(code: int, name: str):
-    """The isolator law `code`'s function `name` (force, advance, force_xy, advance_xy),
-    compiled for scalars (compiled_in_module)."""
-    return compiled_in_module(getattr(isolator_registry.BY_CODE[code], name))
+    """The isolator law `code`'s function `name` (force, advance, force_xy, advance_xy)."""
+    return compiled_law(isolator_registry.BY_CODE, code, name)
 
 
-def _isolator_by_tag(name):
-    """The isolator laws' function `name`, called as name(tag, *args) in a kernel: the law of code
-    len(tag) - 1 (numba_support.law_tag), resolved when the kernel compiles, so that a kernel holds
-    its members' law alone. A chain of every law, as the story laws', compiled each law into every
-    kernel: a bilinear building's kernel then took 40% longer to compile (twice as long in plan) for
-    the triple friction pendulum's solve, and its twisting step ran 5-9% slower."""
+def _by_tag(laws, name, called):
+    """The laws' function `name`, called as `called`(tag, *args) in a kernel: that of the law
+    of code len(tag) - 1 (numba_support.law_tag), resolved when the kernel compiles, so that a
+    kernel holds its members' law alone (laws: a registry's, in code order). A chain of every
+    law dispatching on the code compiled each law into every kernel: with the triple friction
+    pendulum, a bilinear building's kernel took 40% longer to compile (twice as long in plan)
+    and its twisting step ran 9-11% slower."""
     def by_tag(tag, *args):
-        raise TypeError(f"isolator_{name} is called inside a compiled kernel only; "
-                        f"compiled_isolator(code, {name!r}) is the law's function")
+        raise TypeError(f"{called} is called inside a compiled kernel only; "
+                        f"compiled_law(laws, code, {name!r}) is the law's function")
 
-    by_tag.__name__ = by_tag.__qualname__ = f"isolator_{name}"
+    by_tag.__name__ = by_tag.__qualname__ = called
 
     @overload(by_tag, jit_options=STORY_LINK)
     def typed(tag, *args):
-        function = compiled_isolator(len(tag.types) - 1, name)
+        function = compiled_law(laws, len(tag.types) - 1, name)
 
         def resolved(tag, *args):
             return function(*args)
@@ -158,11 +139,13 @@ def _isolator_by_tag(name):
     return by_tag
 
 
-isolator_force = _isolator_by_tag("force")
+story_force = _by_tag(tuple(story_registry.LAWS.values()), "force", "story_force")
+"""story_force(tag, drift, state, row) -> N: the story law's force at a story's drift (m)."""
+isolator_force = _by_tag(isolator_registry.BY_CODE, "force", "isolator_force")
 """isolator_force(tag, u, state, row) -> N: the isolator law's force."""
-isolator_advance = _isolator_by_tag("advance")
+isolator_advance = _by_tag(isolator_registry.BY_CODE, "advance", "isolator_advance")
 """isolator_advance(tag, state, velocity, dt, row): its state committed after a step."""
-isolator_force_xy = _isolator_by_tag("force_xy")
+isolator_force_xy = _by_tag(isolator_registry.BY_CODE, "force_xy", "isolator_force_xy")
 """isolator_force_xy(tag, ux, uy, state, row) -> (N, N): in plan."""
-isolator_advance_xy = _isolator_by_tag("advance_xy")
+isolator_advance_xy = _by_tag(isolator_registry.BY_CODE, "advance_xy", "isolator_advance_xy")
 """isolator_advance_xy(tag, state, vx, vy, dt, row): in plan."""

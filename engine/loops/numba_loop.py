@@ -134,7 +134,6 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     iso_fields = isolator[1]
     iso_row = carray(data_pointer(iso_fields[b]), (ISOLATOR_FIELDS,))
     nonlinear = p[PLANAR.stories_nonlinear] != 0.0
-    story_law = len(law_tag) - 1
     scale = p[PLANAR.scale]
     law_row = to_fixed_tuple(law_par[b], ROW_WIDTH)  # in registers, as scalars
     code = law[b]
@@ -182,7 +181,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
             if not abs(drift[i]) <= collapse_drift[i]:
                 mode = failed(mode, drift[i], MODE.story_drift)
             if nonlinear:  # the story law's force, less what P-Delta takes
-                chain[i + 1] = story_force(story_law, drift[i], s_state[i], s_fields[i]) \
+                chain[i + 1] = story_force(law_tag, drift[i], s_state[i], s_fields[i]) \
                     - gravity[i] * drift[i]
             else:
                 chain[i + 1] = k_story[i] * drift[i]

@@ -162,7 +162,6 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     collapse_square = story[b, PLAN_STORY.collapse_square]  # no root per step
     gravity = story[b, PLAN_STORY.story_gravity]
     uniaxial = p[PLAN.stories_uniaxial] != 0.0
-    story_law = len(law_tag) - 1
     s_fields = carray(data_pointer(story_fields[b]), (n_levels - 1, MAX_FIELDS))
     s_state = carray(data_pointer(story_state[b]), (n_levels - 1, 2, MAX_STATE))
     n_walls = law.shape[1]
@@ -242,9 +241,9 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
         for i in range(n_st):
             drift = load_pair(dr, i)
             if uniaxial:  # the law along x and along y, less what P-Delta takes
-                c[i + 1, 0] = story_force(story_law, drift[0], s_state[i, 0], s_fields[i]) \
+                c[i + 1, 0] = story_force(law_tag, drift[0], s_state[i, 0], s_fields[i]) \
                     - gravity[i] * drift[0]
-                c[i + 1, 1] = story_force(story_law, drift[1], s_state[i, 1], s_fields[i]) \
+                c[i + 1, 1] = story_force(law_tag, drift[1], s_state[i, 1], s_fields[i]) \
                     - gravity[i] * drift[1]
             elif stories_yield:
                 store_pair(c, i + 1, add2(mul2((k_post[i], k_post[i]), drift),

@@ -1,7 +1,7 @@
 """The isolator laws' physics, written once: on a NumPy batch (numpy_isolators.IsolatorBatch,
 every law's members at once) and compiled for one member at a time (the law's functions as a
-kernel compiles them, compiled.compiled_isolator) the same numbers, bit for bit, along a random path
-through yield and back, along one axis and in plan, per member and per bearing; and the
+kernel compiles them, compiled.compiled_isolator) the same numbers, bit for bit, along a random
+path through yield and back, along one axis and in plan, per member and per bearing; and the
 state each law keeps is the one it declares."""
 from __future__ import annotations
 
