@@ -94,7 +94,7 @@ def _solve_banded(bd, r, v, out, n_levels, dt):
         out[i] = out[i] / dt
 
 
-@njit(**JIT)
+@njit(**LINK)
 def _member(shape, b, s0, s1, model, memory, peaks, hist):
     """Steps s0 <= step < s1 of member b: the NumPy loop's step, on scalars and the member's
     own small arrays (L levels, L - 1 stories). shape = (levels, law_tag, isolator_tag): `levels`
@@ -276,9 +276,10 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
 @njit(**JIT)
 def _run(shape, members, s0, s1, model, memory, peaks, hist):
     """Steps s0 <= step < s1 of the members in `members` (indices), one after the other (the
-    other arguments: _member's). One compilation per number of levels (the length of
-    `levels` is part of its type): loops of known length, the member's arrays on the stack.
-    It releases the GIL: run_simulation hands batches of members to threads
+    other arguments: _member's). One compilation per number of levels and laws (`shape`'s
+    type): loops of known length, the member's arrays on the stack. The cached kernel:
+    _member is compiled into it, not cached on its own (one entry to write and load a variant,
+    a second in every process saved). It releases the GIL: run_simulation hands batches of members to threads
     (numba_support.run_members)."""
     for b in members:
         _member(shape, b, s0, s1, model, memory, peaks, hist)

@@ -115,7 +115,7 @@ def _friction(nx, w, comp, comp_y, limit, nrm_x, nrm_y):
     return fx, fy
 
 
-@njit(**JIT)
+@njit(**LINK)
 def _member(shape, b, s0, s1, model, memory, peaks, hist):
     """Steps s0 <= step < s1 of member b (see the module docstring). shape = (levels, pairs,
     circular, law_tag, isolator_tag); model = (ag, dt, op, wall, story_k, mass, story, law, par,

@@ -40,6 +40,7 @@ from ..torsion import CORNERS
 from . import compiled, layout, numba_bearings, numba_contacts
 from .compiled import (
     JIT,
+    LINK,
     PHYSICS_FILES,
     failed,
     law_terms,
@@ -83,7 +84,7 @@ POINT_SLOTS = 8
 """The contact points' stack arrays come in multiples of this many (the kernel compiles once per
 multiple): the slab's corners, or two pads a wall, are 8."""
 
-@njit(**JIT)
+@njit(**LINK)
 def _member(shape, b, s0, s1, model, memory, peaks, hist):
     """Steps s0 <= step < s1 of member b (the module docstring). shape = (levels, padded, slots,
     isolator_tag); model = (ag, dt, op, respond, load, story_k, story_centre, collapse_square,
