@@ -1,10 +1,10 @@
 """The compiled kernels the suite runs, compiled once before pytest-xdist's workers start
 (tests/conftest.py), so that the workers load them from numba's on-disk cache instead of each
-compiling the same ones (measured on a fresh clone, 2 cores: a cold cache cost the suite 53 s
-of its 258, a warm one none). A kernel is compiled per number of levels and story law (the
-planar one), per story law (in plan) and per multiple of 8 contact points (twisting): the
-variants below are those the suite's in-process tests compile. Two processes, one per core; a
-variant missing here is compiled by the first worker that needs it, as before."""
+compiling the same ones (measured on a fresh clone, 2 cores: a cold cache cost the suite 53 s of
+its 258, a warm one none). A kernel is compiled per isolator law, and per number of levels and
+story law (the planar one), per story law (in plan) and per multiple of 8 contact points
+(twisting): the variants below are those the suite's in-process tests compile. Two processes,
+one per core; a variant missing here is compiled by the first worker that needs it, as before."""
 from __future__ import annotations
 
 import subprocess
@@ -17,10 +17,12 @@ accel = np.sin(np.linspace(0.0, 20.0, 200))
 pair = np.column_stack([accel, 0.5 * accel])
 wall = engine.Contact.bumper([0.1])
 
-def planar(n, yielding):
+fp = engine.Isolator.friction_pendulum(radius=2.0, mu_slow=0.04, mu_fast=0.08, rate=30.0)
+
+def planar(n, yielding, **isolator):
     building = engine.Building(
         masses=(5e5,) + (4e5,) * n, story_stiffness=(8e8,) * n,
-        story_yield_force=(6e6,) * n if yielding else None)
+        story_yield_force=(6e6,) * n if yielding else None, **isolator)
     engine.simulate(accel, 0.01, wall, building, backend="numba")
 """
 PLANAR = COMMON + """
@@ -28,6 +30,8 @@ for n in (1, 4, 8):
     for yielding in (False, True):
         planar(n, yielding)
 planar(20, True)
+for yielding in (False, True):
+    planar(4, yielding, isolator=fp)
 """
 IN_PLAN = COMMON + """
 planar(20, False)
@@ -35,13 +39,17 @@ imk = engine.Stories.imk(yield_force=3e6, plastic_deformation=0.09,
                          post_capping_deformation=0.35)
 for building in (engine.Building(), engine.Building(story_yield_force=(3e6,) * 4),
                  engine.Building(stories=imk),
-                 engine.Building(torsion=engine.Torsion(plan_size=(30.0, 20.0)))):
+                 engine.Building(torsion=engine.Torsion(plan_size=(30.0, 20.0))),
+                 engine.Building(isolator=fp),
+                 engine.Building(isolator=fp, torsion=engine.Torsion(plan_size=(30.0, 20.0)))):
     engine.simulate(pair, 0.01, wall, building, backend="numba")
 """
 SCRIPTS = (PLANAR, IN_PLAN)
-"""What each process runs: the planar kernel on 1, 4 and 8 stories, linear and yielding, and
-on 20 yielding; then on 20 linear, in plan (linear, bilinear and IMK stories) and twisting
-(the default 16 bearings, 8 contact points): about as long each."""
+"""What each process runs: the planar kernel on 1, 4 and 8 stories, linear and yielding, on 20
+yielding, and on 4 on friction pendulums (a kernel per isolator law), linear and yielding;
+then on 20 linear, in plan (linear, bilinear and IMK stories, and on friction pendulums) and
+twisting (the default 16 bearings, 8 contact points; on bilinear isolators and on friction
+pendulums): about as long each."""
 
 
 def warm(root: Path) -> None:
