@@ -34,7 +34,7 @@ def parser() -> argparse.ArgumentParser:
         prog="bumpers plot",
         description="Draw a peak of a sweep archive (pipeline.sweep or `bumpers sweep`, "
                     "NetCDF or Zarr) against one of its swept dimensions: one line per value "
-                    f"of the others (at most {MAX_LINES} lines, else their median and 16-84%% "
+                    f"of the others (at most {MAX_LINES} lines, else their median and 16-84% "
                     "band).")
     p.add_argument("archive", metavar="ARCHIVE", help="the sweep's archive (.nc or .zarr)")
     p.add_argument("--x", required=True, metavar="DIM",

@@ -33,16 +33,20 @@ class OneLineParser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: error: {message} (--help lists the options)\n")
 
 
+BEYOND_THE_PAPER = "beyond the paper"
+"""A recipe's `figure` where the paper has none (its help then says so, not "paper ...")."""
+
+
 @dataclass(frozen=True)
 class Recipe:
-    """name: module and file stem; figure: the paper's figure(s); summary: one line for --help;
-    chosen: values the paper does not state, and what was chosen (shown in --help, stored in
-    the archive); records: the paper's records for this figure (None: no records, e.g. the
-    two-body studies); compute(args) -> Dataset; plot(ds) -> matplotlib Figure;
-    check(ds) -> list of Verdict, one per conclusion of the paper against what was computed;
-    options(parser): adds the recipe's own command-line options (None: none); not_resumable:
-    "" when its simulations go through pipeline.sweep's work folder, so that a Ctrl-C keeps
-    them; else why an interrupted run starts over (shown in --help)."""
+    """name: module and file stem; figure: the paper's figure(s), or BEYOND_THE_PAPER; summary:
+        one line for --help; chosen: values the paper does not state, and what was chosen (shown in
+        --help, stored in the archive); records: the paper's records for this figure (None: no
+        records, e.g. the two-body studies); compute(args) -> Dataset; plot(ds) -> matplotlib
+        Figure; check(ds) -> list of Verdict, one per conclusion of the paper against what was
+        computed; options(parser): adds the recipe's own command-line options (None: none);
+        not_resumable: "" when its simulations go through pipeline.sweep's work folder, so that a
+        Ctrl-C keeps them; else why an interrupted run starts over (shown in --help)."""
 
     name: str
     figure: str
@@ -59,6 +63,19 @@ class Recipe:
     def resumable(self) -> bool:
         return not self.not_resumable
 
+    def _figure_text(self) -> str:
+        """Where the recipe stands: the paper's figure(s), or "beyond the paper"."""
+        return self.figure if self.figure == BEYOND_THE_PAPER else f"paper {self.figure}"
+
+    def _records_text(self) -> str:
+        """The records run without --records: the recipe's own, or (none declared) the
+        studies' FEMA P695 pairs (studies.common.options.default_pairs)."""
+        from .options import PAIR_SET
+
+        if self.records:
+            return " ".join(self.records)
+        return f"the FEMA P695 {PAIR_SET} set's pairs, a few of them with --quick"
+
     def parser(self) -> argparse.ArgumentParser:
         from engine.parameters import user_text
         from studies.common.program import program
@@ -67,7 +84,7 @@ class Recipe:
                   if self.chosen else None)
         p = OneLineParser(
             prog=program(f"studies.{self.name}"),
-            description=user_text(f"{self.summary} (paper {self.figure}). ") + (
+            description=user_text(f"{self.summary} ({self._figure_text()}). ") + (
                         f"Writes {self.name}.nc, "
                         f"{self.name}.png and {self.name}.pdf into --out. " + (
                             "Ctrl-C keeps the finished simulations: the same command again "
@@ -89,7 +106,7 @@ class Recipe:
             p.add_argument("--records", nargs="+", default=list(self.records), metavar="NAME",
                            help="paper keys (kobe, sylmar_converter, olive_view, pacoima), "
                                 "library names, RSN<n>:<component> or AT2 paths "
-                                f"(default: {' '.join(self.records)})")
+                                f"(default: {self._records_text()})")
             p.add_argument("--records-dir", default=None, metavar="DIR",
                            help="folder of PEER AT2 files searched first for the paper's "
                                 "records (default: $BUMPERS_RECORDS_DIR; else the built-in "
