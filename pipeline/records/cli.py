@@ -17,6 +17,7 @@ from .record import RECORDS_DIR_ENV, RecordError
 def main(argv: list[str] | None = None) -> int:
     """``python -m pipeline.records``: the paper's records first, then the library listing."""
     parser = argparse.ArgumentParser(
+        allow_abbrev=False,  # an option by its whole name only, as the recipes'
         # `bumpers records` names itself so (studies/cli.py sets BUMPERS_PROGRAM)
         prog=os.environ.get("BUMPERS_PROGRAM") or "python -m pipeline.records",
         description="Where the paper's records are found (records directory, built-in data, "

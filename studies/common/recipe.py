@@ -27,7 +27,12 @@ from pipeline.records import PAPER_KEYS
 
 class OneLineParser(argparse.ArgumentParser):
     """An argparse parser whose errors are one line (argparse prints the whole usage first:
-    26 lines for a recipe), exit status 2 as argparse's."""
+    26 lines for a recipe), exit status 2 as argparse's; an option is taken by its whole name
+    only (argparse's prefix matching took `--records kobe` for `--records-dir kobe` in a recipe
+    without --records, and ran)."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, allow_abbrev=False, **kwargs)
 
     def error(self, message):
         self.exit(2, f"{self.prog}: error: {message} (--help lists the options)\n")

@@ -99,6 +99,14 @@ def test_command_help_is_the_commands_own(capsys):
     assert "usage: bumpers gap_size" in capsys.readouterr().out
 
 
+def test_an_option_is_taken_by_its_whole_name_only(capsys):
+    """`--records kobe` in a recipe without --records was taken for --records-dir (argparse's
+    prefix matching) and the recipe ran; now refused before anything runs."""
+    assert cli.main(["impact_validation", "--records", "kobe"]) == 2
+    assert "unrecognized arguments: --records kobe" in capsys.readouterr().err
+    assert cli.main(["records", "--records", "x"]) == 2
+
+
 def test_usage_error_of_a_command_is_status_2(capsys):
     assert cli.main(["records", "--no-such-option"]) == 2
     assert "unrecognized arguments" in capsys.readouterr().err
