@@ -275,11 +275,11 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
 
 @njit(**JIT)
 def _run(shape, members, s0, s1, model, memory, peaks, hist):
-    """Steps s0 <= step < s1 of the members in `members` (indices), one after the other (the
-    other arguments: _member's). One compilation per number of levels and laws (`shape`'s
-    type): loops of known length, the member's arrays on the stack. The cached kernel:
-    _member is compiled into it, not cached on its own (one entry to write and load a variant,
-    a second in every process saved). It releases the GIL: run_simulation hands batches of members to threads
+    """Steps s0 <= step < s1 of the members in `members` (indices), one after the other (the other
+    arguments: _member's). One compilation per number of levels and laws (`shape`'s type): loops of
+    known length, the member's arrays on the stack. The cached kernel: _member is compiled into it,
+    not cached on its own (one entry to write and load a variant, a second in every process saved).
+    It releases the GIL: run_simulation hands batches of members to threads
     (numba_support.run_members)."""
     for b in members:
         _member(shape, b, s0, s1, model, memory, peaks, hist)
