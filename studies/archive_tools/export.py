@@ -6,7 +6,9 @@ table a spreadsheet reads, or as a demand sample in pelicun's convention.
 
 --csv: one row per run (every block: bumpers, baseline, unconstrained), columns record, the
 swept coordinates, block, then one per peak per floor / story / wall / direction, named with
-its units (`peak_total_accel_floor4 [m s-2]`), SI as in the archive (table.runs_table).
+its units (`peak_total_accel_floor4 [m s-2]`), SI as in the archive, and the block's validity
+flags (`invalid_floor_accel` and kin, 1 where the run is outside the model's range:
+pipeline.assess.validity) (table.runs_table).
 
 --pelicun: one row per run of one block (default the bumpers'), in the order of the --csv rows
 of that block; columns in FEMA P-58 / pelicun's `EVENT-TYPE-LOCATION-DIRECTION` convention,

@@ -8,6 +8,7 @@ import pandas as pd
 import pytest
 import xarray as xr
 
+from pipeline.assess.validity import FLAGS
 from studies import cli
 from studies.archive_tools import export
 
@@ -35,6 +36,9 @@ def check_table(table: pd.DataFrame, ds: xr.Dataset):
             assert row[f"peak_interstory_drift_story{story} [m]"] == \
                 ds[prefix + "peak_interstory_drift"].sel({**at, "story": story}).item()
         assert row["max_impact_force [N]"] == ds[prefix + "max_impact_force"].sel(at).item()
+        for flag in FLAGS:  # a run outside the model's range is marked in the table too
+            if prefix + flag in ds:
+                assert row[flag] == ds[prefix + flag].sel(at).item()
         assert row["n_impacts"] == ds[prefix + "n_impacts"].sel(at).item()
         ratio = row["amplification_total_accel_floor4"]
         if row.block == "bumpers":
@@ -49,7 +53,11 @@ def test_csv_holds_the_archive_values(archive, tmp_path, suffix, capsys):
     out = tmp_path / "peaks.csv"
     assert cli.main(["export", str(path.with_suffix(suffix)), "--csv", str(out)]) == 0
     assert "wrote" in capsys.readouterr().out
-    check_table(pd.read_csv(out, float_precision="round_trip"), ds)
+    table = pd.read_csv(out, float_precision="round_trip")
+    check_table(table, ds)
+    # the validity flags travel with the peaks: every block's, and some run is flagged here
+    assert {"invalid_floor_accel", "invalid_bumper_stress"} <= set(table.columns)
+    assert table["invalid_bumper_stress"].sum() > 0
 
 
 def test_csv_of_one_block_at_one_value(archive, tmp_path):
