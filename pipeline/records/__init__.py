@@ -67,7 +67,7 @@ from __future__ import annotations
 
 from .at2 import At2File, parse_at2, read_at2
 from .cli import main
-from .library import SETS, RecordInfo, library_index, list_records
+from .library import FEMA_SETS, SETS, RecordInfo, library_index, list_records
 from .lookup import TEXT_SUFFIXES, load_record, resolve_records
 from .pair import (
     MissingComponentWarning,
@@ -98,8 +98,9 @@ from .record_pair import RecordPair, resolve_pairs
 from .text import TIME_STEP_RTOL, read_text
 
 __all__ = [
-    "ACCEL_UNITS", "BUILTIN_DATA", "BUILTIN_KEYS", "BUILTIN_UNITS", "FOUND_IN", "G",
-    "PAPER_KEYS", "PAPER_RECORDS", "RECORDS_DIR_ENV", "SETS", "TEXT_SUFFIXES", "TIME_STEP_RTOL",
+    "ACCEL_UNITS", "BUILTIN_DATA", "BUILTIN_KEYS", "BUILTIN_UNITS", "FEMA_SETS", "FOUND_IN",
+    "G", "PAPER_KEYS", "PAPER_RECORDS", "RECORDS_DIR_ENV", "SETS", "TEXT_SUFFIXES",
+    "TIME_STEP_RTOL",
     "At2File", "PaperSpec", "Record", "RecordError", "RecordInfo", "StandInWarning",
     "builtin_records", "check_plausible", "library_index", "list_records", "load_record",
     "main", "paper_label",

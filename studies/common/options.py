@@ -53,24 +53,29 @@ def wall_capacity(args) -> float | None:
     return args.wall_capacity_mn * 1e6
 
 
-def default_pairs(quick: bool, n_quick: int | Sequence[str]) -> list[str]:
-    """The FEMA P695 far-field pairs (PAIR_SET); quick: the first n_quick of them, or the
-    pairs n_quick names."""
+def default_pairs(quick: bool, n_quick: int | Sequence[str],
+                  record_set: str = PAIR_SET) -> list[str]:
+    """The pairs of a FEMA P695 record set (default PAIR_SET, the far-field); quick: the first
+    n_quick of them, or the pairs n_quick names (the far-field set's only)."""
     from pipeline.records import pair_names
 
+    names = pair_names(record_set)
     if not quick:
-        return pair_names(PAIR_SET)
+        return names
     if isinstance(n_quick, int):
-        return pair_names(PAIR_SET)[:n_quick]
-    return list(n_quick)
+        return names[:n_quick]
+    # named quick pairs are the far-field set's; another set's quick run takes as many of its own
+    return list(n_quick) if record_set == PAIR_SET else names[:len(n_quick)]
 
 
 def chosen_pairs(args, n_quick: int | Sequence[str]):
-    """The pairs a study runs: --records, else `default_pairs(--quick, n_quick)`, read from
-    --records-dir or the library. Returns (pairs, names), as pipeline.checks.resolve_pairs."""
+    """The pairs a study runs: --records, else `default_pairs(--quick, n_quick, --set)`, read
+    from --records-dir or the library. Returns (pairs, names), as
+    pipeline.checks.resolve_pairs."""
     from pipeline.checks import resolve_pairs
 
-    return resolve_pairs(args.records or default_pairs(args.quick, n_quick), args.records_dir)
+    return resolve_pairs(args.records or default_pairs(args.quick, n_quick, args.set),
+                         args.records_dir)
 
 
 def bare_wall_text() -> str:

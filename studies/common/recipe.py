@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from pipeline.cluster import add_tls_options
-from pipeline.records import PAPER_KEYS
+from pipeline.records import FEMA_SETS, PAPER_KEYS
 
 
 class OneLineParser(argparse.ArgumentParser):
@@ -73,13 +73,11 @@ class Recipe:
         return self.figure if self.figure == BEYOND_THE_PAPER else f"paper {self.figure}"
 
     def _records_text(self) -> str:
-        """The records run without --records: the recipe's own, or (none declared) the
-        studies' FEMA P695 pairs (studies.common.options.default_pairs)."""
-        from .options import PAIR_SET
-
+        """The records run without --records: the recipe's own, or (none declared) the pairs
+        of a FEMA P695 set (--set, studies.common.options.default_pairs)."""
         if self.records:
             return " ".join(self.records)
-        return f"the FEMA P695 {PAIR_SET} set's pairs, a few of them with --quick"
+        return "the pairs of --set, a few of them with --quick"
 
     def parser(self) -> argparse.ArgumentParser:
         from engine.parameters import user_text
@@ -112,6 +110,13 @@ class Recipe:
                            help="paper keys (kobe, sylmar_converter, olive_view, pacoima), "
                                 "library names, RSN<n>:<component> or AT2 paths "
                                 f"(default: {self._records_text()})")
+            if not self.records:  # the code-based studies: a FEMA P695 set's pairs
+                from .options import PAIR_SET
+
+                p.add_argument("--set", choices=FEMA_SETS, default=PAIR_SET,
+                               help="the FEMA P695 record set whose pairs run without "
+                                    "--records: far-field (22 pairs), near-field-pulse (14), "
+                                    f"near-field-no-pulse (14) (default: {PAIR_SET})")
             p.add_argument("--records-dir", default=None, metavar="DIR",
                            help="folder of PEER AT2 files searched first for the paper's "
                                 "records (default: $BUMPERS_RECORDS_DIR; else the built-in "
@@ -265,6 +270,8 @@ class Recipe:
         ds = self.compute(args)
         ds.attrs.update(recipe=self.name, paper_figure=self.figure, quick=int(args.quick),
                         values_chosen=self.chosen or "none")
+        if getattr(args, "set", None) and not args.records:  # the pairs run: a set's
+            ds.attrs["record_set"] = f"FEMA P695 {args.set}"
         if args.quick:
             ds.attrs["title"] = f"{ds.attrs.get('title', self.summary)} [{QUICK_NOTE}]"
         verdicts = self.check(ds)

@@ -120,6 +120,29 @@ def test_every_recipe_takes_the_common_options(name, tmp_path):
     assert args.workers == 1 and args.out == tmp_path
 
 
+CODE_BASED = ("suite", "fragility", "collapse", "loss", "design", "plan", "torsion")
+"""The studies that run FEMA P695 pairs unless given --records."""
+
+
+@pytest.mark.parametrize("name", CODE_BASED)
+def test_every_code_based_study_runs_the_fema_set_chosen(name):
+    """--set picks the FEMA P695 set whose pairs run (default the far-field's 22), and only
+    where --records does not name them."""
+    from studies.common.options import chosen_pairs
+
+    parser = importlib.import_module(f"studies.{name}").recipe.parser()
+    far, pulse = (parser.parse_args(argv) for argv in ([], ["--set", "near-field-pulse"]))
+    assert far.set == "far-field"
+    assert len(chosen_pairs(far, 4)[1]) == 22
+    # the near-field pulse pairs: Imperial Valley's El Centro Array #6 first (RSN181), 14 in all
+    names = chosen_pairs(pulse, 4)[1]
+    assert len(names) == 14 and names[0] == "RSN181"
+    pulse.quick = True
+    assert chosen_pairs(pulse, 4)[1] == names[:4]
+    assert chosen_pairs(parser.parse_args(["--set", "near-field-pulse", "--records", "RSN953"]),
+                        4)[1] == ["RSN953"]
+
+
 def test_output_folder_that_cannot_be_written_fails_before_compute(tmp_path, capsys):
     """A folder under a plain file cannot be made (permissions would not bind for root)."""
     blocker = tmp_path / "a_file"
