@@ -19,7 +19,7 @@ from scipy.stats import norm
 from engine.results import COLLAPSE_MODES
 from pipeline.assess import collapse as pc
 from studies import collapse
-from tests.helpers import assert_udunits, run_recipe
+from tests.helpers import assert_collapse_modes, assert_udunits, run_recipe
 
 
 @pytest.fixture(scope="module")
@@ -63,24 +63,14 @@ def test_the_archive_recomputes_from_its_pairs(quick):
     assert "Kitayama & Constantinou" in table and "Masroor & Mosqueda" in table
 
 
-def assert_modes(mode, collapsed):
-    """collapse_mode labelled as the sweeps label it (a CF flag variable, int8), nonzero
-    exactly where the run collapsed."""
-    assert mode.dtype == np.int8 and mode.attrs["units"] == "1"
-    assert mode.attrs["flag_meanings"] == " ".join(COLLAPSE_MODES)
-    assert list(mode.attrs["flag_values"]) == list(range(len(COLLAPSE_MODES)))
-    fell = np.asarray(collapsed, bool)
-    assert np.all(mode.values[fell] != 0) and np.all(mode.values[~fell] == 0)
-
-
 def test_the_archive_says_how_each_run_collapsed(quick):
     """collapse_mode beside collapsed (the building collapses by its stories' drift), and at
     each pair's collapse intensity; the attribute collapse_modes counts each mode."""
     ds = quick
     assert ds.collapse_mode.dims == ds.collapsed.dims
-    assert_modes(ds.collapse_mode, ds.collapsed.values)
+    assert_collapse_modes(ds.collapse_mode, ds.collapsed.values)
     assert ds.collapsed.values.any() and not ds.collapsed.values.all()
-    assert_modes(ds.collapse_intensity_mode, ~ds.collapse_censored.values.astype(bool))
+    assert_collapse_modes(ds.collapse_intensity_mode, ~ds.collapse_censored.values.astype(bool))
     # unrefined (quick): the mode of the pair's first collapsing level
     codes = ds.collapse_mode.transpose("record", "level", ...).values
     first = np.argmax(codes != 0, axis=1)[:, None]
@@ -109,7 +99,7 @@ def test_refinement_bisects_between_the_last_standing_and_the_first_collapse(qui
     quarters = (fine[known] - below) / ((coarse[known] - below) / 4)
     np.testing.assert_allclose(quarters, np.round(quarters), atol=1e-9)
     assert np.any(fine[known] < coarse[known])
-    assert_modes(ds.collapse_intensity_mode, known)
+    assert_collapse_modes(ds.collapse_intensity_mode, known)
 
 
 def test_other_rules_and_a_ductility_below_one_are_refused(tmp_path, capsys):
@@ -147,7 +137,7 @@ def test_the_loss_archive_holds_the_decision(loss_quick):
     assert (runs == ds.record.size).all()
     # how each run collapsed, counted by mode (pipeline.assess.collapse_modes)
     assert ds.collapse_mode.dims == ds.collapsed.dims
-    assert_modes(ds.collapse_mode, ds.collapsed.values)
+    assert_collapse_modes(ds.collapse_mode, ds.collapsed.values)
     by_mode = ds.runs_collapsed_by_mode
     assert by_mode.dims == ("mode",) + ds.runs_collapsed.dims
     assert by_mode.mode.values.tolist() == list(COLLAPSE_MODES[1:])
