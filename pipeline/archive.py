@@ -19,6 +19,8 @@ import engine
 from engine.impact import LAWS
 from engine.isolators import LAWS as ISOLATOR_LAWS
 from engine.results import (
+    COLLAPSE,
+    COLLAPSE_MODES,
     DIRECTIONS,
     PEAKS,
     WALLS,
@@ -87,6 +89,28 @@ def quantity_variable(q: Quantity, lead_dims: tuple[str, ...], values,
         labelled.attrs["flag_values"] = np.arange(len(q.flags), dtype=q.dtype)
         labelled.attrs["flag_meanings"] = " ".join(q.flags)
     return labelled
+
+
+COLLAPSE_MODE = {q.name: q for q in COLLAPSE}["collapse_mode"]
+"""The declaration of how a run ended (engine.results.COLLAPSE): its units, long name, int8
+codes and their CF flags."""
+
+
+def collapse_mode_variable(dims, values, long_name: str | None = None) -> xr.Variable:
+    """How each run ended, as the sweeps' archives label it (`quantity_variable` of the
+    engine's collapse_mode: int8 codes, units "1", CF flag_values and flag_meanings): values
+    (...) the runs' codes (engine.results.COLLAPSE_MODES, 0 where a run did not collapse) over
+    dims (a study's runs, as its `collapsed`); long_name: the declaration's, else this."""
+    return quantity_variable(COLLAPSE_MODE, tuple(dims), np.asarray(values).astype(np.int8),
+                             long_name)
+
+
+def collapse_mode_coords() -> dict:
+    """The coordinate `mode` of a count of collapses by mode: the modes a collapse can have
+    (engine.results.COLLAPSE_MODES less "none", in the order of their codes 1, 2, ...)."""
+    return {"mode": variable("mode", np.array(COLLAPSE_MODES[1:]), "1",
+                             "how the runs collapsed (engine.results.COLLAPSE_MODES): "
+                             "collapse_mode's codes 1 to " + str(len(COLLAPSE_MODES) - 1))}
 
 
 def block_long_name(q: Quantity, prefix: str) -> str:

@@ -44,7 +44,8 @@ QUICK_SAMPLES = 100
 QUANTILES = (0.1, 0.5, 0.9)
 """The repair cost's and time's quantiles over the realizations."""
 PEAKS = ("peak_total_accel_xy", "peak_interstory_drift_xy", "n_impacts", "max_indentation",
-         "max_impact_force", "peak_total_accel", "peak_interstory_drift", "collapsed")
+         "max_impact_force", "peak_total_accel", "peak_interstory_drift", "collapsed",
+         "collapse_mode")
 
 
 def options(p) -> None:
@@ -150,7 +151,13 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
     (mean and QUANTILES), P(collapse) and P(irreparable) of the realizations; per
     configuration the expected annual loss and the annual rates; the decision table's
     quantities."""
-    from pipeline.archive import labelled_dataset, variable
+    from pipeline.archive import (
+        collapse_mode_coords,
+        collapse_mode_variable,
+        labelled_dataset,
+        variable,
+    )
+    from pipeline.assess.collapse_modes import collapse_numbers, mode_counts
     from pipeline.assess.validity import Limits, any_flag, code_story_capacity, flags_of
     from pipeline.motions.code_suite import describe
     from pipeline.suite_labels import archive_variables
@@ -235,10 +242,14 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
                               "demand model: neither collapsed nor outside the model's range"),
         "runs_collapsed": variable(dims, fell.sum(axis=0).astype(np.int32), "1",
                                    "runs that collapsed (replaced by the collapse fragility)"),
+        "runs_collapsed_by_mode": variable(
+            ("mode",) + dims, mode_counts(peaks["collapse_mode"], axis=0).astype(np.int32), "1",
+            "runs_collapsed by how they collapsed (collapse_mode)"),
         "runs_outside_range": variable(dims, (flagged & ~fell).sum(axis=0).astype(np.int32),
                                        "1", "runs outside the model's range (left out of the "
                                        "demand model; validity_limits says which)"),
         "collapsed": variable(rdims, fell.astype(np.int8), "1", "1 where the run collapsed"),
+        "collapse_mode": collapse_mode_variable(rdims, peaks["collapse_mode"]),
         "expected_annual_loss": variable(conf, eal, "USD_2011 yr-1", "expected annual loss, "
                                          "USD_2011 yr-1 (FEMA P-58-1 chapter 8 over the "
                                          "hazard curve)"),
@@ -280,6 +291,7 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
                                  "seismic gap / D_M"),
         "gap": variable("gap_fraction", gaps, "m", "seismic gap"),
         "quantile": variable("quantile", q, "1", "quantile over the realizations"),
+        **collapse_mode_coords(),
         **more_coords,
     }
     attrs.update({
@@ -299,6 +311,7 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
             {"median": p58.IRREPARABLE_DRIFT[0], "beta": p58.IRREPARABLE_DRIFT[1]}),
         "validity_limits": limits.describe(),
         "collapse_archive": args.collapse or "computed (studies.collapse)",
+        "collapse_modes": json.dumps(collapse_numbers(peaks["collapse_mode"])),
         "levels": ", ".join(f"{v:.3g}" for v in levels) + " x MCE_R (stripes)"})
     return labelled_dataset(data, coords, attrs)
 

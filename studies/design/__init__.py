@@ -61,7 +61,8 @@ feasible one; if none is feasible, the one closest to feasible): each round runs
 neighbours one step up and down in every variable (clipped to the bounds), moves to a better
 one (and doubles the steps again, up to the first ones) or halves the steps, until the finest
 steps (a quarter of the first) find nothing better. Every evaluated candidate is kept
-(dimension `candidate`) with its per-pair peaks and flags and its statistics per level.
+(dimension `candidate`) with its per-pair peaks and flags, how each run ended
+(`collapse_mode`), and its statistics per level (the collapses counted by mode).
 The optimum is reported as interior (evaluated neighbours on both sides in every variable, with
 the constraints its neighbours fail) or at a named bound (physical, or the evaluated grid's edge:
 "the optimum may lie beyond"). Beside it, the references at every level: the code's design

@@ -9,6 +9,7 @@ import numpy as np
 
 from engine.units import CM, G
 from pipeline.assess import derived
+from pipeline.assess.collapse_modes import collapse_numbers, collapse_text
 from pipeline.motions.code_suite import LEVELS
 
 from ..common.options import bare_wall_text
@@ -20,7 +21,7 @@ from .space import CRITERIA, OBJECTIVES, PEAKS, REFERENCES, VARIABLES
 def dataset(search: Search, references: dict, rounds: int, args):
     """The archive: every candidate and reference, per pair and level, with the statistics,
     the constraints, the ranking and the optimum's nature."""
-    from pipeline.archive import labelled_dataset, variable
+    from pipeline.archive import collapse_mode_coords, labelled_dataset, variable
     from pipeline.provenance import common_attributes, plan_attributes, run_attributes
     from pipeline.suite_labels import archive_variables
 
@@ -40,6 +41,7 @@ def dataset(search: Search, references: dict, rounds: int, args):
                               "reference designs: the building without wall; the bare wall "
                               f"({bare_wall_text()}) at the gap; the code's design, the bare "
                               "wall at the clearance D_TM"),
+        **collapse_mode_coords(),
     })
     for name, (units, long_name) in VARIABLES.items():
         coords[name] = variable("candidate", table[name], units, long_name)
@@ -68,6 +70,9 @@ def dataset(search: Search, references: dict, rounds: int, args):
         data[name] = _stat_variable(("level", "candidate"), name, values)
         data[f"reference_{name}"] = _stat_variable(("level", "reference"), name,
                                                    ref_stats[name])
+    attrs["collapse_modes"] = json.dumps(
+        {which: collapse_numbers(values["collapse_mode"])
+         for which, values in (("candidates", search.peaks), ("references", references))})
     for name, margin in judged["margins"].items():
         data[f"margin_{name}"] = variable("candidate", margin, "1", f"how far inside the "
                                           f"{name} constraint (>= 0: met), fraction of the "
@@ -131,12 +136,14 @@ def _fails(judged) -> list[list[str]]:
 
 
 def _peak_variable(dims, name, values):
-    from pipeline.archive import variable
+    from pipeline.archive import collapse_mode_variable, variable
     from pipeline.assess import validity
 
     if name in PEAKS:
         units, long_name = PEAKS[name]
         return variable(dims, values, units, long_name)
+    if name == "collapse_mode":  # the engine's codes, as the sweeps label them
+        return collapse_mode_variable(dims, values)
     if name == "crushed":  # a bool, stored as 0 / 1
         q = derived.quantity(name)
         return variable(dims, values.astype(np.int8), q.units, q.long_name)
@@ -150,6 +157,9 @@ def _stat_variable(dims, name, values):
     if name in STAT_TEXT:
         units, long_name = STAT_TEXT[name]
         return variable(dims, values, units, long_name)
+    if name == "n_invalid_collapse_by_mode":
+        return variable(("mode", *dims), values, "1", "number of pairs where the run "
+                        "collapsed, by how it collapsed (collapse_mode)")
     flag = name.removeprefix("n_")
     return variable(dims, values, "1", f"number of pairs where {validity.FLAGS[flag]}")
 
@@ -173,13 +183,16 @@ def _line(label: str, ds, prefix: str, dim: str, i: int) -> list[str]:
 
 
 def flagged_text(ds, prefix: str, dim: str, i: int, level: int) -> str:
-    """The pairs each validity flag counts for a candidate or reference at a level:
-    'bumper_stress 3, story_shear 17' ('' when none)."""
+    """The pairs each validity flag counts for a candidate or reference at a level, the
+    collapses by mode: 'bumper_stress 3, 1 collapsed (1 story drift, 0 isolator capacity, 0
+    numerical instability)' ('' when none)."""
     from pipeline.assess import validity
 
-    counts = {name: int(ds[f"{prefix}n_{name}"].isel(level=level, **{dim: i}))
-              for name in validity.FLAGS}
-    return ", ".join(f"{name.removeprefix('invalid_')} {n}" for name, n in counts.items() if n)
+    at = {"level": level, dim: i}
+    counts = {name: int(ds[f"{prefix}n_{name}"].isel(**at)) for name in validity.FLAGS}
+    modes = collapse_numbers(ds[f"{prefix}collapse_mode"].isel(**at).values)
+    return ", ".join(collapse_text(modes) if name == "invalid_collapse"
+                     else f"{name.removeprefix('invalid_')} {n}" for name, n in counts.items() if n)
 
 
 def table_lines(ds, best_few: int = 3) -> list[str]:

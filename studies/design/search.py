@@ -150,14 +150,16 @@ def _listed(columns: dict, reach: np.ndarray, levels: np.ndarray) -> dict:
 
 def _peaks(ds, shape: tuple, building, limits, n_bumpers, area,
            thickness) -> dict[str, np.ndarray]:
-    """PEAKS and the validity flags of a sweep's Dataset over (record, member), each shaped
-    `shape` (the members split as the caller listed them)."""
+    """PEAKS, the validity flags and how each run ended (collapse_mode, int8: the engine's
+    codes, engine.results.COLLAPSE_MODES; 0 for every run of a building that cannot collapse)
+    of a sweep's Dataset over (record, member), each shaped `shape` (the members split as the
+    caller listed them)."""
     from pipeline.assess import validity
 
     peaks = {name: ds[name].values.reshape(*shape, *ds[name].shape[2:]) for name in
              ("peak_total_accel", "peak_interstory_drift", "max_impact_force",
-              "peak_isolator_disp", "max_indentation", "n_impacts", "collapsed")
-             if name in ds}
+              "peak_isolator_disp", "max_indentation", "n_impacts", "collapsed",
+              "collapse_mode") if name in ds}
     flags = validity.flags_of(peaks, building, limits, n_bumpers=n_bumpers, area=area,
                               thickness=thickness)
     return {"peak_floor_accel": largest_floor_accel(peaks["peak_total_accel"]),
@@ -165,7 +167,8 @@ def _peaks(ds, shape: tuple, building, limits, n_bumpers, area,
             "peak_interstory_drift": largest_story_drift(peaks["peak_interstory_drift"]),
             "max_impact_force": peaks["max_impact_force"],
             "max_indentation": peaks["max_indentation"],
-            "n_impacts": peaks["n_impacts"].astype(np.int64), **flags}
+            "n_impacts": peaks["n_impacts"].astype(np.int64), **flags,
+            "collapse_mode": peaks.get("collapse_mode", np.zeros(shape, np.int8))}
 
 
 # ------------------------------------------------------------------------------ statistics
@@ -183,10 +186,13 @@ def statistics(peaks: dict, weights, bare: dict | None = None) -> dict[str, np.n
     84th weighted percentiles of the largest peak floor acceleration (m/s^2); the weighted
     fractions uncrushed, within the stress limit, within both (and standing), and with contact
     (a collapsed run: infinite acceleration, never within the limits); the number of
-    pairs (unweighted) flagged by each validity flag; with `bare` (the bare wall at the gap,
+    pairs (unweighted) flagged by each validity flag, and those collapsed by each mode
+    (n_invalid_collapse_by_mode, (modes, L, K): pipeline.assess.collapse_modes, from the
+    peaks' collapse_mode); with `bare` (the bare wall at the gap,
     (R, L) peaks), the weighted fractions of all the pairs the member helps and hurts against
     it, and of those counted (contact in one of the two; pipeline.assess.outcomes)."""
     from pipeline.assess import outcomes, validity
+    from pipeline.assess.collapse_modes import mode_counts
 
     # A collapsed run is a collapse: the worst floor acceleration there is in the quantiles
     # (never its peak before the collapse), and in the comparison with the bare wall it is
@@ -206,6 +212,7 @@ def statistics(peaks: dict, weights, bare: dict | None = None) -> dict[str, np.n
                                                        axis=0), weights)}
     for name in validity.FLAGS:
         out[f"n_{name}"] = peaks[name].sum(axis=0)
+    out["n_invalid_collapse_by_mode"] = mode_counts(peaks["collapse_mode"], axis=0)
     if bare is not None:
         effect = outcomes.with_collapse(
             outcomes.effect(peaks["peak_floor_accel"], bare["peak_floor_accel"][..., None]),

@@ -21,7 +21,9 @@ pairs weighted per earthquake, with percentile bootstrap intervals of theta and 
 pairs, and beta_TOT beside the record-to-record beta (FEMA P695 section 7.3.1 with the
 quality ratings, --ratings); IM is the level as a fraction of the MCE_R (and, equivalently, the
 target's Sa(T_M)). Runs outside the model's range (pipeline.assess.validity) are flagged
-(`invalid_*`) and counted in the summary. The
+(`invalid_*`) and counted in the summary, how each run ended beside its collapse flag
+(`collapse_mode`: a story's drift, the isolator's capacity, a numerical instability; 0 where
+it stood) and the collapses counted by mode (`collapse_modes`). The
 largest floor acceleration and interstory drift, the bumpers' stress and "crushed" are
 pipeline.assess.derived's (names, units, long names, formulas); --moat, --wall-capacity-mn and the
 default pairs are studies.common.options'.
@@ -154,7 +156,8 @@ def run(suite, levels, gaps, args):
     """Every pair at every level (x its MCE_R factor) without wall, against the bare wall and
     with each count of bumpers at every gap (m), on the pipeline's executor (pipeline.sweep:
     resumable, here or on dask). Returns (peak name -> (R, L, W, ...) arrays, float but the
-    counts' (n_impacts: integers, as engine.results declares them), the walls
+    counts' and codes' (n_impacts, collapse_mode: integers, as engine.results declares them),
+    the walls
     W in the order: no wall, the bare wall at each gap, then each BUMPER_COUNTS' gaps; the
     sweep's Dataset, whose provenance the archive keeps). The building at the suite's bound
     (suite.building)."""
@@ -165,14 +168,16 @@ def run(suite, levels, gaps, args):
                         level=levels, factors=suite.factors,
                         **{**run_options(args), "building": suite.building})
     peaks = {}
-    for name in (*PEAK_NAMES, "peak_total_accel", "peak_interstory_drift", "collapsed"):
+    for name in (*PEAK_NAMES, "peak_total_accel", "peak_interstory_drift", "collapsed",
+                 "collapse_mode"):
         if name not in ds:  # a building without a collapse criterion
             continue
         free, bare = ds["unconstrained_" + name], ds["baseline_" + name]
         bumpers = [ds[name].sel(n_bumpers=n) for n in BUMPER_COUNTS]
         walls = [free.expand_dims("wall", 2), *(b.rename(gap="wall") for b in (bare, *bumpers))]
         values = np.concatenate([w.values for w in walls], axis=2)
-        # counts (n_impacts: engine.results declares int64) stay integers; the rest float
+        # counts (n_impacts: engine.results declares int64) and codes stay integers; the rest
+        # float
         peaks[name] = values if values.dtype.kind in "iu" else values.astype(float)
     return peaks, ds
 
@@ -182,7 +187,8 @@ PEAK_NAMES = ("peak_isolator_disp", "max_impact_force", "max_indentation", "n_im
 
 def _dataset(suite, levels, fractions, gaps, peaks, args):
     from engine.results import quantity
-    from pipeline.archive import labelled_dataset, variable
+    from pipeline.archive import collapse_mode_variable, labelled_dataset, variable
+    from pipeline.assess.collapse_modes import collapse_numbers
     from pipeline.assess.fragility_outcomes import BOOTSTRAP_QUANTILES
     from pipeline.assess.thresholds import total_beta
     from pipeline.assess.validity import FLAGS, Limits, code_story_capacity, flags_of, shape_factor
@@ -224,6 +230,9 @@ def _dataset(suite, levels, fractions, gaps, peaks, args):
     for name, value in flagged.items():
         data[name] = variable(dims, by_config(value).astype(np.int8), "1",
                               f"1 where {FLAGS[name]} ({limits.describe()})")
+    # how each run ended (0 for every run of a building that cannot collapse)
+    mode = by_config(peaks.get("collapse_mode", np.zeros(flagged["invalid_collapse"].shape)))
+    data["collapse_mode"] = collapse_mode_variable(dims, mode)
     q = derived.quantity("bumper_stress")
     stress = by_config(q(peaks, n_bumpers=_bumper_counts(n_gaps), area=AREA))
     stress[..., 0] = np.nan  # the bare wall has no bumpers
@@ -289,6 +298,7 @@ def _dataset(suite, levels, fractions, gaps, peaks, args):
         "story_capacity": capacity,
         "wall_capacity": "none" if wall_force is None else wall_force,
         "validity_limits": limits.describe(), "invalid_counts": json.dumps(counts),
+        "collapse_modes": json.dumps(collapse_numbers(data["collapse_mode"].values)),
         "runs": int(np.prod([len(suite.names), levels.size, gaps.size, len(BARRIERS)])),
         "bumper_shape_factor": float(shape_factor(AREA, THICKNESS)),
         "suite": describe(suite), "fragility_method": (
@@ -383,10 +393,13 @@ def check(ds) -> list[Verdict]:
     identified), counted by pipeline.assess.outcomes.count: the configurations the claim
     applies to (both fits identified) whose medians differ by more than the tolerance, the
     others beside the count."""
+    from pipeline.assess.collapse_modes import collapse_text
     from pipeline.assess.outcomes import TOLERANCE, count
 
     counts = json.loads(ds.attrs["invalid_counts"])
-    flagged = ", ".join(f"{k.removeprefix('invalid_')} {v}" for k, v in counts.items() if v)
+    modes = json.loads(ds.attrs["collapse_modes"])
+    flagged = ", ".join(collapse_text(modes) if k == "invalid_collapse"
+                        else f"{k.removeprefix('invalid_')} {v}" for k, v in counts.items() if v)
     thresholds = json.loads(ds.attrs["thresholds"])
     verdicts = []
     for event in [e for e in ds.event.values if str(e).startswith("floor_accel_")]:
@@ -421,7 +434,7 @@ def check(ds) -> list[Verdict]:
             c.verdict,
             {"event": str(event), "threshold": t["value"],
              "higher_with_bumpers": held.tolist(), "count": c.numbers(),
-             "invalid_counts": counts}))
+             "invalid_counts": counts, "collapse_modes": modes}))
     return verdicts
 
 

@@ -24,12 +24,14 @@ Validity (pipeline.assess.validity): every run is checked against the model's ra
 contact stress against the rubber's 30.9 MPa, the largest floor acceleration against 5 g, a
 linear story's shear against the code's superstructure capacity, the wall's force against a
 capacity if given); the flags are stored per run (`invalid_*`, `bare_invalid_*`,
-`free_invalid_*`). Runs outside the range are kept in the helped / neutral / hurt shares, the
-amplification quantiles and the verdicts, with their number stated: the share of each cell's
-pairs with a run outside (`counted_outside_range`) and, in every verdict, the runs outside and
-the verdict's fraction without them. Leaving them out of the statistics instead would keep
-the mild cases only (a pounding hard enough to matter is the one that leaves the range), and
-bias every median towards the bumpers' harm.
+`free_invalid_*`), and how each run ended beside its collapse flag (`collapse_mode`, a CF flag
+variable: a story's drift, the isolator's capacity, a numerical instability; 0 where it stood),
+every count of collapses counting each mode. Runs outside the range are kept in the helped /
+neutral / hurt shares, the amplification quantiles and the verdicts, with their number stated:
+the share of each cell's pairs with a run outside (`counted_outside_range`) and, in every
+verdict, the runs outside and the verdict's fraction without them. Leaving them out of the
+statistics instead would keep the mild cases only (a pounding hard enough to matter is the one
+that leaves the range), and bias every median towards the bumpers' harm.
 
 Verdicts: each of the paper's conclusions with its quantifier as the paper wrote it ("for all
 examined excitations": every pair; "in most cases": more than half of the counted cases where
@@ -202,8 +204,8 @@ def run(suite, grid: Grid, args):
                         factors=suite.factors,
                         **{**run_options(args), "building": suite.building})
     blocks = {"free": "unconstrained_", "bare": "baseline_", "bumpers": ""}
-    return {config: {name: ds[prefix + name].values for name in PEAKS + ("collapsed",)
-                     if prefix + name in ds}
+    return {config: {name: ds[prefix + name].values
+                     for name in PEAKS + ("collapsed", "collapse_mode") if prefix + name in ds}
             for config, prefix in blocks.items()}, ds
 
 
@@ -223,11 +225,15 @@ def config_text() -> dict[str, str]:
 def assemble(grid: Grid, peaks: dict, names, weights, building, limits):
     """The archive from the peaks: configuration (free, bare, bumpers) -> PEAKS name -> array
     shaped as Grid.split gives (SI: m, m/s^2 over the building's levels, m over its stories, N,
-    m, impacts); names (R,) of the pairs; weights (R,) per earthquake; building: the
-    engine.Building run; limits: pipeline.assess.validity.Limits. Adds the validity flags, the
-    bumpers' contact stress and the statistics (add_statistics)."""
+    m, impacts), and where the building can collapse collapsed and collapse_mode (its runs'
+    codes, engine.results.COLLAPSE_MODES); names (R,) of the pairs; weights (R,) per
+    earthquake; building: the engine.Building run; limits: pipeline.assess.validity.Limits.
+    Adds the validity flags, how each run ended (collapse_mode: 0 where it stood, every run
+    of a building that cannot collapse), the bumpers' contact stress and the statistics
+    (add_statistics)."""
     from engine.results import quantity
-    from pipeline.archive import labelled_dataset, variable
+    from pipeline.archive import COLLAPSE_MODE, collapse_mode_variable, labelled_dataset, variable
+    from pipeline.assess.collapse_modes import collapse_numbers
     from pipeline.assess.validity import FLAGS, flags_of, shape_factor
 
     data, said = {}, config_text()
@@ -244,6 +250,10 @@ def assemble(grid: Grid, peaks: dict, names, weights, building, limits):
         for name, value in flagged.items():
             data[prefix + name] = variable(DIMS[config], value.astype(np.int8), "1",
                                            f"1 where {FLAGS[name]} ({said[config]})")
+        mode = peaks[config]["collapse_mode"] if "collapsed" in peaks[config] \
+            else np.zeros(flagged["invalid_collapse"].shape, np.int8)
+        data[prefix + "collapse_mode"] = collapse_mode_variable(
+            DIMS[config], mode, f"{COLLAPSE_MODE.long_name} ({said[config]})")
     stress = derived.quantity("bumper_stress")
     data["bumper_stress"] = variable(
         DIMS["bumpers"], stress(peaks["bumpers"], n_bumpers=counts, area=AREA), stress.units,
@@ -272,6 +282,8 @@ def assemble(grid: Grid, peaks: dict, names, weights, building, limits):
               for prefix in PREFIX.values() for name in FLAGS}
     ds = labelled_dataset(data, coords, {
         "validity_limits": limits.describe(), "invalid_counts": json.dumps(counts),
+        "collapse_modes": json.dumps({prefix + "collapse_mode": collapse_numbers(
+            data[prefix + "collapse_mode"].values) for prefix in PREFIX.values()}),
         "runs": int(sum(np.prod(peaks[c]["n_impacts"].shape) for c in PREFIX)),
         "bumper_shape_factor": float(shape_factor(AREA, THICKNESS)),
         "bumper_crush_limit": DELTA_U, "story_capacity": limits.story_shear or "none",

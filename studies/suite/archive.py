@@ -80,7 +80,8 @@ POINT = ("record", "level", "gap_fraction")  # a case: one pair at one level and
 def runs(ds, n=None, k=None) -> dict:
     """One configuration's runs over (record, level, gap_fraction) as arrays: the bumpers (n,
     k) or, with n None, the bare wall. Keys: base, upper, floor, drift (responses), force,
-    indentation, hit (bool), outside (name of the flag -> bool), outside_any (bool)."""
+    indentation, hit (bool), outside (name of the flag -> bool), outside_any (bool),
+    collapse_mode (int8: how the run ended, engine.results.COLLAPSE_MODES)."""
     from pipeline.assess.validity import FLAGS
 
     config = "bare" if n is None else "bumpers"
@@ -98,4 +99,5 @@ def runs(ds, n=None, k=None) -> dict:
     out["hit"] = get(ds[prefix + "n_impacts"]) > 0
     out["outside"] = {name: get(ds[prefix + name]).astype(bool) for name in FLAGS}
     out["outside_any"] = np.any(list(out["outside"].values()), axis=0)
+    out["collapse_mode"] = get(ds[prefix + "collapse_mode"])
     return out

@@ -8,6 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from engine.units import CM, KN_PER_MM
+from pipeline.assess.collapse_modes import collapse_numbers, collapse_text
 from pipeline.assess.derived import crushed
 from pipeline.assess.outcomes import (
     COUNT_TEXT,
@@ -34,7 +35,8 @@ class Case:
     """A conclusion asked of the runs: held, counted (bool over POINT: the cases where what it
     speaks of happens) and changed (bool: the quantity changes beyond the tolerance; None for
     a yes/no claim); runs: the runs behind each case (dicts of `runs`: their flags "outside"
-    and "outside_any" over POINT). Counted by pipeline.assess.outcomes.count: each pair
+    and "outside_any", and their "collapse_mode", over POINT). Counted by
+    pipeline.assess.outcomes.count: each pair
     carries its earthquake's weight once, with the fraction of its counted cases that hold;
     ties (not changed) and cases without what it speaks of outside the denominator, beside.
     by_record: kept for callers; the count is per pair for every claim."""
@@ -78,18 +80,23 @@ def judge(conclusion, claim, quantifier, points, case: Case, weights, levels,
 
 def _outside_numbers(case: Case, denominator) -> dict:
     """The runs behind the counted cases (len(case.runs) per case) and those outside the
-    model's range, in all and per flag (a run can carry several flags)."""
+    model's range, in all and per flag (a run can carry several flags), the collapses among
+    them by mode (pipeline.assess.collapse_modes)."""
     kinds = {name: sum(int((denominator & r["outside"][name]).sum()) for r in case.runs)
              for name in case.runs[0]["outside"]}
     outside_runs = sum(int((denominator & r["outside_any"]).sum()) for r in case.runs)
+    modes = collapse_numbers([np.where(denominator, r["collapse_mode"], 0) for r in case.runs])
     return {"runs": len(case.runs) * int(denominator.sum()),
-            "runs_outside_range": outside_runs, "outside_by_flag": kinds}
+            "runs_outside_range": outside_runs, "outside_by_flag": kinds,
+            "collapse_modes": modes}
 
 
 def _outside_text(case: Case, denominator) -> str:
-    """'N of M runs outside the model's range: ...'."""
+    """'N of M runs outside the model's range (...)', the collapses by mode ('floor accel 1,
+    2 collapsed (2 story drift, 0 isolator capacity, 0 numerical instability)')."""
     n = _outside_numbers(case, denominator)
-    kinds = ", ".join(f"{k.removeprefix('invalid_').replace('_', ' ')} {v}"
+    kinds = ", ".join(collapse_text(n["collapse_modes"]) if k == "invalid_collapse"
+                      else f"{k.removeprefix('invalid_').replace('_', ' ')} {v}"
                       for k, v in n["outside_by_flag"].items() if v)
     return (f"{n['runs_outside_range']} of {n['runs']} runs outside the model's range"
             + (f" ({kinds})" if kinds else ""))
@@ -242,7 +249,8 @@ def narrow_more_effective(ds, paper, bare, w, levels) -> Verdict:
 
     def at_gap(r, where):  # a configuration's run flags at one chosen gap per (pair, level)
         flags = {k: _expand(at(v, where)) for k, v in r["outside"].items()}
-        return {"outside": flags, "outside_any": np.any(list(flags.values()), axis=0)}
+        return {"outside": flags, "outside_any": np.any(list(flags.values()), axis=0),
+                "collapse_mode": _expand(at(r["collapse_mode"], where))}
 
     case = Case(_expand(narrower == HELPED), _expand(has), _expand(narrower != NEUTRAL),
                 tuple(at_gap(r, g) for r in (paper, bare) for g in (narrow, wide)),

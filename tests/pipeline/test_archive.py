@@ -124,4 +124,13 @@ def test_an_archive_names_how_each_run_collapsed():
     assert fell.any() and not fell.all()  # the far gap lets the isolator pass 8 cm
     assert np.all(mode.values[fell] == MODE.isolator_capacity) and np.all(mode.values[~fell] == 0)
     assert "capacity, 0.08 m" in ds.attrs["building_collapse_text"]
+    # the studies label theirs with the same declaration (pipeline.archive's helpers)
+    from pipeline.archive import collapse_mode_coords, collapse_mode_variable
+
+    again = collapse_mode_variable(mode.dims, mode.values.astype(float))
+    assert again.dtype == np.int8 and again.dims == mode.dims
+    assert {k: str(v) for k, v in again.attrs.items()} \
+        == {k: str(v) for k, v in mode.attrs.items()}
+    assert collapse_mode_variable(("run",), [0], "mine").attrs["long_name"] == "mine"
+    assert collapse_mode_coords()["mode"].values.tolist() == list(COLLAPSE_MODES[1:])
 

@@ -1,5 +1,6 @@
 """studies.collapse: FEMA P695 chapter 7 for the code-designed isolated building and its moat: the
-quick archive's S_CT and P(collapse | MCE_R) recomputed from its per-pair collapse intensities.
+quick archive's S_CT and P(collapse | MCE_R) recomputed from its per-pair collapse intensities,
+and how each run collapsed (collapse_mode) counted by mode.
 And studies.loss on the quick collapse run's fragilities: its archive holds the repair cost and
 time per stripe and configuration with their quantiles, the expected annual loss and the annual
 rates per configuration, pelicun's version; its expected annual loss and annual rates recompute
@@ -8,15 +9,17 @@ from the collapse fragility. (studies.loss is tested here, on the quick collapse
 the assessment's functions on hand-made data: tests/pipeline/assess/test_collapse.py.)"""
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
 import pytest
 from scipy.stats import norm
 
+from engine.results import COLLAPSE_MODES
 from pipeline.assess import collapse as pc
 from studies import collapse
-from tests.helpers import assert_udunits, run_recipe
+from tests.helpers import assert_collapse_modes, assert_udunits, run_recipe
 
 
 @pytest.fixture(scope="module")
@@ -60,6 +63,27 @@ def test_the_archive_recomputes_from_its_pairs(quick):
     assert "Kitayama & Constantinou" in table and "Masroor & Mosqueda" in table
 
 
+def test_the_archive_says_how_each_run_collapsed(quick):
+    """collapse_mode beside collapsed (the building collapses by its stories' drift), and at
+    each pair's collapse intensity; the attribute collapse_modes counts each mode."""
+    ds = quick
+    assert ds.collapse_mode.dims == ds.collapsed.dims
+    assert_collapse_modes(ds.collapse_mode, ds.collapsed.values)
+    assert ds.collapsed.values.any() and not ds.collapsed.values.all()
+    assert_collapse_modes(ds.collapse_intensity_mode, ~ds.collapse_censored.values.astype(bool))
+    # unrefined (quick): the mode of the pair's first collapsing level
+    codes = ds.collapse_mode.transpose("record", "level", ...).values
+    first = np.argmax(codes != 0, axis=1)[:, None]
+    np.testing.assert_array_equal(ds.collapse_intensity_mode.values,
+                                  np.take_along_axis(codes, first, axis=1)[:, 0])
+    collapses, modes = (json.loads(ds.attrs[k]) for k in ("collapses", "collapse_modes"))
+    for barrier, numbers in modes.items():
+        codes = ds.collapse_mode.sel(barrier=barrier).values
+        assert numbers == {"collapsed": collapses[barrier],
+                           **{m: int((codes == code).sum())
+                              for code, m in enumerate(COLLAPSE_MODES) if code}}
+
+
 def test_refinement_bisects_between_the_last_standing_and_the_first_collapse(quick,
                                                                              tmp_path):
     ds = run_recipe(collapse, ["--quick", "--refinements", "2"], tmp_path)
@@ -75,6 +99,7 @@ def test_refinement_bisects_between_the_last_standing_and_the_first_collapse(qui
     quarters = (fine[known] - below) / ((coarse[known] - below) / 4)
     np.testing.assert_allclose(quarters, np.round(quarters), atol=1e-9)
     assert np.any(fine[known] < coarse[known])
+    assert_collapse_modes(ds.collapse_intensity_mode, known)
 
 
 def test_other_rules_and_a_ductility_below_one_are_refused(tmp_path, capsys):
@@ -110,6 +135,16 @@ def test_the_loss_archive_holds_the_decision(loss_quick):
     # every run is counted once: used, collapsed or outside the model's range
     runs = ds.runs_used + ds.runs_collapsed + ds.runs_outside_range
     assert (runs == ds.record.size).all()
+    # how each run collapsed, counted by mode (pipeline.assess.collapse_modes)
+    assert ds.collapse_mode.dims == ds.collapsed.dims
+    assert_collapse_modes(ds.collapse_mode, ds.collapsed.values)
+    by_mode = ds.runs_collapsed_by_mode
+    assert by_mode.dims == ("mode",) + ds.runs_collapsed.dims
+    assert by_mode.mode.values.tolist() == list(COLLAPSE_MODES[1:])
+    assert (by_mode.sum("mode") == ds.runs_collapsed).all()
+    for code, mode in enumerate(COLLAPSE_MODES[1:], start=1):
+        assert (by_mode.sel(mode=mode) == (ds.collapse_mode == code).sum("record")).all()
+    assert json.loads(ds.attrs["collapse_modes"])["collapsed"] == int(ds.collapsed.sum())
     # the quantiles are ordered and the median lies within them
     q = ds.repair_cost_quantile
     assert (q.diff("quantile").fillna(0) >= 0).all()

@@ -3,15 +3,19 @@ runs. (The optimum's nature, the space's bounds and the search's constraints on 
 numbers: tests/studies/design/.)"""
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pytest
 
+from engine.results import MODE
 from pipeline.assess import validity
 from pipeline.assess.outcomes import weighted_quantiles
 from studies import design
 from studies.common.recipe import verdicts
+from studies.design import archive as design_archive
 from studies.design import search, space
-from tests.helpers import assert_udunits, run_recipe
+from tests.helpers import assert_collapse_modes, assert_udunits, run_recipe
 
 """Loose bounds for the tables below: the bumpers may protrude 10 cm, c/t up to 0.4."""
 
@@ -70,6 +74,31 @@ def test_archive(archive):
     assert ds.peak_interstory_drift.attrs["long_name"] == (
         "largest peak interstory drift over the stories (resultant in plan)")
     assert "(linear law, k 2500 kN/mm, COR 0.5)" in ds.reference.attrs["long_name"]
+
+
+def test_how_each_run_ended_is_stored_and_counted_by_mode(archive):
+    """collapse_mode per pair beside invalid_collapse, candidates and references, counted per
+    level and candidate by mode (n_invalid_collapse_by_mode) and in all (collapse_modes);
+    the table's flagged pairs name the modes (here of made-up collapses: the quick run does
+    not collapse)."""
+    ds = archive
+    for prefix in ("", "reference_"):
+        mode = ds[prefix + "collapse_mode"]
+        assert mode.dims == ds[prefix + "invalid_collapse"].dims
+        assert_collapse_modes(mode, ds[prefix + "invalid_collapse"].values)
+        by_mode = ds[prefix + "n_invalid_collapse_by_mode"]
+        assert by_mode.dims == ("mode",) + ds[prefix + "n_invalid_collapse"].dims
+        np.testing.assert_array_equal(by_mode.sum("mode"), ds[prefix + "n_invalid_collapse"])
+        for code, name in enumerate(by_mode.mode.values, start=1):
+            np.testing.assert_array_equal(by_mode.sel(mode=name),
+                                          (mode == code).sum("record"))
+    assert json.loads(ds.attrs["collapse_modes"])["candidates"]["collapsed"] \
+        == int(ds.invalid_collapse.sum())
+    made = ds.copy(deep=True)
+    made.collapse_mode[:2, 2, 0] = [MODE.story_drift, MODE.numerical_instability]
+    made.n_invalid_collapse[2, 0] = 2
+    assert design_archive.flagged_text(made, "", "candidate", 0, 2).endswith(
+        "2 collapsed (1 story drift, 0 isolator capacity, 1 numerical instability)")
 
 
 def test_choice_is_the_best_feasible_and_its_nature_is_reported(archive):

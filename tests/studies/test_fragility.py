@@ -14,7 +14,7 @@ from pipeline.assess.validity import RUBBER_STRESS_LIMIT
 from pipeline.checks import resolve_pairs
 from pipeline.motions.code_suite import code_suite
 from studies import fragility
-from tests.helpers import assert_udunits, run_recipe
+from tests.helpers import assert_collapse_modes, assert_udunits, run_recipe
 
 
 @pytest.fixture(scope="module")
@@ -114,3 +114,25 @@ def test_validity_is_flagged_and_counted(quick):
     assert not ds.invalid_bumper_stress.sel(barrier="bare wall").any()
     assert ds.bumper_stress.sel(barrier="bare wall").isnull().all()
     assert "outside the model's range" in ds.attrs["paper_check"]
+
+
+def test_how_each_run_ended_is_stored_and_counted_by_mode(quick):
+    """collapse_mode beside the collapse flag and event, counted by mode in collapse_modes;
+    a verdict names the modes of the collapses it counts (here on made-up counts: the quick
+    run does not collapse)."""
+    ds = quick
+    assert ds.collapse_mode.dims == ds.invalid_collapse.dims
+    assert_collapse_modes(ds.collapse_mode, ds.invalid_collapse.values)
+    assert_collapse_modes(ds.collapse_mode, ds.event_collapse.values)
+    modes = json.loads(ds.attrs["collapse_modes"])
+    assert modes["collapsed"] == json.loads(ds.attrs["invalid_counts"])["invalid_collapse"]
+    made = ds.copy()
+    made.attrs["invalid_counts"] = json.dumps({"invalid_floor_accel": 2, "invalid_collapse": 3})
+    made.attrs["collapse_modes"] = json.dumps({"collapsed": 3, "story_drift": 2,
+                                               "isolator_capacity": 0,
+                                               "numerical_instability": 1})
+    verdict = fragility.check(made)[0]
+    assert (f"runs outside the model's range (of {ds.attrs['runs']}): floor_accel 2, 3 "
+            "collapsed (2 story drift, 0 isolator capacity, 1 numerical instability)") \
+        in verdict.finding
+    assert verdict.numbers["collapse_modes"]["numerical_instability"] == 1

@@ -4,15 +4,18 @@ whose answer is known (the corrected counting of issue 19: 5.1, 5.4, 6), the val
 and the maps' "no contact" and ties."""
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pytest
 
 import engine
+from engine.results import MODE
 from pipeline.assess.outcomes import TOLERANCE, judged, weighted_quantiles
 from pipeline.assess.validity import ACCEL_LIMIT, FLAGS, Limits
 from studies import suite
 from studies.common.recipe import verdicts
-from tests.helpers import assert_udunits, run_recipe
+from tests.helpers import assert_collapse_modes, assert_udunits, run_recipe
 
 PAIRS = ["RSN960", "RSN725", "RSN848", "RSN68"]  # short pairs, with contact on the quick grid
 
@@ -43,6 +46,13 @@ def test_archive_dims_units_scaling_and_flags(archive):
     for prefix, dims in (("", 5), ("bare_", 3), ("free_", 2)):
         for name in FLAGS:
             assert ds[prefix + name].ndim == dims, prefix + name
+        # how each run ended, beside its collapse flag, and counted by mode
+        mode = ds[prefix + "collapse_mode"]
+        assert mode.dims == ds[prefix + "invalid_collapse"].dims
+        assert_collapse_modes(mode, ds[prefix + "invalid_collapse"].values)
+        numbers = json.loads(ds.attrs["collapse_modes"])[prefix + "collapse_mode"]
+        assert numbers["collapsed"] == json.loads(ds.attrs["invalid_counts"])[
+            prefix + "invalid_collapse"]
     assert float(ds.bumper_shape_factor) == pytest.approx(0.15 / (4 * 0.05))
     stress = ds.max_impact_force / (ds.n_bumpers * 0.0225)
     np.testing.assert_allclose(ds.bumper_stress.values,
@@ -234,6 +244,44 @@ def test_runs_outside_the_range_are_flagged_and_counted():
     assert ds.counted_outside_range.sel(**paper).values.item() == 0.5
     helped = ds.outcome_share.sel(response="interstory_drift", outcome="helped")
     assert helped.sel(**paper).values.item() == 1.0
+
+
+def test_collapses_are_stored_and_counted_by_mode():
+    """Hand-made collapses: the bumpers' run of pair 0 by a story's drift, the bare wall's of
+    pair 1 by the isolator's capacity: collapse_mode says so (0 elsewhere, and 0 for every run
+    of the building without wall, which has no collapse_mode: a building that cannot
+    collapse), the attribute collapse_modes counts them, and a verdict counting those runs
+    names their modes."""
+    grid, peaks = handmade(2, [0.4])
+    for config in ("bare", "bumpers"):
+        peaks[config]["n_impacts"][:, 0, 0] = 1
+        shape = peaks[config]["n_impacts"].shape
+        peaks[config]["collapsed"] = np.zeros(shape, bool)
+        peaks[config]["collapse_mode"] = np.zeros(shape, np.int8)
+    peaks["bumpers"]["collapsed"][0] = True
+    peaks["bumpers"]["collapse_mode"][0] = MODE.story_drift
+    peaks["bare"]["collapsed"][1] = True
+    peaks["bare"]["collapse_mode"][1] = MODE.isolator_capacity
+    peaks["bumpers"]["peak_interstory_drift"][:] *= 1.1  # 5.1's drift: both pairs counted
+    ds, table = judged_ds(grid, peaks)
+    for prefix in ("", "bare_", "free_"):
+        assert_collapse_modes(ds[prefix + "collapse_mode"],
+                              ds[prefix + "invalid_collapse"].values)
+    assert ds.collapse_mode.isel(record=0).values.ravel().tolist() == [1] * 6
+    assert ds.bare_collapse_mode.values.ravel().tolist() == [0, 2]
+    assert json.loads(ds.attrs["collapse_modes"]) == {
+        "collapse_mode": {"collapsed": 6, "story_drift": 6, "isolator_capacity": 0,
+                          "numerical_instability": 0},
+        "bare_collapse_mode": {"collapsed": 1, "story_drift": 0, "isolator_capacity": 1,
+                               "numerical_instability": 0},
+        "free_collapse_mode": {"collapsed": 0, "story_drift": 0, "isolator_capacity": 0,
+                               "numerical_instability": 0}}
+    # the verdict on the drift counts both pairs' runs with the paper's bumpers and the bare wall
+    v = find(table, "Interstory deflections are amplified")
+    assert v.numbers["collapse_modes"] == {"collapsed": 2, "story_drift": 1,
+                                           "isolator_capacity": 1, "numerical_instability": 0}
+    assert ("2 of 4 runs outside the model's range (2 collapsed (1 story drift, 1 isolator "
+            "capacity, 0 numerical instability))") in v.finding
 
 
 def test_weighted_quantiles():

@@ -1,11 +1,12 @@
 """studies.design.search: the constraints on known numbers, ties to fewer bumpers then the stiffer
-wall, the weighted statistics."""
+wall, the weighted statistics, the collapses counted by mode."""
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
 from pipeline.assess.outcomes import weighted_quantiles
+from pipeline.assess.validity import FLAGS
 from studies.design import search, space
 
 # ---------------------------------------------------------------- constraints, ranking
@@ -51,6 +52,20 @@ def test_ties_go_to_fewer_bumpers_then_the_stiffer_wall():
     rank = search.ranking([1.0, 1.0, 1.0, 0.5], [2.0] * 4, [8, 4, 4, 4],
                           [2.5e9, 5e8, 2.5e9, 1e9], [True, True, True, False])
     assert rank.tolist() == [3, 2, 1, 0]
+
+
+def test_collapses_counted_by_mode():
+    """Three pairs, one level, two candidates: the first collapses under pair 0 by a story's
+    drift and under pair 2 by the isolator's capacity; the second stands."""
+    shape = (3, 1, 2)
+    peaks = {name: np.zeros(shape, bool) for name in FLAGS}
+    peaks.update(peak_floor_accel=np.ones(shape), crushed=np.zeros(shape, bool),
+                 n_impacts=np.zeros(shape, np.int64), collapse_mode=np.zeros(shape, np.int8))
+    peaks["collapse_mode"][[0, 2], 0, 0] = [1, 2]
+    peaks["invalid_collapse"] = peaks["collapse_mode"] != 0
+    stats = search.statistics(peaks, np.ones(3))
+    assert stats["n_invalid_collapse"].tolist() == [[2, 0]]
+    assert stats["n_invalid_collapse_by_mode"].tolist() == [[[1, 0]], [[1, 0]], [[0, 0]]]
 
 
 def test_weighted_statistics():
