@@ -32,11 +32,13 @@ for n in (1, 4, 8):
 planar(20, True)
 for yielding in (False, True):
     planar(4, yielding, isolator=fp)
+planar(8, True, isolator=fp)
 """
 IN_PLAN = COMMON + """
 planar(20, False)
 imk = engine.Stories.imk(yield_force=3e6, plastic_deformation=0.09,
                          post_capping_deformation=0.35)
+engine.simulate(accel, 0.01, wall, engine.Building(stories=imk), backend="numba")
 for building in (engine.Building(), engine.Building(story_yield_force=(3e6,) * 4),
                  engine.Building(stories=imk),
                  engine.Building(torsion=engine.Torsion(plan_size=(30.0, 20.0))),
@@ -46,8 +48,9 @@ for building in (engine.Building(), engine.Building(story_yield_force=(3e6,) * 4
 """
 SCRIPTS = (PLANAR, IN_PLAN)
 """What each process runs: the planar kernel on 1, 4 and 8 stories, linear and yielding, on 20
-yielding, and on 4 on friction pendulums (a kernel per isolator law), linear and yielding;
-then on 20 linear, in plan (linear, bilinear and IMK stories, and on friction pendulums) and
+yielding, and on friction pendulums (a kernel per isolator law) on 4, linear and yielding, and
+8 yielding; then on 20 linear, on 4 IMK stories, in plan (linear, bilinear and IMK stories,
+and on friction pendulums) and
 twisting (the default 16 bearings, 8 contact points; on bilinear isolators and on friction
 pendulums): about as long each."""
 
