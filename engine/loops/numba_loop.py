@@ -56,6 +56,7 @@ from .numba_support import (
     data_pointer,
     history_rows,
     install_cache_locator,
+    law_groups,
     run_members,
     stack_doubles,
 )
@@ -365,10 +366,11 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
     kept = (peaks["peak_total_accel"], peaks["peak_interstory_drift"], peak_scalar,
             peaks["n_impacts"])
     hist = (hist_row, every, h_u, h_acc, h_f, h_d)
+    groups = law_groups(arrays.story_code, arrays.isolator_code)
 
     def steps(members, s0, s1):
         # One kernel per story law and isolator law: each member runs the one of its laws.
-        for tags, chosen in by_law(members, arrays.story_code, arrays.isolator_code):
+        for tags, chosen in by_law(members, groups):
             _run((levels, *tags), chosen, s0, s1, model, memory, kept, hist)
     run_members(size, n_steps, progress, steps)
 

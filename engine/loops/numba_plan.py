@@ -70,6 +70,7 @@ from .numba_support import (
     div2,
     history_rows,
     install_cache_locator,
+    law_groups,
     load_pair,
     max2,
     mul2,
@@ -451,12 +452,12 @@ def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, histor
                hist["impact_force"], hist["indentation"])
     circular = moat == "circular"
     # One kernel per story law and isolator law, as the planar loop.
+    groups = law_groups(arrays.story_code, arrays.isolator_code)
     run_members(size, n_steps, progress,
                 lambda members, s0, s1: [
                     _run((levels, pairs, circular, *tags), chosen, s0, s1, model, memory, kept,
                          written)
-                    for tags, chosen in by_law(members, arrays.story_code,
-                                               arrays.isolator_code)])
+                    for tags, chosen in by_law(members, groups)])
     peaks = finish_peaks(peaks, scalar, PLAN_PEAK_COLUMNS, state, rooted=True)
     if history is None:
         return peaks, None

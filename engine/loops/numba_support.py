@@ -228,13 +228,24 @@ def law_tag(code: int) -> tuple:
     return (0,) * (int(code) + 1)
 
 
-def by_law(members, *codes):
-    """The members (an index array) grouped by their laws, for one kernel call a group:
-    (tags, those members) for each combination of the law codes met, `codes` each a (B,)
-    int array of the batch (the story law's, the isolator law's); tags the codes as
-    law_tag makes them, one a code. The groups run in turn; a member's result does
-    not depend on the others'."""
-    keys = np.stack([np.asarray(c)[members] for c in codes], axis=1)
-    for key in np.unique(keys, axis=0):
-        yield (tuple(law_tag(k) for k in key),
-               members[np.all(keys == key, axis=1)])
+def law_groups(*codes):
+    """The combinations of law codes a batch meets, for one kernel call each: (tags, group),
+    tags[i] the i-th combination's codes as law_tag makes them, one a law; group (B,) int each
+    member's combination. codes: each a (B,) int array of the batch (the story law's, the
+    isolator law's). Found once a run; by_law splits the members of a call by it."""
+    keys = np.stack([np.asarray(c, dtype=np.int64) for c in codes], axis=1)
+    unique, group = np.unique(keys, axis=0, return_inverse=True)
+    return [tuple(law_tag(k) for k in key) for key in unique], group.reshape(-1)
+
+
+def by_law(members, groups):
+    """(tags, those members) for each law combination (law_groups' `groups`) among `members`
+    (an index array). The groups run in turn; a member's result does not depend on the
+    others'. One combination (most batches): the members as they are, at no cost a call."""
+    tags, group = groups
+    if len(tags) == 1:
+        yield tags[0], members
+        return
+    chosen = group[members]
+    for i in np.unique(chosen):
+        yield tags[i], members[chosen == i]

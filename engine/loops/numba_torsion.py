@@ -66,6 +66,7 @@ from .numba_support import (
     data_pointer,
     history_rows,
     install_cache_locator,
+    law_groups,
     load_pair,
     mul2,
     run_members,
@@ -483,11 +484,12 @@ def run_torsion(ag, dt, b, t, contacts, points, progress, scale, angle, history=
     written = (hist_row, every, hist["isolator_disp"], hist["total_accel"],
                hist["impact_force"], hist["indentation"], hist["floor_disp"],
                hist["floor_rotation"])
-    run_members(size, n_steps, progress,  # one kernel per isolator law, as the planar loop
+    groups = law_groups(b.isolator_code)  # one kernel per isolator law, as the planar loop
+    run_members(size, n_steps, progress,
                 lambda members, s0, s1: [
                     _run((levels, padded, slots, *tags), chosen, s0, s1, model, memory, kept,
                          written)
-                    for tags, chosen in by_law(members, b.isolator_code)])
+                    for tags, chosen in by_law(members, groups)])
     peaks = finish_peaks(peaks, scalar, TORSION_PEAK_COLUMNS, state, rooted=True)
     if history is None:
         return peaks, None
