@@ -12,6 +12,7 @@ from pathlib import Path
 from .at2 import read_at2, read_at2_header
 from .library import library_by_name, library_by_rsn, library_index, load_library
 from .paper import PAPER_RECORDS, builtin_by_name, paper_record
+from .plausible import check_scaled
 from .record import (
     UNITS_HELP,
     Record,
@@ -118,7 +119,9 @@ def load_record(name_or_path: str | os.PathLike,
     scaled = None if isinstance(name_or_path, os.PathLike) else _SCALED_RE.match(text)
     if scaled and not Path(text).exists():
         record = load_record(scaled["record"], records_dir, units, dt, check=check)
-        return record.scaled(scale_factor(scaled["factor"], scaled["record"]))
+        factor = scale_factor(scaled["factor"], scaled["record"])
+        check_scaled(record.pga, factor, text)
+        return record.scaled(factor)
     if _is_path(name_or_path):
         path = Path(text)
         directory = records_directory(records_dir)

@@ -61,6 +61,7 @@ from .at2 import read_at2, read_at2_header
 from .library import RecordInfo, library_by_name, library_index, load_library
 from .lookup import FOLDER_FORMAT, component_from_name, folder_files, load_record
 from .paper import PAPER_RECORDS, PaperSpec, paper_record, rotated_component
+from .plausible import check_scaled
 from .record import (
     Record,
     RecordError,
@@ -238,6 +239,7 @@ def load_pair(name, records_dir: str | os.PathLike | None = None) -> tuple[Recor
     if scaled and not Path(text).exists():
         factor = scale_factor(scaled["factor"], scaled["pair"])
         x, y = load_pair(scaled["pair"], records_dir)
+        check_scaled(max(x.pga, y.pga), factor, text)
         return x.scaled(factor), y.scaled(factor)
     if text.startswith("(") and text.endswith(")"):
         text = text[1:-1]

@@ -7,7 +7,9 @@ same numbers in another unit make an ordinary record, is refused with the unit t
 in: ``a PGA of 488 g is implausible (outside [0.0001, 5] g): the values look like cm/s^2
 (0.497 g)``, then how to give that unit. The checks apply where records are loaded for a run
 (:func:`pipeline.records.load_record` with ``check=True``, which ``pipeline.sweep`` and the
-commands use for AT2 and text files, and :meth:`Record.from_array`); ``Record(...)`` itself and
+commands use for AT2 and text files, and :meth:`Record.from_array`); a record or pair given
+scaled (``kobe*1.5``) has its PGA checked after the factor (:func:`check_scaled`, always: the
+refusal names the factors that run); ``Record(...)`` itself and
 the readers ``read_at2``/``read_text`` take any finite samples, so a laboratory or synthetic
 motion can still be built and simulated.
 
@@ -140,3 +142,25 @@ def check_plausible(accel_si: np.ndarray, dt: float, units: str, where: str,
         slip(f"a PGV of {pgv:.3g} m/s is implausible (outside [{PGV_BOUNDS[0]:g}, "
              f"{PGV_BOUNDS[1]:g}] m/s) for {in_units} (PGV: the trapezoidal integral "
              "of the acceleration minus its mean)", ordinary=False)
+
+
+def check_scaled(unscaled_pga: float, factor: float, where: str) -> None:
+    """Refuse a record given scaled (``name*factor``) whose PGA after the factor no earthquake
+    record has (PGA_BOUNDS_G): RecordError, starting with `where` (the name as given), naming
+    the factors that keep it inside (rounded inward, so that the advice followed runs).
+    unscaled_pga: the record's PGA before the factor, m/s^2 (the larger component's, for a
+    pair)."""
+    pga_g = unscaled_pga * factor / G
+    if _inside(pga_g, PGA_BOUNDS_G) or unscaled_pga <= 0.0:
+        return
+    low, high = (bound * G / unscaled_pga for bound in PGA_BOUNDS_G)
+    raise RecordError(f"{where}: a PGA of {pga_g:.3g} g after the factor {factor:g} is "
+                      f"implausible (outside [{PGA_BOUNDS_G[0]:g}, {PGA_BOUNDS_G[1]:g}] g, what "
+                      f"earthquakes have recorded); give a factor between {_rounded(low, 1)} "
+                      f"and {_rounded(high, -1)}")
+
+
+def _rounded(value: float, direction: int) -> str:
+    """`value` to 3 significant digits, rounded up (direction 1) or down (-1)."""
+    step = 10.0 ** (np.floor(np.log10(value)) - 2)
+    return f"{(np.ceil if direction > 0 else np.floor)(value / step) * step:.3g}"

@@ -196,3 +196,27 @@ def test_sweep_given_an_array_says_to_wrap_it(records):
 def test_sweep_in_plan_given_an_array_says_to_wrap_it():
     with pytest.raises(SweepError, match=r"not a record pair .*Record\.from_array"):
         pipeline.sweep(np.zeros(10), gap=0.1, quiet=True, moat="circular")
+
+
+@pytest.mark.parametrize("spec", ["kobe*100", "kobe*1e-6"])
+def test_a_record_scaled_past_any_recorded_pga_is_refused_with_the_factors_that_run(spec):
+    """`kobe*100` (PGA 83 g) ran with only a flag in the archive: a scaled record's PGA is
+    checked after the factor, and the factors the refusal gives (rounded inward) run."""
+    with pytest.raises(RecordError, match=r"after the factor .* give a factor between") as err:
+        load_record(spec)
+    low, high = (float(x) for x in str(err.value).split("between ")[1].split(" and "))
+    kobe = load_record("kobe").pga / G
+    assert low * kobe >= 1e-4 and high * kobe <= 5.0
+    assert high * kobe > 4.95 and low * kobe < 1.01e-4  # the bounds, to 3 digits
+    for factor in (low, high):  # the advice followed
+        assert 1e-4 <= load_record(f"kobe*{factor:g}").pga / G <= 5.0
+
+
+def test_a_scaled_record_or_pair_past_any_recorded_pga_is_refused_before_compute(tmp_path, capsys):
+    assert sweep_cli.main(["--records", "kobe*100", "--gap", "0.1", "--out",
+                           str(tmp_path / "k.nc")]) == 2
+    (line,) = capsys.readouterr().err.strip().splitlines()
+    assert "kobe*100: a PGA of 83.4 g after the factor 100 is implausible" in line
+    assert not list(tmp_path.iterdir())
+    with pytest.raises(RecordError, match="RSN953\\*100: a PGA of 51.6 g"):
+        pipeline.records.load_pair("RSN953*100")
