@@ -100,11 +100,11 @@ ISOLATOR_SLOTS, ISOLATOR_SLOTS_XY = (0,) * MAX_STATE, (0,) * MAX_STATE_XY
 stack."""
 
 
-def isolator_rows(arrays, bearings: int = 1):
-    """(codes (B,) int64, rows (B, MAX_FIELDS) float64): each member's isolator law and its
-    ROW, the CARRIED columns shared among `bearings` bearings (a building that twists)."""
+def isolator_rows(arrays, bearings: int = 1) -> np.ndarray:
+    """(B, MAX_FIELDS) float64: each member's isolator ROW (its law: arrays.isolator_code), the
+    CARRIED columns shared among `bearings` bearings (a building that twists)."""
     rows = np.array(arrays.isolator_fields, dtype=np.float64, order="C")
-    codes = np.ascontiguousarray(arrays.isolator_code, dtype=np.int64)
+    codes = np.asarray(arrays.isolator_code)
     if bearings != 1:
         for code in np.unique(codes):
             law = BY_CODE[code]
@@ -112,7 +112,7 @@ def isolator_rows(arrays, bearings: int = 1):
             for name in law.CARRIED:
                 column = getattr(law.ROW, name)
                 rows[mine, column] = rows[mine, column] / bearings
-    return codes, rows
+    return rows
 
 
 def contact_state(*shape) -> np.ndarray:

@@ -97,19 +97,18 @@ def _solve_banded(bd, r, v, out, n_levels, dt):
 
 @njit(**LINK)
 def _member(shape, b, s0, s1, model, memory, peaks, hist):
-    """Steps s0 <= step < s1 of member b: the NumPy loop's step, on scalars and the member's
-    own small arrays (L levels, L - 1 stories). shape = (levels, law_tag, isolator_tag): `levels`
-    a tuple of L zeros, so that L is a compile-time constant; `law_tag` and `isolator_tag` the
-    member's story law and isolator law (numba_support.law_tag), so that they are constants
-    too and their physics alone is compiled into this kernel: one compilation per number of
-    levels, story law and isolator law. model = (ag, dt,
-    op, bands, wall, mass, story, law, par, law_par, story_fields, isolator), what the run
-    reads (isolator: the isolator law's codes and rows); memory = (u, v, story_state, state,
-    isolator_state), what it carries between chunks; peaks =
-    (peak_level, peak_story, peak_scalar, n_impacts); hist = (hist_row, every, h_u, h_acc,
-    h_f, h_d) (run_simulation builds them; layout.py names their columns). Sums run in the
-    order of the scalar kernel this loop replaced, and a member's result never depends on the
-    batch. A member that has collapsed stops."""
+    """Steps s0 <= step < s1 of member b: the NumPy loop's step, on scalars and the member's own
+    small arrays (L levels, L - 1 stories). shape = (levels, law_tag, isolator_tag): `levels` a
+    tuple of L zeros, so that L is a compile-time constant; `law_tag` and `isolator_tag` the
+    member's story law and isolator law (numba_support.law_tag), so that they are constants too and
+    their physics alone is compiled into this kernel: one compilation per number of levels, story
+    law and isolator law. model = (ag, dt, op, bands, wall, mass, story, law, par, law_par,
+    story_fields, isolator), what the run reads (isolator: the isolator law's rows); memory = (u, v,
+    story_state, state, isolator_state), what it carries between chunks; peaks = (peak_level,
+    peak_story, peak_scalar, n_impacts); hist = (hist_row, every, h_u, h_acc, h_f, h_d)
+    (run_simulation builds them; layout.py names their columns). Sums run in the order of the scalar
+    kernel this loop replaced, and a member's result never depends on the batch. A member that has
+    collapsed stops."""
     levels, law_tag, isolator_tag = shape
     ag, dt, op, bands, wall, mass, story, law, par, law_par, story_fields, isolator = model
     u_all, v_all, story_state, state, isolator_state = memory
@@ -132,8 +131,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     p = par[b]
     comp = p[PLANAR.compliance]
     gap = p[PLANAR.gap]
-    iso_fields = isolator[1]
-    iso_row = carray(data_pointer(iso_fields[b]), (ISOLATOR_FIELDS,))
+    iso_row = carray(data_pointer(isolator[b]), (ISOLATOR_FIELDS,))
     nonlinear = p[PLANAR.stories_nonlinear] != 0.0
     scale = p[PLANAR.scale]
     law_row = to_fixed_tuple(law_par[b], ROW_WIDTH)  # in registers, as scalars

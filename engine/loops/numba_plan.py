@@ -120,20 +120,20 @@ def _friction(nx, w, comp, comp_y, limit, nrm_x, nrm_y):
 def _member(shape, b, s0, s1, model, memory, peaks, hist):
     """Steps s0 <= step < s1 of member b (see the module docstring). shape = (levels, pairs,
     circular, law_tag, isolator_tag); model = (ag, dt, op, wall, story_k, mass, story, law, par,
-    gaps, law_par, story_fields, isolator), what the run reads (isolator: the isolator law's codes
-    and rows); memory = (u, v, f_story, story_state, state, wall_state, isolator_state), what it
-    carries between chunks; peaks = (peak_level, peak_level_xy, peak_story, peak_story_xy,
-    peak_iso_xy, peak_scalar, n_impacts, peak_wall); hist = (hist_row, every, h_u, h_acc, h_f, h_d)
-    (run_plan builds them). Like the planar kernel, the member's state lives in scalars and arrays
-    on the stack while it runs, each level's x and y side by side (a last axis of 2, as the
-    operators: op (2L, L, 2), the operator along x and along y transposed, wall (L, 2), story_k (L -
-    1, 2)), and the two directions' identical arithmetic done on pairs, both lanes at once
-    (numba_support.add2 and kin). Peaks are kept squared, per direction and resultant: the square
-    root of the largest square is the largest magnitude, bit for bit (sqrt(x * x) == |x| in binary
-    floating point), and run_plan roots them at the end. Stories of a uniaxial law (one without
-    plan_fields, engine/stories/) act along x and y each on their own (two springs of the law per
-    story, uncoupled), its force compiled in for the member's law only (law_tag, as the planar
-    kernel's), and so is its isolator law's (isolator_tag). A member that has collapsed stops."""
+    gaps, law_par, story_fields, isolator), what the run reads (isolator: the isolator law's rows);
+    memory = (u, v, f_story, story_state, state, wall_state, isolator_state), what it carries
+    between chunks; peaks = (peak_level, peak_level_xy, peak_story, peak_story_xy, peak_iso_xy,
+    peak_scalar, n_impacts, peak_wall); hist = (hist_row, every, h_u, h_acc, h_f, h_d) (run_plan
+    builds them). Like the planar kernel, the member's state lives in scalars and arrays on the
+    stack while it runs, each level's x and y side by side (a last axis of 2, as the operators: op
+    (2L, L, 2), the operator along x and along y transposed, wall (L, 2), story_k (L - 1, 2)), and
+    the two directions' identical arithmetic done on pairs, both lanes at once (numba_support.add2
+    and kin). Peaks are kept squared, per direction and resultant: the square root of the largest
+    square is the largest magnitude, bit for bit (sqrt(x * x) == |x| in binary floating point), and
+    run_plan roots them at the end. Stories of a uniaxial law (one without plan_fields,
+    engine/stories/) act along x and y each on their own (two springs of the law per story,
+    uncoupled), its force compiled in for the member's law only (law_tag, as the planar kernel's),
+    and so is its isolator law's (isolator_tag). A member that has collapsed stops."""
     levels, pairs, circular, law_tag, isolator_tag = shape
     (ag, dt, op, wall, story_k, mass, story, law, par, gaps_all, law_par, story_fields,
      isolator) = model
@@ -154,8 +154,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     comp, comp_y = p[PLAN.compliance], p[PLAN.compliance_y]
     anisotropic = p[PLAN.anisotropic] != 0.0
     mu_wall = p[PLAN.mu_wall]
-    iso_fields = isolator[1]
-    iso_row = carray(data_pointer(iso_fields[b]), (ISOLATOR_FIELDS,))
+    iso_row = carray(data_pointer(isolator[b]), (ISOLATOR_FIELDS,))
     stories_yield = p[PLAN.stories_yield] != 0.0
     cs, sn = p[PLAN.cos], p[PLAN.sin]
     k_post, k_slip_story = story[b, PLAN_STORY.story_k_post], story[b, PLAN_STORY.story_k_slip]

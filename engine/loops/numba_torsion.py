@@ -91,7 +91,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     isolator_tag); model = (ag, dt, op, respond, load, story_k, story_centre, collapse_square,
     par, bearings, point_wall, point_axis, codes, gaps, point_par, direction, tangent, coupling,
     tangent_compliance, corners, isolator), what the run reads (isolator: the isolator law's
-    codes and rows, a bearing's share); memory = (u, v, isolator_state, state, point_state),
+    rows, a bearing's share); memory = (u, v, isolator_state, state, point_state),
     what it carries between chunks (isolator_state: per bearing); peaks = (peak_level,
     peak_level_xy, peak_story, peak_story_xy, peak_iso_xy, scalar, n_impacts, peak_wall,
     peak_point_force, peak_point_indent); hist = (hist_row, every, h_u, h_acc, h_f, h_d,
@@ -126,8 +126,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     cq = collapse_square[b]
     p = par[b]
     cs, sn = p[TORSION.cos], p[TORSION.sin]
-    iso_fields = isolator[1]
-    iso_row = carray(data_pointer(iso_fields[b]), (ISOLATOR_FIELDS,))
+    iso_row = carray(data_pointer(isolator[b]), (ISOLATOR_FIELDS,))
     mu_wall = p[TORSION.mu_wall]
     bear = bearings[b]
     fp = isolator_state[b]

@@ -20,7 +20,7 @@ class IsolatorBatch:
     bearings, (B, bearings)."""
 
     def __init__(self, arrays, plan: bool = False, bearings: int | None = None):
-        codes, rows = isolator_rows(arrays, bearings or 1)
+        codes, rows = np.asarray(arrays.isolator_code), isolator_rows(arrays, bearings or 1)
         size = codes.size
         trailing = () if bearings is None else (bearings,)
         self.blocks = []

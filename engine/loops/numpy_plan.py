@@ -131,15 +131,17 @@ def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, an
         rows = np.asarray(history.members, dtype=int) % size
         hist = empty_plan_history(rows.size, n_steps, history.every, dt, n_levels)
     report_every = max(n_steps // 100, 1)
+    # the limits squared once: the step compares squared magnitudes (no root per step)
+    capacity_square, collapse_square = b.isolator_capacity**2, b.collapse_drift**2
     for step in range(n_steps):
         # The member's ground motion: the pair rotated by its angle, times its scale.
         drift = np.diff(u, axis=1)
         # The isolator or a story's drift vector past its limit, or a state no longer finite,
         # ends the run: the member is set at rest, unshaken (numpy_loop.py's rule, squared).
         mode = collapse_modes(u[:, :1, 0] * u[:, :1, 0] + u[:, :1, 1] * u[:, :1, 1],
-                              b.isolator_capacity**2,
+                              capacity_square,
                               drift[..., 0] * drift[..., 0] + drift[..., 1] * drift[..., 1],
-                              b.collapse_drift**2)
+                              collapse_square)
         fallen = (mode > 0) & ~collapse["collapsed"]
         if fallen.any():
             collapse["collapsed"] |= fallen

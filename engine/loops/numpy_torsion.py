@@ -127,15 +127,17 @@ def run_torsion(ag, dt, b: BuildingArrays, t: TorsionArrays, contacts, points: C
         rows = np.asarray(history.members, dtype=int) % size
         hist = empty_plan_history(rows.size, n_steps, history.every, dt, n_levels, torsion=True)
     report_every = max(n_steps // 100, 1)
+    # the limits squared once: the step compares squared magnitudes (no root per step)
+    capacity_square, collapse_square = b.isolator_capacity**2, b.collapse_drift**2
     for step in range(n_steps):
         drift = np.diff(u, axis=1)
         # numpy_plan.py's rule, on each bearing's displacement and the drift of the plan's
         # centre
         ux = u[:, :1, 0] - u[:, :1, 2] * bearing_y
         uy = u[:, :1, 1] + u[:, :1, 2] * bearing_x
-        mode = collapse_modes(ux * ux + uy * uy, b.isolator_capacity**2,
+        mode = collapse_modes(ux * ux + uy * uy, capacity_square,
                               drift[..., 0] * drift[..., 0] + drift[..., 1] * drift[..., 1],
-                              b.collapse_drift**2)
+                              collapse_square)
         fallen = (mode > 0) & ~collapse["collapsed"]
         if fallen.any():
             collapse["collapsed"] |= fallen

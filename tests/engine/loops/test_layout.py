@@ -28,23 +28,24 @@ def test_columns_are_numbered_from_their_declaration():
 
 @pytest.mark.parametrize("law", list(ISOLATOR_LAWS.values()), ids=lambda m: m.NAME)
 def test_an_isolator_row_holds_its_law_by_name_and_a_bearing_its_share(law):
-    """isolator_rows packs each member's law code and ROW as the law declares it (fields by
-    name), zero beyond; with n bearings the CARRIED columns are 1/n, the others unchanged."""
+    """isolator_rows packs each member's ROW as its law (arrays.isolator_code) declares it
+    (fields by name), zero beyond; with n bearings the CARRIED columns are 1/n, the others
+    unchanged."""
     iso = {"bilinear": Isolator.bilinear(), "friction_pendulum": Isolator.friction_pendulum(
         radius=2.0, mu_slow=0.05, mu_fast=0.1, rate=30.0),
            "triple_friction_pendulum": Isolator.triple_friction_pendulum(
         L1=0.3, L2=2.0, L3=2.0, d1=0.05, d2=0.3, d3=0.3, mu1=0.02, mu2=0.04, mu3=0.08)}[law.NAME]
     building = Building(isolator=iso)
     arrays = building_arrays([Building(), building], 2)
-    codes, rows = layout.isolator_rows(arrays)
-    assert codes[1] == list(ISOLATOR_LAWS).index(law.NAME)
+    rows = layout.isolator_rows(arrays)
+    assert arrays.isolator_code[1] == list(ISOLATOR_LAWS).index(law.NAME)
     fields = iso.fields(building.total_mass, building.g)
     assert list(fields) == list(law.ROW._fields)
     assert rows.shape == (2, layout.ISOLATOR_FIELDS)
     assert np.all(rows[1, len(law.ROW):] == 0.0)
     for name, value in fields.items():
         assert rows[1, getattr(law.ROW, name)] == value
-    _, shared = layout.isolator_rows(arrays, bearings=4)
+    shared = layout.isolator_rows(arrays, bearings=4)
     for name, value in fields.items():
         expected = value / 4 if name in law.CARRIED else value
         assert shared[1, getattr(law.ROW, name)] == expected

@@ -47,7 +47,7 @@ def _batch():
 def test_the_numpy_batch_and_the_compiled_law_agree_bit_for_bit_in_plan(bearings):
     arrays, velocity = _batch()
     batch = IsolatorBatch(arrays, plan=True, bearings=bearings)
-    codes, rows = isolator_rows(arrays, bearings or 1)
+    codes, rows = arrays.isolator_code, isolator_rows(arrays, bearings or 1)
     n = bearings or 1
     # each bearing its own path: the member's, turned a little (a slab that twists)
     spin = 1.0 + 0.1 * np.arange(n)
@@ -90,7 +90,7 @@ def _slip_limits(isolator, width):
 def test_the_numpy_batch_and_the_compiled_law_agree_bit_for_bit_along_one_axis():
     arrays, velocity = _batch()
     batch = IsolatorBatch(arrays)
-    codes, rows = isolator_rows(arrays)
+    codes, rows = arrays.isolator_code, isolator_rows(arrays)
     states = np.zeros((len(ISOLATORS), max(len(law.STATE) for law in LAWS.values())))
     u = np.zeros(len(ISOLATORS))
     limits = np.array([_slip_limits(iso, states.shape[1]) for iso in ISOLATORS])
