@@ -1,9 +1,11 @@
-"""Which time loop runs: the compiled kernel (numba) or the vectorised NumPy reference.
+"""Which time loop runs: the compiled kernel (numba), the vectorised NumPy reference, or the
+device loop on an NVIDIA GPU (cuda, asked for by name: never a default).
 
 `resolve_backend(None)` picks "numba" when the compiled loop can be imported, else "numpy" and
 says so once per process, in one line on stderr (through `warnings`, category BackendNotice).
 `model_loop(model, name)` is the module of that loop for a model (engine/model.py: each model
 names its loops, engine/loops/<backend>_<model.loop>.py); `time_loop(name)` the planar one.
+The device runs the models of DEVICE_MODELS.
 """
 from __future__ import annotations
 
@@ -14,7 +16,9 @@ from types import ModuleType
 from .errors import EngineError
 from .model import PLANAR
 
-BACKENDS = ("numba", "numpy")
+BACKENDS = ("numba", "numpy", "cuda")
+DEVICE_MODELS = ("planar", "plan")
+"""The models whose loop runs on the device (engine/loops/cuda_<loop>.py)."""
 
 
 class BackendNotice(RuntimeWarning):
@@ -28,6 +32,9 @@ def model_loop(model, backend: str) -> ModuleType:
     """The loop module of a model (engine.model.Model) and backend ("numba" or "numpy"):
     engine/loops/<backend>_<model.loop>.py; ImportError for numba without numba. Imported on
     first use: the NumPy loops need no compiler, and numba takes a second."""
+    if backend == "cuda" and model.name not in DEVICE_MODELS:
+        raise EngineError(f"backend 'cuda' runs the {' and '.join(DEVICE_MODELS)} models, not "
+                          f"the {model.name} one; run it with backend 'numba'")
     return importlib.import_module(f"{__package__}.loops.{backend}_{model.loop}")
 
 
@@ -56,4 +63,18 @@ def resolve_backend(backend: str | None) -> str:
             time_loop("numba")
         except ImportError as err:
             raise EngineError(f"backend 'numba' needs numba: {err}") from None
+    if backend == "cuda":
+        _check_device()
     return backend
+
+
+def _check_device() -> None:
+    """EngineError, in one line, unless the device loop can run here."""
+    try:
+        from .loops.cuda_physics import unavailable
+    except ImportError as err:
+        raise EngineError(f"backend 'cuda' needs numba-cuda (pip install -e \".[cuda]\"): "
+                          f"{err}; run backend 'numba' instead") from None
+    reason = unavailable()
+    if reason is not None:
+        raise EngineError(reason)

@@ -67,7 +67,8 @@ def simulate(accel, accel_dt: float, contact: Contact,
     history: record time histories for some members every `every` steps (the model's
     histories: results.HISTORIES, PLAN_HISTORIES, TORSION_HISTORIES);
     progress: called as progress(step, n_steps) about every 1% of the run;
-    backend: "numba" (the compiled kernel), "numpy" (the vectorised reference loop) or None:
+    backend: "numba" (the compiled kernel), "numpy" (the vectorised reference loop), "cuda"
+    (the device loop on an NVIDIA GPU: the planar and plan models, numba-cuda needed) or None:
     numba when it can be imported, else numpy with a one-line notice;
     scale: None or (B,) positive factors (-) multiplying the ground acceleration member by
     member, so that one call runs one record at several intensities. None is 1 for every

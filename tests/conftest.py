@@ -1,10 +1,17 @@
 """Shared fixtures: the paper's records as the record layer resolves them, and the backend
-every engine test runs on. Helpers that are not fixtures are in tests/helpers.py."""
+every engine test runs on. Helpers that are not fixtures are in tests/helpers.py.
+
+The device loops' tests (backend "cuda") run on numba's CUDA simulator unless the environment
+says otherwise: NUMBA_ENABLE_CUDASIM=0 runs them on a GPU. numba reads it when first imported,
+hence here, before any test module imports it."""
+import os
 from pathlib import Path
 
 import pytest
 
-from tests.helpers import SHARED_RECORDS
+os.environ.setdefault("NUMBA_ENABLE_CUDASIM", "1")
+
+from tests.helpers import SHARED_RECORDS  # noqa: E402  (after the environment above)
 
 
 @pytest.fixture(scope="session")

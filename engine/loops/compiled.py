@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import functools
 import types
+from typing import NamedTuple
 
 import numpy as np
 from numba import njit
@@ -59,26 +60,31 @@ def _no_wall(code, delta, rate, v_imp, row):
     return 0.0, 0.0
 
 
-def _link(code, force_terms, otherwise):
+def _link(code, force_terms, otherwise, compile):
     """A dispatch that runs force_terms for members of law `code`, else `otherwise`."""
     def dispatch(law, delta, rate, v_imp, row):
         if law == code:
             return force_terms(delta, rate, v_imp, row)
         return otherwise(law, delta, rate, v_imp, row)
-    return njit(**LINK)(dispatch)
+    return compile(dispatch)
 
 
-def _law_dispatch():
+_CPU_LINK = njit(**LINK)
+
+
+def law_dispatch(compile=_CPU_LINK, terms=lambda module: _CPU_LINK(module.force_terms)):
     """(elastic, dashpot) of the member's law, dispatched on its code: every law of the
     registry, chained; (0, 0) for a member without wall. law_terms(code, delta, rate, v_imp,
-    row): row the member's law row (contact.law_rows), of floats."""
-    dispatch = njit(**LINK)(_no_wall)
+    row): row the member's law row (contact.law_rows), of floats. compile: how the chain is
+    compiled, terms(module): a law's force_terms compiled (the CPU's by default; the device's
+    in cuda_physics)."""
+    dispatch = compile(_no_wall)
     for code, module in registry.LAW_MODULES.items():
-        dispatch = _link(code, njit(**LINK)(module.force_terms), dispatch)
+        dispatch = _link(code, terms(module), dispatch, compile)
     return dispatch
 
 
-law_terms = _law_dispatch()
+law_terms = law_dispatch()
 
 
 SHARED_PHYSICS = (hysteresis.__name__, series.__name__)
@@ -86,23 +92,45 @@ SHARED_PHYSICS = (hysteresis.__name__, series.__name__)
 elements in series of isolators/series.py): compiled with the law like its own helpers."""
 
 
+class Target(NamedTuple):
+    """What a law's scalar source is compiled for: `compile` (a decorator) turns a function
+    into a compiled one, `replaced` the globals it sees in place of its module's (name ->
+    value pairs: the device's NumPy of scalars for np)."""
+
+    name: str
+    compile: object
+    replaced: tuple = ()
+
+
+CPU = Target("cpu", njit(**STORY_LINK))
+"""The compiled loops' target: numba's CPU compiler with STORY_LINK, the globals as written."""
+
+
 @functools.cache
-def compiled_in_module(function):
-    """`function` (a story law's force) compiled for scalars with STORY_LINK, with the plain
-    functions of its own module (and of SHARED_PHYSICS) that it calls compiled alongside (a
-    law may write its physics as several small functions; numba would otherwise refuse them
-    as untyped globals). The module itself is left as it is. Once per function: a helper
-    several functions call (the series solve's) is compiled once for all of them."""
+def compiled_for(function, target: Target):
+    """`function` (a law's physics) compiled for `target`, with the plain functions of its
+    own module (and of SHARED_PHYSICS) that it calls compiled alongside (a law may write its
+    physics as several small functions; numba would otherwise refuse them as untyped
+    globals), and the target's `replaced` globals in its scope. The module itself is left as
+    it is. Once per function and target: a helper several functions call (the series solve's)
+    is compiled once for all of them."""
     module_name = function.__module__
     scope = dict(function.__globals__)
+    scope.update(target.replaced)
     for name in function.__code__.co_names:
         value = scope.get(name)
         if isinstance(value, types.FunctionType) and (
                 value.__module__ == module_name or value.__module__ in SHARED_PHYSICS):
-            scope[name] = compiled_in_module(value)
+            scope[name] = compiled_for(value, target)
     rebuilt = types.FunctionType(function.__code__, scope, function.__name__,
                                  function.__defaults__, function.__closure__)
-    return njit(**STORY_LINK)(rebuilt)
+    return target.compile(rebuilt)
+
+
+def compiled_in_module(function):
+    """`function` (a story law's force) compiled for scalars with STORY_LINK (compiled_for on
+    the CPU)."""
+    return compiled_for(function, CPU)
 
 
 def compiled_law(laws, code: int, name: str):

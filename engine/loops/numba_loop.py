@@ -4,7 +4,7 @@ The scheme is engine/scheme.py's, member by member: members outer, steps inner, 
 a member's state in local scalars. The physics is not written here: the impact laws'
 `force_terms`, the isolator's return mapping, `implicit_force` and `onset_weight` are the very
 functions the NumPy loop calls on arrays, compiled here for scalars; the laws come from the
-registry, chained into one dispatch on the member's law code (`_law_dispatch`).
+registry, chained into one dispatch on the member's law code (`compiled.law_dispatch`).
 
 No fastmath: the kernel agrees with the NumPy loop to round-off. Members never interact, so
 the result of a member does not depend on its batch, its position in it, or on threads.
@@ -73,7 +73,7 @@ install_cache_locator(Path(__file__), [compiled.__file__, layout.__file__, *PHYS
 
 
 @njit(**LINK)
-def _solve_banded(bd, r, v, out, n_levels, dt):
+def solve_banded(bd, r, v, out, n_levels, dt):
     """out = A^-1 (r + C v) / dt for tridiagonal A = M/dt^2 + C/(2dt) and C = M/dt - C/2 (the
     scheme's operators when the damping is a chain, as the paper's rule makes it): a product
     with C and the Thomas algorithm, O(L) instead of the dense operator's O(L^2). bd rows
@@ -193,7 +193,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
             r[i] = (chain[i + 1] - chain[i]) - m[i] * a
         r[n_levels - 1] = (0.0 - chain[n_levels - 1]) - m[n_levels - 1] * a  # the free roof
         if banded:
-            _solve_banded(bd, r, v, nxt, n_levels, dt)
+            solve_banded(bd, r, v, nxt, n_levels, dt)
         else:
             # nxt = op @ [r, v], each row summed in column order (the order of the unrolled
             # sums this loop replaced, bit for bit). Rows are independent: the inner loop
@@ -322,17 +322,12 @@ def member_parameters(arrays, contact, compliance, scale) -> np.ndarray:
                   capacity=arrays.isolator_capacity)
 
 
-def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
-    """engine.simulate's time loop on the kernel: (peaks dict, history dict or None).
-
-    ag (N,) on the step grid; arrays: BuildingArrays and contact: Contact, both of B members in
-    batch order; history: engine.History or None; progress: callable(step, n_steps) or None.
-    With progress the run goes in chunks of about 1% of the steps, the state kept in arrays
-    between chunks (the same arithmetic, so the same bits); without, in one call.
-    """
+def planar_run(ag, dt, arrays, contact, history, scale) -> dict:
+    """The packed arrays of a planar run, shared by this loop and the device's (cuda_loop):
+    model, memory, kept (the peaks), hist (as _member takes them), groups (law_groups), levels
+    (a tuple of L zeros), and what `planar_outcome` reads back."""
     size = len(contact)
     n_levels = arrays.masses.shape[1]
-    levels = (0,) * n_levels  # its length, part of its type, specialises the kernel
     n_steps = ag.size
     op, wall_response, compliance = step_operators(arrays, dt)
     bands = banded_operators(arrays, dt)
@@ -360,26 +355,47 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
     model = (ag, float(dt), np.ascontiguousarray(op.transpose(0, 2, 1)), bands,
              np.ascontiguousarray(wall_response), np.ascontiguousarray(arrays.masses), story,
              law, par, law_rows(contact), story_fields, isolator_rows(arrays))
-    memory = (u, v, story_state, state, isolator_state)
-    kept = (peaks["peak_total_accel"], peaks["peak_interstory_drift"], peak_scalar,
-            peaks["n_impacts"])
-    hist = (hist_row, every, h_u, h_acc, h_f, h_d)
-    groups = law_groups(arrays.story_code, arrays.isolator_code)
+    return {"model": model, "memory": (u, v, story_state, state, isolator_state),
+            "kept": (peaks["peak_total_accel"], peaks["peak_interstory_drift"], peak_scalar,
+                     peaks["n_impacts"]),
+            "hist": (hist_row, every, h_u, h_acc, h_f, h_d),
+            "groups": law_groups(arrays.story_code, arrays.isolator_code),
+            "levels": (0,) * n_levels,  # its length, part of its type, specialises the kernel
+            "peaks": peaks, "inverse": inverse, "n_out": n_out}
+
+
+def planar_outcome(run: dict, dt: float, history) -> tuple[dict, dict | None]:
+    """(peaks dict, history dict or None) of a planar run (planar_run) once its kernel ran."""
+    state = run["memory"][3]
+    result = finish_peaks(run["peaks"], run["kept"][2], PLANAR_PEAK_COLUMNS, state)
+    if history is None:
+        return result, None
+    _, every, h_u, h_acc, h_f, h_d = run["hist"]
+    inverse = run["inverse"]
+    return result, {"time": np.arange(run["n_out"]) * every * dt, "isolator_disp": h_u[inverse],
+                    "total_accel": h_acc[inverse], "impact_force": h_f[inverse],
+                    "indentation": h_d[inverse],
+                    "members": np.asarray(history.members, dtype=int)}
+
+
+def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
+    """engine.simulate's time loop on the kernel: (peaks dict, history dict or None).
+
+    ag (N,) on the step grid; arrays: BuildingArrays and contact: Contact, both of B members in
+    batch order; history: engine.History or None; progress: callable(step, n_steps) or None.
+    With progress the run goes in chunks of about 1% of the steps, the state kept in arrays
+    between chunks (the same arithmetic, so the same bits); without, in one call.
+    """
+    run = planar_run(ag, dt, arrays, contact, history, scale)
+    args = (run["model"], run["memory"], run["kept"], run["hist"])
+    groups, levels = run["groups"], run["levels"]
 
     def steps(members, s0, s1):
         # One kernel per story law and isolator law: each member runs the one of its laws.
         for tags, chosen in by_law(members, groups):
-            _run((levels, *tags), chosen, s0, s1, model, memory, kept, hist)
-    run_members(size, n_steps, progress, steps)
-
-    result = finish_peaks(peaks, peak_scalar, PLANAR_PEAK_COLUMNS, state)
-    hist = None
-    if history is not None:
-        hist = {"time": np.arange(n_out) * every * dt, "isolator_disp": h_u[inverse],
-                "total_accel": h_acc[inverse], "impact_force": h_f[inverse],
-                "indentation": h_d[inverse],
-                "members": np.asarray(history.members, dtype=int)}
-    return result, hist
+            _run((levels, *tags), chosen, s0, s1, *args)
+    run_members(len(contact), ag.size, progress, steps)
+    return planar_outcome(run, dt, history)
 
 
 # --- two free bodies (engine.two_body) ---------------------------------------------------

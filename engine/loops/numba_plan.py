@@ -90,7 +90,7 @@ install_cache_locator(Path(__file__), [compiled.__file__, layout.__file__, *PHYS
 
 
 @njit(**LINK)
-def _contact(code, row, delta, new, v_imp, delta_prev, rate_free, comp):
+def wall_contact(code, row, delta, new, v_imp, delta_prev, rate_free, comp):
     """One wall direction's contact force (N, >= 0) at indentation delta > 0 (m): the law's
     terms along the wall's normal (row: its law row), the dashpot weighted at a new contact,
     solved exactly."""
@@ -101,7 +101,7 @@ def _contact(code, row, delta, new, v_imp, delta_prev, rate_free, comp):
 
 
 @njit(**LINK)
-def _friction(nx, w, comp, comp_y, limit, nrm_x, nrm_y):
+def wall_friction(nx, w, comp, comp_y, limit, nrm_x, nrm_y):
     """numpy_plan._friction for one member: the friction force (fx, fy) N of a wall pushing
     with unit normal (nrm_x, nrm_y), limit = mu_wall N, added to the velocities nx (L, 2) in
     place through the wall responses w (L, 2)."""
@@ -302,7 +302,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
                 if new:
                     n_imp += 1
                     v_imp[d] = before
-                force = _contact(codes[d], law_par[b, d], delta, new, v_imp[d],
+                force = wall_contact(codes[d], law_par[b, d], delta, new, v_imp[d],
                                  delta_prev[d], free, along)
                 wfx -= nrm_x * force
                 wfy -= nrm_y * force
@@ -320,7 +320,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
             if mu_wall > 0.0:
                 for d in range(n_walls):
                     if f_n[d] > 0.0:
-                        fx, fy = _friction(nx, w, comp, comp_y, mu_wall * f_n[d], n_x[d],
+                        fx, fy = wall_friction(nx, w, comp, comp_y, mu_wall * f_n[d], n_x[d],
                                            n_y[d])
                         wfx += fx
                         wfy += fy
@@ -393,9 +393,12 @@ def _run(shape, members, s0, s1, model, memory, peaks, hist):
         _member(shape, b, s0, s1, model, memory, peaks, hist)
 
 
-def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, history=None,
-             arrays_y=None, mu_wall=None):
-    """numpy_plan.run_plan on the kernel: the same arguments, the same (peaks, history)."""
+def plan_run(ag, dt, arrays, contacts, moat: str, scale, angle, history=None, arrays_y=None,
+             mu_wall=None) -> dict:
+    """The packed arrays of a run in plan, shared by this loop and the device's (cuda_plan):
+    model, memory, kept (the peaks), written (the histories), as _member takes them, groups
+    (law_groups), levels and pairs (tuples of L and 2L zeros), circular, and what
+    `plan_outcome` reads back. The arguments: run_plan's."""
     size, n_levels = arrays.masses.shape
     levels = (0,) * n_levels
     pairs = (0,) * (2 * n_levels)  # x and y of every level, side by side on the stack
@@ -449,17 +452,33 @@ def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, histor
             peaks["max_impact_force_wall"])
     written = (hist_row, every, hist["isolator_disp"], hist["total_accel"],
                hist["impact_force"], hist["indentation"])
-    circular = moat == "circular"
-    # One kernel per story law and isolator law, as the planar loop.
-    groups = law_groups(arrays.story_code, arrays.isolator_code)
-    run_members(size, n_steps, progress,
-                lambda members, s0, s1: [
-                    _run((levels, pairs, circular, *tags), chosen, s0, s1, model, memory, kept,
-                         written)
-                    for tags, chosen in by_law(members, groups)])
-    peaks = finish_peaks(peaks, scalar, PLAN_PEAK_COLUMNS, state, rooted=True)
+    return {"model": model, "memory": memory, "kept": kept, "written": written,
+            "groups": law_groups(arrays.story_code, arrays.isolator_code), "levels": levels,
+            "pairs": pairs, "circular": moat == "circular", "peaks": peaks, "scalar": scalar,
+            "hist": hist, "inverse": inverse, "n_steps": n_steps}
+
+
+def plan_outcome(run: dict, history) -> tuple[dict, dict | None]:
+    """(peaks, history) of a run in plan (plan_run) once its kernel ran."""
+    state = run["memory"][4]
+    peaks = finish_peaks(run["peaks"], run["scalar"], PLAN_PEAK_COLUMNS, state, rooted=True)
     if history is None:
         return peaks, None
-    hist = {"time": hist["time"], **{q.name: hist[q.name][inverse] for q in PLAN_HISTORIES},
-            "members": np.asarray(history.members, dtype=int)}
-    return peaks, hist
+    hist, inverse = run["hist"], run["inverse"]
+    return peaks, {"time": hist["time"],
+                   **{q.name: hist[q.name][inverse] for q in PLAN_HISTORIES},
+                   "members": np.asarray(history.members, dtype=int)}
+
+
+def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, history=None,
+             arrays_y=None, mu_wall=None):
+    """numpy_plan.run_plan on the kernel: the same arguments, the same (peaks, history)."""
+    run = plan_run(ag, dt, arrays, contacts, moat, scale, angle, history, arrays_y, mu_wall)
+    args = (run["model"], run["memory"], run["kept"], run["written"])
+    levels, pairs, circular, groups = run["levels"], run["pairs"], run["circular"], run["groups"]
+    # One kernel per story law and isolator law, as the planar loop.
+    run_members(len(contacts[0]), run["n_steps"], progress,
+                lambda members, s0, s1: [
+                    _run((levels, pairs, circular, *tags), chosen, s0, s1, *args)
+                    for tags, chosen in by_law(members, groups)])
+    return plan_outcome(run, history)

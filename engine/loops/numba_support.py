@@ -208,17 +208,26 @@ def run_members(size: int, n_steps: int, progress, steps) -> None:
             list(pool.map(lambda members: steps(members, s0, s1), batches))
 
     try:
-        if progress is None:
-            advance(0, n_steps)
-        else:
-            chunk = max(n_steps // 100, -(-MIN_CHUNK_MEMBER_STEPS // size), 1)
-            for start in range(0, n_steps, chunk):
-                progress(start, n_steps)
-                advance(start, min(start + chunk, n_steps))
-            progress(n_steps, n_steps)
+        for s0, s1 in chunk_bounds(size, n_steps, progress):
+            advance(s0, s1)
     finally:
         if pool is not None:
             pool.shutdown()
+
+
+def chunk_bounds(size: int, n_steps: int, progress):
+    """The (s0, s1) step ranges a run of `size` members goes in: all steps at once without
+    progress; with progress(step, n_steps), chunks of about 1% of the steps, or of
+    MIN_CHUNK_MEMBER_STEPS member-steps where that is more, progress called before each and
+    once at the end (a loop keeps its state between chunks: they change no bit)."""
+    if progress is None:
+        yield 0, n_steps
+        return
+    chunk = max(n_steps // 100, -(-MIN_CHUNK_MEMBER_STEPS // size), 1)
+    for start in range(0, n_steps, chunk):
+        progress(start, n_steps)
+        yield start, min(start + chunk, n_steps)
+    progress(n_steps, n_steps)
 
 
 def law_tag(code: int) -> tuple:
