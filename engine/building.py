@@ -374,7 +374,10 @@ class BuildingArrays:
     bool (a law without plan_fields: in plan it acts along x and y, uncoupled, with its
     state along each); collapse_drift (B, L - 1) m (inf: no criterion); damping (B, L, L)
     N*s/m; stiffness (B, L, L) N/m with the isolator at its initial stiffness (for stability
-    limits). Every member of a batch has the same number of levels L.
+    limits); distinct (B,) int: which of the batch's distinct buildings the member is (the
+    per-building work, the step operators' inverses and the stability limit's eigenvalues, is
+    done once per distinct building: `distinct_members`). Every member of a batch has the same
+    number of levels L.
     """
 
     masses: np.ndarray
@@ -395,6 +398,7 @@ class BuildingArrays:
     collapse_drift: np.ndarray
     damping: np.ndarray
     stiffness: np.ndarray
+    distinct: np.ndarray
 
     def take(self, index) -> BuildingArrays:
         """The members at `index` (an index array or slice)."""
@@ -420,10 +424,22 @@ def building_arrays(building: Building | Sequence[Building], size: int) -> Build
     if len(levels) > 1:
         raise EngineError(f"building: the members of one batch must have the same number of "
                           f"levels, got {sorted(levels)}; run each height in its own batch")
-    rows = [_building_row(b) for b in unique]
+    rows = [{**_building_row(b), "distinct": i} for i, b in enumerate(unique)]
     which = np.array([unique[b] for b in members]) if len(members) > 1 else np.zeros(size, int)
     return BuildingArrays(**{name: np.array([row[name] for row in rows])[which]
                              for name in ARRAY_FIELDS})
+
+
+def distinct_members(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(first, inverse): one member of each distinct value of `keys` ((B,) int, such as
+    BuildingArrays.distinct, or float) and, for every member, which of them it is: work done on
+    members[first] and indexed by `inverse` is done once per distinct value, with the same
+    numbers as member by member (NumPy's batched linear algebra works matrix by matrix)."""
+    keys = np.asarray(keys)
+    if keys.size and np.all(keys == keys[0]):  # one building (a sweep's): no sort
+        return np.zeros(1, dtype=np.intp), np.zeros(keys.size, dtype=np.intp)
+    _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
+    return first, inverse.reshape(-1)
 
 
 @lru_cache(maxsize=4096)

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .building import BuildingArrays
+from .building import BuildingArrays, distinct_members
 from .errors import EngineError
 from .impact import Contact
 
@@ -43,11 +43,15 @@ def stability_limit(arrays: BuildingArrays, contact: Contact,
     contact's largest tangent stiffness added at level 0. Dashpots act on central velocities
     and do not lower the limit.
     """
-    k = arrays.stiffness.copy()
-    k[:, 0, 0] += contact.max_tangent_stiffness(indentation_bound)
-    m_isqrt = 1 / np.sqrt(arrays.masses)
+    tangent = np.broadcast_to(contact.max_tangent_stiffness(indentation_bound), len(contact))
+    # once per distinct building and wall stiffness (a sweep's million members: a few)
+    _, stiffness = distinct_members(tangent)
+    first, inverse = distinct_members(arrays.distinct * (stiffness.max() + 1) + stiffness)
+    k = arrays.stiffness[first].copy()
+    k[:, 0, 0] += tangent[first]
+    m_isqrt = 1 / np.sqrt(arrays.masses[first])
     omega_max = np.sqrt(np.linalg.eigvalsh(m_isqrt[:, :, None] * k * m_isqrt[:, None, :])[:, -1])
-    return 2 / omega_max
+    return (2 / omega_max)[inverse]
 
 
 def step_operators(b: BuildingArrays, dt: float):
@@ -55,8 +59,9 @@ def step_operators(b: BuildingArrays, dt: float):
     [p - f(u_n), v_{n-1/2}] to v_{n+1/2} (L levels); the (B, L) wall response, the velocity
     change of every level per newton pushing level 0 back; and its level-0 entry, the (B,)
     compliance (m/s/N)."""
-    step_op = full_step_operator(b.masses[:, :, None] * np.eye(b.masses.shape[1]), b.damping,
-                                 dt)
+    first, inverse = distinct_members(b.distinct)  # once per distinct building
+    step_op = full_step_operator(b.masses[first, :, None] * np.eye(b.masses.shape[1]),
+                                 b.damping[first], dt)[inverse]
     wall_response = step_op[:, :, 0].copy()
     return step_op, wall_response, wall_response[:, 0].copy()
 

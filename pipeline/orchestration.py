@@ -54,12 +54,14 @@ class Conditions:
 class Compute:
     """Where and how the members run: workers (0 or 1: this process; >= 2 local dask
     workers), a dask scheduler (address or Client; None: none), the members per engine call
-    (None: pipeline.execute.batches.default_batch_size), quiet (no progress line)."""
+    (None: pipeline.execute.batches.default_batch_size), quiet (no progress line), the
+    engine's time loop (engine.simulate's backend; None: its default)."""
 
     workers: int = 1
     scheduler: object = None
     batch_size: int | None = None
     quiet: bool = False
+    backend: str | None = None
 
 
 @dataclass(frozen=True)
@@ -97,6 +99,7 @@ class SweepOptions:
     factors: object = None
     members: object = None
     bumper_positions: object = None
+    backend: str | None = None
 
 
 OPTIONS = tuple(f.name for f in dataclasses.fields(SweepOptions))
@@ -171,6 +174,10 @@ def sweep(records, **keywords):
     members: instead of a grid, a table of members listed one by one (pipeline.listed: column
         "law" and parameters by name, (K,) for every record or (R, K) per record); the
         archive's dims are then (record, member). No other sweep parameter is given then.
+    backend: the engine's time loop (engine.simulate's: None for its default, the compiled
+        kernel; "cuda" runs on an NVIDIA GPU, DEVICE_BATCH members a call unless batch_size
+        says otherwise, in this process, or on a scheduler's workers started with `--resources
+        GPU=1`, one per GPU). The archive's `arguments` record it when given.
     force: replace an existing `out` that holds another sweep. Without it such an archive is
         kept and SweepError raised before any compute; an archive of this very sweep (the
         same records, dt, building, members and engine: its `configuration_key` attribute)
@@ -211,7 +218,7 @@ def sweep(records, **keywords):
     return execute_sweep(grid, arguments,
                          Conditions(records, o.records_dir, o.dt, building, o.moat, factors,
                                     o.bumper_positions),
-                         Compute(o.workers, o.scheduler, o.batch_size, o.quiet),
+                         Compute(o.workers, o.scheduler, o.batch_size, o.quiet, o.backend),
                          Output(o.out, o.work_dir, o.force))
 
 
@@ -229,17 +236,19 @@ def completed_sweep():
 
 
 def unconstrained_peaks(records, dt: float | None = None, building=None, workers: int = 1,
-                        scheduler=None, records_dir=None, quiet: bool = True, work_dir=None):
+                        scheduler=None, records_dir=None, quiet: bool = True, work_dir=None,
+                        backend: str | None = None):
     """Peaks of the building without moat wall: a Dataset with dims (record, floor/story).
 
     Variables as in `sweep` (peak_isolator_disp m, peak_total_accel m/s^2, ...). Recipes use
     it for "gap = 0.9 x unconstrained peak isolator displacement" and as the no-pounding
-    reference.
+    reference. backend: the engine's time loop, as `sweep`'s.
     """
     grid = make_grid(None, unconstrained=True)
     ds = execute_sweep(grid, {"unconstrained_only": True},
                        Conditions(records, records_dir, dt, building),
-                       Compute(workers, scheduler, quiet=quiet), Output(work_dir=work_dir))
+                       Compute(workers, scheduler, quiet=quiet, backend=backend),
+                       Output(work_dir=work_dir))
     prefix = "unconstrained_"
     return ds.rename({name: name[len(prefix):] for name in ds.data_vars
                       if name.startswith(prefix)})
@@ -261,6 +270,7 @@ def execute_sweep(grid, arguments: dict, conditions: Conditions, compute: Comput
     model = run_model(moat, building)
     dt = check_dt(grid, engine.DEFAULT_DT if dt is None else dt, building)
     workers = check_count("workers", workers, minimum=0)
+    backend = check_backend(compute.backend, model, workers if scheduler is None else 1)
     if scheduler is not None and not isinstance(scheduler, str) \
             and not hasattr(scheduler, "submit"):
         raise SweepError(f"scheduler must be an address such as 'tcp://host:8786' or a "
@@ -273,11 +283,13 @@ def execute_sweep(grid, arguments: dict, conditions: Conditions, compute: Comput
     if grid.table is not None:
         check_records(grid, len(recs))
     if batch_size is None:
-        batch_size = default_batch_size(grid.n_members, len(recs), workers)
+        batch_size = default_batch_size(grid.n_members, len(recs), workers) \
+            if backend != "cuda" else min(grid.n_members, DEVICE_BATCH)
     batch_size = check_count("batch_size", batch_size, minimum=1)
     out = check_out(out)
     arguments = plain({**arguments, "records": names, "dt": dt,
-                       **({} if factors is None else {"factors": factors})})
+                       **({} if factors is None else {"factors": factors}),
+                       **({} if backend is None else {"backend": backend})})
     if bumper_positions is not None:
         try:
             model.check("bumper_positions", True)
@@ -286,7 +298,7 @@ def execute_sweep(grid, arguments: dict, conditions: Conditions, compute: Comput
         bumper_positions = tuple(tuple(float(x) for x in np.ravel(side))
                                  for side in bumper_positions)
         arguments["bumper_positions"] = [list(side) for side in bumper_positions]
-    run = Run(recs, names, dt, building, moat, factors, arguments, bumper_positions)
+    run = Run(recs, names, dt, building, moat, factors, arguments, bumper_positions, backend)
     new_store = None
     if out is not None and out.suffix == ".zarr":
         # the outermost folder this run creates, removed again if no batch runs
@@ -298,12 +310,39 @@ def execute_sweep(grid, arguments: dict, conditions: Conditions, compute: Comput
             guard(out, store.key, force, "force=True (--force)")
     try:
         execute(store, workers=workers, scheduler=scheduler, batch_size=batch_size,
-                quiet=quiet)
+                quiet=quiet, device=backend == "cuda")
     except SweepError:  # refused before any batch ran (e.g. no cluster): leave nothing
         if new_store is not None and not store.done.any():
             shutil.rmtree(new_store, ignore_errors=True)
         raise
     return store.finish()
+
+
+DEVICE_BATCH = 1 << 20
+"""Members per engine call on the device (backend "cuda"): a launch of 10^6 threads fills an
+H100 or H200 many times over (132 multiprocessors of up to 2048 threads), and its arrays, about
+2 KB a member, take 2 GB of the device's memory."""
+
+
+def check_backend(backend: str | None, model, local_workers: int) -> str | None:
+    """The engine's time loop a sweep asked for (None: the engine's default), checked before
+    any record is read: SweepError in one line for a name the engine does not know, a device
+    that cannot run here, a model the device does not run, or local worker processes sharing
+    this machine's GPU (local_workers: those the sweep would start; 1 on a scheduler)."""
+    if backend is None:
+        return None
+    if backend == "cuda" and local_workers >= 2:
+        raise SweepError("backend 'cuda' runs one process per GPU: give workers=1 (--workers "
+                         "1: this process, on its GPU), or a scheduler whose workers hold one "
+                         "GPU each (dask worker --resources GPU=1, one per GPU)")
+    from engine.backends import model_loop, resolve_backend
+
+    try:
+        resolve_backend(backend)
+        model_loop(model, backend)
+    except engine.EngineError as err:
+        raise SweepError(str(err)) from None
+    return backend
 
 
 def checked_factors(factors, n_records: int):

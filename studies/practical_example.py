@@ -81,7 +81,8 @@ def compute(args):
         records = [segment(rec, QUICK_SECONDS) for rec in records]
     free = pipeline.unconstrained_peaks(records, dt=args.dt, workers=args.workers,
                                         scheduler=args.scheduler, quiet=args.quiet,
-                                        building=args.building, work_dir=args.work_dir)
+                                        building=args.building, work_dir=args.work_dir,
+                                        backend=args.backend)
     parts, gaps = [], []
     # Each paper record also runs at the paper's own gap, to tell the gap rule from the model.
     at_paper_gap = all(name in PRACTICAL_GAPS for name in names)

@@ -34,6 +34,7 @@ from pipeline.members import (
     declarations,
 )
 
+from .common.options import add_backend
 from .common.program import program
 from .common.recipe import (
     OneLineParser,
@@ -174,7 +175,8 @@ def parser() -> argparse.ArgumentParser:
     add_tls_options(p)
     p.add_argument("--batch-size", type=int, metavar="N",
                    help="simulations per engine call (default: sized for the cores and the "
-                        "records, at most 4096)")
+                        "records, at most 4096; with --backend cuda, 2^20)")
+    add_backend(p)
     p.add_argument("--out", default="results", metavar="PATH",
                    help="where the archive goes, as for every recipe: a path ending in .nc is "
                         "the archive itself (.zarr: a Zarr store, for large sweeps), anything "
@@ -291,7 +293,7 @@ def main(argv: list[str] | None = None) -> int:
                 unconstrained=args.unconstrained, building=building,
                 m_eff=args.m_eff if args.m_eff_t is None else args.m_eff_t * 1e3,
                 batch_size=args.batch_size, records_dir=args.records_dir, quiet=args.quiet,
-                force=args.force)
+                force=args.force, backend=args.backend)
     except (SweepError, RecordError, engine.EngineError) as err:
         print("error: " + " ".join(str(err).split()), file=sys.stderr)  # one line
         return 2

@@ -243,6 +243,8 @@ def law_groups(*codes):
     member's combination. codes: each a (B,) int array of the batch (the story law's, the
     isolator law's). Found once a run; by_law splits the members of a call by it."""
     keys = np.stack([np.asarray(c, dtype=np.int64) for c in codes], axis=1)
+    if np.all(keys == keys[0]):  # one combination (most batches): no sort
+        return [tuple(law_tag(k) for k in keys[0])], np.zeros(len(keys), dtype=np.intp)
     unique, group = np.unique(keys, axis=0, return_inverse=True)
     return [tuple(law_tag(k) for k in key) for key in unique], group.reshape(-1)
 

@@ -32,7 +32,8 @@ class Batch:
 
 def simulate_batch(accel: np.ndarray, accel_dt: float, members: np.ndarray,
                    building: engine.Building, dt: float, moat: str | None = None,
-                   factor: float | None = None, bumper_positions=None, progress=None,
+                   factor: float | None = None, bumper_positions=None,
+                   backend: str | None = None, progress=None,
                    report: tuple[str, str] | None = None) -> dict[str, np.ndarray]:
     """Peaks of (b,) members (members.MEMBER_DTYPE) under one record (m/s^2 every accel_dt s):
     peak name -> (b, ...) array, the run's model's quantities (engine.model.Model.quantities:
@@ -42,7 +43,8 @@ def simulate_batch(accel: np.ndarray, accel_dt: float, members: np.ndarray,
     (accel (N, 2), each member at its angle): PEAKS as resultants, then PLAN_PEAKS (and
     TORSION_PEAKS for a building that twists, its bumpers at bumper_positions). factor: the
     record's intensity factor (None: 1); members carrying a level run at factor x level
-    (engine's scale), those without (NaN) at the record as it is.
+    (engine's scale), those without (NaN) at the record as it is. backend: the engine's time
+    loop (engine.simulate's; None: its default).
 
     progress(step, n_steps) is called as the engine goes; on a dask worker, report =
     (topic, tag) sends [tag, step / n_steps] to the client's event topic instead.
@@ -63,7 +65,8 @@ def simulate_batch(accel: np.ndarray, accel_dt: float, members: np.ndarray,
         "angle": members["angle"]}
     result = engine.simulate(accel, accel_dt, contact_for(members),
                              building=buildings_for(members, building), dt=dt,
-                             progress=progress, scale=member_scale(members, factor), **plan)
+                             progress=progress, backend=backend,
+                             scale=member_scale(members, factor), **plan)
     if not building.can_collapse and np.any(result.collapsed):
         # Without a collapse criterion only a numerical instability ends a run: its peaks
         # would be those of a run cut short, so the sweep stops rather than store them.

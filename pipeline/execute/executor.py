@@ -46,6 +46,10 @@ from .dask_client import client, silence_dask
 # ones (3 + 1 by default), when it fails with KilledWorker.
 RETRIES = 2
 
+DEVICE_RESOURCES = {"GPU": 1}
+"""What a batch on the device takes of a dask worker (dask's worker resources): one GPU, so
+that a scheduler's workers started with `--resources GPU=1` (one per GPU) run one batch each."""
+
 
 class Store(Protocol):
     """Where a run's results go (see the module docstring)."""
@@ -62,9 +66,11 @@ class Store(Protocol):
 
 
 def execute(store: Store, *, workers: int, scheduler, batch_size: int,
-            quiet: bool) -> None:
+            quiet: bool, device: bool = False) -> None:
     """Run every batch `store` has pending, here (scheduler None and workers <= 1) or on dask
     (scheduler: None for a local cluster of `workers` processes, an address, or a Client).
+    device: the batches run on a GPU (backend "cuda"): on a scheduler each takes a worker's
+    GPU resource (DEVICE_RESOURCES), one batch at a time on each GPU.
     Ctrl-C raises Interrupted saying how many simulations are kept, and where."""
     records = store.records
     in_process = scheduler is None and workers <= 1
@@ -79,7 +85,7 @@ def execute(store: Store, *, workers: int, scheduler, batch_size: int,
         if batches and in_process:
             _run_here(store, batches, progress)
         elif batches:
-            _run_on_dask(store, batches, workers, scheduler, progress)
+            _run_on_dask(store, batches, workers, scheduler, progress, device)
     except KeyboardInterrupt:
         progress.interrupted()
         kept = progress.done if store.kept_in is not None else 0
@@ -101,10 +107,12 @@ def _run_here(store: Store, batches: list[Batch], progress: Progress) -> None:
 
 
 def _run_on_dask(store: Store, batches: list[Batch], workers: int, scheduler,
-                 progress: Progress) -> None:
-    """Submit every batch; accept each as it completes, here in the client process."""
+                 progress: Progress, device: bool = False) -> None:
+    """Submit every batch; accept each as it completes, here in the client process (device:
+    each batch takes a worker's GPU, DEVICE_RESOURCES)."""
     from distributed import as_completed
 
+    needs = {"resources": DEVICE_RESOURCES} if device else {}
     records = store.records
     run = uuid.uuid4().hex  # in every key and the topic: runs sharing a scheduler never mix
     with client(workers, scheduler) as dask:
@@ -126,7 +134,7 @@ def _run_on_dask(store: Store, batches: list[Batch], workers: int, scheduler,
                 function, args = store.task(batch)
                 future = dask.submit(function, accel[batch.record], *args,
                                      report=(topic, batch.key), retries=RETRIES,
-                                     key=f"bumpers-batch-{run}-{batch.key}")
+                                     key=f"bumpers-batch-{run}-{batch.key}", **needs)
                 futures[future] = batch
             for future in as_completed(list(futures), loop=dask.loop):
                 batch = futures.pop(future)

@@ -23,10 +23,12 @@ CACHE_FORMAT = 8  # bump when the work-folder layout, the member record or the p
 
 
 def context_key(record, dt: float, building, moat: str | None = None,
-                factor: float | None = None, bumper_positions=None) -> str:
+                factor: float | None = None, bumper_positions=None,
+                backend: str | None = None) -> str:
     """Everything besides the member record that determines a member's result (the moat of a
     run in plan, whose record is a pair; the record's intensity factor, None for none; the
-    bumpers' positions along the walls of a building that twists)."""
+    bumpers' positions along the walls of a building that twists; a time loop asked for
+    other than the compiled one, whose last bits are its own)."""
     fields = {"format": CACHE_FORMAT, "engine": engine_fingerprint(),
               "record": record_hash(record.accel, record.dt), "dt": float(dt).hex(),
               "building": repr(building), "moat": moat,
@@ -34,6 +36,8 @@ def context_key(record, dt: float, building, moat: str | None = None,
     if bumper_positions is not None:  # absent otherwise: the keys of earlier runs hold
         fields["bumper_positions"] = [[float(x).hex() for x in np.ravel(side)]
                                       for side in bumper_positions]
+    if backend in ("numpy", "cuda"):  # absent otherwise: the compiled kernel's keys hold
+        fields["backend"] = backend
     text = json.dumps(fields, sort_keys=True)
     return hashlib.sha256(text.encode()).hexdigest()
 

@@ -36,7 +36,9 @@ class WorkFolder:
 
     READ: dict = {}
     """file -> ((size, mtime_ns), its entries): the batch files this process has read or
-    written, shared by every WorkFolder of the process."""
+    written, shared by every WorkFolder of the process. A file this process wrote holds its
+    (context, members, peaks) until it is loaded (a million members' entries, one dict each,
+    cost seconds that a run which never resumes would spend for nothing)."""
 
     def __init__(self, path: Path):
         self.path = Path(path)  # created with the first batch: a refused run leaves nothing
@@ -53,7 +55,11 @@ class WorkFolder:
                     self.READ[file] = known
             except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
                 continue  # a damaged file (killed mid-write elsewhere) is simply recomputed
-            found.update(known[1])
+            entries = known[1]
+            if isinstance(entries, tuple):  # written here, not yet loaded
+                entries = _by_member(*entries)
+                self.READ[file] = (known[0], entries)
+            found.update(entries)
         return found
 
     def remove(self) -> None:
@@ -86,7 +92,7 @@ class WorkFolder:
         except BaseException:
             Path(tmp).unlink(missing_ok=True)
             raise
-        self.READ[file] = (_stamp(file), _by_member(context, members, peaks))
+        self.READ[file] = (_stamp(file), (context, members, peaks))
 
 
 def _stamp(file: Path) -> tuple[int, int]:
@@ -162,7 +168,11 @@ class NetCDFStore:
         for r, context in enumerate(self.contexts):
             missing, first = [], {}
             members = self.grid.members_of(r)
-            for i, member in enumerate(members):
+            if not cached and self.grid.listed is None:  # a grid: members once each, none kept
+                missing, members_left = list(range(len(members))), ()
+            else:
+                members_left = members
+            for i, member in enumerate(members_left):
                 key = member.tobytes()
                 peaks = cached.get((context, key))
                 if peaks is not None:
@@ -185,8 +195,7 @@ class NetCDFStore:
         return batches.simulate_batch, (self.records[batch.record].dt,
                                         self.grid.members_of(batch.record)[batch.members],
                                         run.building, run.dt,
-                                        run.moat, run.factor(batch.record),
-                                        run.bumper_positions)
+                                        *run.engine_keywords(batch.record).values())
 
     def accept(self, batch: batches.Batch, peaks: dict[str, np.ndarray]) -> None:
         """Keep the batch in the work folder, and its peaks here."""

@@ -39,7 +39,8 @@ class Run:
     multiplying each record's ground acceleration, times each member's level (a code suite's
     MCE_R factors); arguments: the call's arguments, stored in the archive;
     bumper_positions: None, or the bumpers' positions along the walls of a building that
-    twists (engine.simulate's)."""
+    twists (engine.simulate's); backend: the engine's time loop (engine.simulate's; None: its
+    default)."""
 
     records: list
     names: list
@@ -49,6 +50,7 @@ class Run:
     factors: np.ndarray | None = None
     arguments: dict = field(default_factory=dict)
     bumper_positions: tuple | None = None
+    backend: str | None = None
 
     @property
     def model(self):
@@ -63,8 +65,14 @@ class Run:
         """Each record's context key (keys.context_key): what decides a member's result
         besides its member record."""
         return [context_key(rec, self.dt, self.building, self.moat, self.factor(r),
-                            self.bumper_positions)
+                            self.bumper_positions, self.backend)
                 for r, rec in enumerate(self.records)]
+
+    def engine_keywords(self, r: int) -> dict:
+        """What batches.simulate_batch takes of the run for record r besides the building
+        and dt: moat, factor, bumper_positions, backend (in its order)."""
+        return {"moat": self.moat, "factor": self.factor(r),
+                "bumper_positions": self.bumper_positions, "backend": self.backend}
 
     @property
     def n_points(self) -> int | None:

@@ -117,16 +117,14 @@ def write_template(path: Path, grid, run, key, n_batches: int, target: int) -> N
 
 
 def write_batch(accel, accel_dt, members, building, dt, path: str, place: Region,
-                moat: str | None = None, factor: float | None = None,
-                bumper_positions=None, progress=None, report=None) -> int:
-    """A worker's task: simulate one batch (batches.simulate_batch; in plan under a record
-    pair when `moat` is given, at the record's intensity factor) and write its peaks into its
-    chunk region `place` of the store at `path`, then mark it done; returns its size."""
+                how: dict | None = None, progress=None, report=None) -> int:
+    """A worker's task: simulate one batch (batches.simulate_batch, with its keywords `how`:
+    moat, factor, bumper_positions, backend) and write its peaks into its chunk region `place`
+    of the store at `path`, then mark it done; returns its size."""
     import zarr
 
-    peaks = batches.simulate_batch(accel, accel_dt, members, building, dt, moat=moat,
-                                   factor=factor, progress=progress, report=report,
-                                   bumper_positions=bumper_positions)
+    peaks = batches.simulate_batch(accel, accel_dt, members, building, dt, progress=progress,
+                                   report=report, **(how or {}))
     group = zarr.open_group(path, mode="r+")
     for name, values in peaks.items():
         target = group[place.prefix + name]
@@ -192,9 +190,8 @@ class ZarrStore:
         r, run = batch.place, self.run
         return write_batch, (self.records[batch.record].dt,
                              self.grid.members_of(batch.record)[batch.members],
-                             run.building, run.dt, str(self.out), r, run.moat,
-                             run.factor(batch.record),
-                             run.bumper_positions)
+                             run.building, run.dt, str(self.out), r,
+                             run.engine_keywords(batch.record))
 
     def accept(self, batch: batches.Batch, size: int) -> None:
         """Nothing to do: the worker wrote the region."""

@@ -27,6 +27,17 @@ QUICK_PAIRS = 4
 """The pairs of a --quick suite or fragility run: the first of PAIR_SET."""
 
 
+def add_backend(p) -> None:
+    """--backend: the engine's time loop (engine.simulate's backend)."""
+    from engine.backends import BACKENDS
+
+    p.add_argument("--backend", choices=BACKENDS, default=None,
+                   help="the engine's time loop: numba (the compiled kernel on every core), "
+                        "numpy (the vectorised reference) or cuda (an NVIDIA GPU, one thread "
+                        "per simulation, 10^6 a call; pip install -e \".[cuda]\"; the "
+                        "planar and plan models) (default: numba)")
+
+
 def add_moat(p) -> None:
     """--moat: the moat in plan, one of engine.results.WALLS (default rectangular)."""
     p.add_argument("--moat", choices=tuple(WALLS), default="rectangular",

@@ -83,6 +83,8 @@ class Recipe:
         from engine.parameters import user_text
         from studies.common.program import program
 
+        from .options import add_backend
+
         epilog = (user_text(f"Values the paper does not state: {self.chosen}")
                   if self.chosen else None)
         p = OneLineParser(
@@ -103,6 +105,7 @@ class Recipe:
             p.add_argument("--workers", type=int, default=1, help=unused)
             p.add_argument("--scheduler", default=None, metavar="ADDRESS", help=unused)
             p.add_argument("--dt", type=float, default=None, metavar="S", help=unused)
+            p.add_argument("--backend", default=None, metavar="NAME", help=unused)
             p.add_argument("--building", action="append", default=[], metavar="FILE|NAME=VALUE",
                            help=unused)
         else:
@@ -132,6 +135,7 @@ class Recipe:
             add_tls_options(p)
             p.add_argument("--dt", type=float, default=None, metavar="S",
                            help="integration step in s (default: the engine's, 0.5 ms)")
+            add_backend(p)
             add_text_record_options(p)
             p.add_argument("--building", action="append", default=[],
                            metavar="FILE|NAME=VALUE",
@@ -399,9 +403,10 @@ def sweep_options(args) -> dict:
 def run_options(args) -> dict:
     """The pipeline.sweep keywords of how and where a recipe runs: its building (resolved by
     Recipe.main from --building), dt, workers, scheduler, quiet and its work folder (set by
-    Recipe.main: <archive>.work, shared by all the recipe's sweeps)."""
+    Recipe.main: <archive>.work, shared by all the recipe's sweeps) and the engine's backend."""
     return dict(workers=args.workers, scheduler=args.scheduler, dt=args.dt, quiet=args.quiet,
-                building=args.building, work_dir=getattr(args, "work_dir", None))
+                building=args.building, work_dir=getattr(args, "work_dir", None),
+                backend=args.backend)
 
 
 NOT_PROVENANCE = frozenset({"title", "configuration_key"})

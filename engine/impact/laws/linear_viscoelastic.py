@@ -60,11 +60,12 @@ def xi_no_tension(cor):
     from scipy.optimize import brentq  # here: scipy takes 0.6 s to import, rarely needed
 
     cor = np.atleast_1d(np.asarray(cor, dtype=float))
-    xi = np.zeros_like(cor)
-    for i, c in enumerate(cor):  # setup only, never inside the time loop
+    values, inverse = np.unique(cor, return_inverse=True)  # a sweep's million members: a few
+    xi = np.zeros_like(values)
+    for i, c in enumerate(values):  # setup only, never inside the time loop
         if c < 1:
             xi[i] = brentq(lambda x, c=c: cor_no_tension(x) - c, 0.0, 1 - 1e-12, xtol=1e-15)
-    return xi
+    return xi[inverse.reshape(cor.shape)]
 
 
 def damping_coefficient(k, cor, m_eff, xi_rule="no_tension"):
