@@ -5,7 +5,7 @@ device loop on an NVIDIA GPU (cuda, asked for by name: never a default).
 says so once per process, in one line on stderr (through `warnings`, category BackendNotice).
 `model_loop(model, name)` is the module of that loop for a model (engine/model.py: each model
 names its loops, engine/loops/<backend>_<model.loop>.py); `time_loop(name)` the planar one.
-The device runs the models of DEVICE_MODELS.
+Which loops run a model is its "backend" row of engine.model.SUPPORTS.
 """
 from __future__ import annotations
 
@@ -17,8 +17,6 @@ from .errors import EngineError
 from .model import PLANAR
 
 BACKENDS = ("numba", "numpy", "cuda")
-DEVICE_MODELS = ("planar", "plan")
-"""The models whose loop runs on the device (engine/loops/cuda_<loop>.py)."""
 
 
 class BackendNotice(RuntimeWarning):
@@ -32,10 +30,17 @@ def model_loop(model, backend: str) -> ModuleType:
     """The loop module of a model (engine.model.Model) and backend ("numba" or "numpy"):
     engine/loops/<backend>_<model.loop>.py; ImportError for numba without numba. Imported on
     first use: the NumPy loops need no compiler, and numba takes a second."""
-    if backend == "cuda" and model.name not in DEVICE_MODELS:
-        raise EngineError(f"backend 'cuda' runs the {' and '.join(DEVICE_MODELS)} models, not "
-                          f"the {model.name} one; run it with backend 'numba'")
+    model.check("backend", backend)
     return importlib.import_module(f"{__package__}.loops.{backend}_{model.loop}")
+
+
+def loop_of(model, backend: str | None) -> ModuleType:
+    """The loop module that runs `model` on `backend` (None: the default, resolve_backend):
+    EngineError quoting engine.model.SUPPORTS for a backend the model does not run on, before
+    asking whether the backend can run here."""
+    if backend is not None:
+        model.check("backend", backend)
+    return model_loop(model, resolve_backend(backend))
 
 
 def time_loop(backend: str) -> ModuleType:

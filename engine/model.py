@@ -51,6 +51,7 @@ SUPPORTS: dict[str, str] = {
     "mu_wall": "friction between slab and wall (engine.Moat's mu_wall)",
     "bumper_positions": "bumpers placed along the walls (engine.Moat's bumper_positions)",
     "story_stiffness_y": "stories of another stiffness along y (Building.story_stiffness_y)",
+    "backend": "the time loops that run it (engine.simulate's backend)",
 }
 """What a model may or may not take, one row per input -> its meaning: the one table
 engine.simulate, the pipeline and docs/model.md read (each Model's `supports` holds its
@@ -65,8 +66,8 @@ class Model:
     horizontal components (1: (N,), 2: (N, 2)); supports: its column of SUPPORTS, each row
     True / False, or the names it takes (EVERY: every registered law); peaks, histories: what
     it returns (engine/results.py); loop: the name of its loop modules in engine/loops/
-    (numba_<loop>, numpy_<loop>); how: what a run does to be of this model (the advice of
-    another model's refusal).
+    (numba_<loop>, numpy_<loop>, and cuda_<loop> where its backend row has cuda); how: what a
+    run does to be of this model (the advice of another model's refusal).
     """
 
     name: str
@@ -123,13 +124,17 @@ class Model:
 
 _IN_PLAN = {"contact_y": True, "angle": True, "mu_wall": True, "story_stiffness_y": True}
 """What both models in plan take and the planar one does not."""
+_EVERY_LOOP = ("numba", "numpy", "cuda")
+"""The time loops of engine/backends.py: the compiled kernel, the NumPy reference, the device
+(engine/loops/<backend>_<Model.loop>.py)."""
 
 PLANAR = Model(
     "planar", "one component along x, the levels moving along x against a wall on each side "
     "(the paper's model)", components=1,
     supports={"moat": (), "story law": EVERY, "isolator law": EVERY,
               "damping": ("paper", "modal"), "p_delta": True, "collapse_drift_ratio": True,
-              "history": True, **dict.fromkeys(_IN_PLAN, False), "bumper_positions": False},
+              "history": True, **dict.fromkeys(_IN_PLAN, False), "bumper_positions": False,
+              "backend": _EVERY_LOOP},
     peaks=PEAKS, histories=HISTORIES, loop="loop",
     how="one component (accel (N,); a sweep without moat)")
 PLAN = Model(
@@ -137,7 +142,8 @@ PLAN = Model(
     "isolators", components=2,
     supports={"moat": tuple(WALLS), "story law": EVERY, "isolator law": EVERY,
               "damping": ("paper", "modal"), "p_delta": True, "collapse_drift_ratio": True,
-              "history": True, **_IN_PLAN, "bumper_positions": False},
+              "history": True, **_IN_PLAN, "bumper_positions": False,
+              "backend": _EVERY_LOOP},
     peaks=(*PEAKS, *PLAN_PEAKS), histories=PLAN_HISTORIES, loop="plan",
     how="a record pair (accel (N, 2), its x and y components; a sweep's moat)")
 TWISTING = Model(
@@ -145,7 +151,8 @@ TWISTING = Model(
     "where they stand (a Building with a torsion component)", components=2,
     supports={"moat": ("rectangular",), "story law": ("linear",), "isolator law": EVERY,
               "damping": ("paper",), "p_delta": False, "collapse_drift_ratio": True,
-              "history": True, **_IN_PLAN, "bumper_positions": True},
+              "history": True, **_IN_PLAN, "bumper_positions": True,
+              "backend": ("numba", "numpy")},
     peaks=(*PEAKS, *PLAN_PEAKS, *TORSION_PEAKS), histories=TORSION_HISTORIES, loop="torsion",
     how="a building with a torsion component (engine.Torsion) under a record pair")
 

@@ -13,11 +13,11 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from . import torsion
-from .backends import model_loop, resolve_backend, time_loop
+from .backends import loop_of, resolve_backend, time_loop
 from .building import Building, building_arrays
 from .errors import EngineError, UnstableTimeStep
 from .impact import NONE, Contact
-from .model import TWISTING, model_of
+from .model import PLANAR, TWISTING, model_of
 from .plan import ANGLE, MU_WALL, Moat
 from .results import History, PlanResult, Result, TorsionResult, TwoBodyResult
 from .scheme import (
@@ -114,7 +114,7 @@ def _simulate_planar(accel, accel_dt, contact, building, dt, history, progress, 
     if history is not None:
         _check_history(history, size)
 
-    loop = time_loop(resolve_backend(backend))
+    loop = loop_of(PLANAR, backend)
     ag = loop.ground_motion(accel, float(accel_dt), float(dt), n_steps)
     peaks, hist = loop.run_simulation(ag, dt, arrays, contact, history, progress, scale)
     return Result(**peaks, dt=dt, history=hist)
@@ -187,7 +187,7 @@ def _simulate_plan(model, accel, accel_dt, contact, building, dt, run, walls) ->
     from .loops import numpy_plan
 
     ag = numpy_plan.ground_motion(accel, float(accel_dt), float(dt), n_steps)
-    loop = model_loop(model, resolve_backend(backend))
+    loop = loop_of(model, backend)
     if model is TWISTING:
         peaks, hist = loop.run_torsion(ag, dt, arrays, twist, contacts, points, progress, scale,
                                        np.radians(angle), history, friction)

@@ -335,11 +335,10 @@ def check_backend(backend: str | None, model, local_workers: int) -> str | None:
         raise SweepError("backend 'cuda' runs one process per GPU: give workers=1 (--workers "
                          "1: this process, on its GPU), or a scheduler whose workers hold one "
                          "GPU each (dask worker --resources GPU=1, one per GPU)")
-    from engine.backends import model_loop, resolve_backend
+    from engine.backends import loop_of
 
     try:
-        resolve_backend(backend)
-        model_loop(model, backend)
+        loop_of(model, backend)
     except engine.EngineError as err:
         raise SweepError(str(err)) from None
     return backend

@@ -204,7 +204,7 @@ class NetCDFStore:
                            self.grid.members_of(batch.record)[batch.members], peaks)
         for name, value in peaks.items():
             self.results[batch.record][name][batch.members] = value
-        for k, i in enumerate(batch.members):
+        for k, i in enumerate(batch.members if self.copies else ()):
             for copy in self.copies.get((batch.record, int(i)), ()):
                 for name, value in peaks.items():
                     self.results[batch.record][name][copy] = value[k]

@@ -54,6 +54,6 @@ def test_local_workers_sharing_one_gpu_are_refused_before_compute(monkeypatch):
 def test_the_twisting_model_is_refused_with_the_backend_that_runs_it(monkeypatch):
     no_compute(monkeypatch)
     twisting = Building(torsion=Torsion(plan_size=(30.0, 30.0)))
-    with pytest.raises(SweepError, match="backend 'cuda' runs the planar and plan models"):
+    with pytest.raises(SweepError, match="backend 'cuda': the twisting model takes 'numba'"):
         pipeline.sweep(["kobe"], gap=GAPS, thickness=0.03, dt=DT, moat="rectangular",
                        building=twisting, backend="cuda", quiet=True)
