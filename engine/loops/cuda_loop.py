@@ -255,22 +255,29 @@ def to_host(device_arrays, host_arrays) -> None:
         device_arrays.copy_to_host(host_arrays)
 
 
-def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
-    """engine.simulate's time loop on the device: (peaks dict, history dict or None), as
-    numba_loop.run_simulation (the same arguments and packed arrays). The arrays go to the
-    device once; with progress, the steps run in chunks (one launch each, the state kept on
-    the device between them); the peaks, state and histories come back once."""
-    run = planar_run(ag, dt, arrays, contact, history, scale)
-    host = (run["model"], run["memory"], run["kept"], run["hist"])
+def run_on_device(host: tuple, groups, n_steps: int, progress, kernel_of) -> None:
+    """Run a packed run on the device: host = (model, memory, kept, hist), the host arrays
+    (numba_loop.planar_run's, numba_plan.plan_run's) copied to the device once, memory, kept
+    and hist copied back into them at the end; groups: law_groups' of the batch, one launch
+    per law combination, kernel_of(story_code, isolator_code) its kernel; with progress, the
+    steps in chunks (numba_support.chunk_bounds), the state kept on the device between them."""
     model, memory, kept, hist = to_device(host)
-    n_levels = len(run["levels"])
-    banded = run["model"][3].shape[2] > 0
-    groups = [(tuple(len(tag) - 1 for tag in tags), cuda.to_device(chosen))
-              for tags, chosen in by_law(np.arange(len(contact)), run["groups"])]
-    for s0, s1 in chunk_bounds(len(contact), ag.size, progress):
-        for (story_code, isolator_code), chosen in groups:
-            device.launch(_kernel(n_levels, story_code, isolator_code, banded), chosen.size,
-                          chosen, s0, s1, model, memory, kept, hist)
+    size = len(groups[1])
+    launches = [(kernel_of(*(len(tag) - 1 for tag in tags)), cuda.to_device(chosen))
+                for tags, chosen in by_law(np.arange(size), groups)]
+    for s0, s1 in chunk_bounds(size, n_steps, progress):
+        for kernel, chosen in launches:
+            device.launch(kernel, chosen.size, chosen, s0, s1, model, memory, kept, hist)
     cuda.synchronize()
     to_host((memory, kept, hist), host[1:])
+
+
+def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
+    """engine.simulate's time loop on the device: (peaks dict, history dict or None), as
+    numba_loop.run_simulation (the same arguments and packed arrays; run_on_device)."""
+    run = planar_run(ag, dt, arrays, contact, history, scale)
+    n_levels, banded = len(run["levels"]), run["model"][3].shape[2] > 0
+    run_on_device((run["model"], run["memory"], run["kept"], run["hist"]), run["groups"],
+                  ag.size, progress,
+                  lambda story, isolator: _kernel(n_levels, story, isolator, banded))
     return planar_outcome(run, dt, history)

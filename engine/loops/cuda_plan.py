@@ -6,7 +6,7 @@ numba_plan._member's arithmetic, in its order, with each pair operation of the C
 operations it stands for. The physics is the CPU kernel's, compiled for the device by
 cuda_physics: the laws, the wall contact (numba_plan.wall_contact) and the slab-wall friction
 (numba_plan.wall_friction). The arrays are numba_plan.plan_run's, copied to the device once a run;
-the results come back in one copy (cuda_loop.to_device, to_host). As on the planar device loop,
+the results come back in one copy (cuda_loop.run_on_device). As on the planar device loop,
 the device's fused multiply-adds make the peaks agree with the CPU kernel's to round-off, not
 bit for bit.
 """
@@ -15,13 +15,12 @@ from __future__ import annotations
 import functools
 import math
 
-import numpy as np
 from numba import cuda, float64
 
 from ..results import MODE
 from ..stories.registry import MAX_FIELDS, MAX_STATE
 from . import cuda_physics as device
-from .cuda_loop import to_device, to_host
+from .cuda_loop import run_on_device
 from .layout import (
     CONTACT,
     ISOLATOR_FIELDS,
@@ -32,7 +31,6 @@ from .layout import (
     PLAN_STORY,
 )
 from .numba_plan import plan_outcome, plan_run, wall_contact, wall_friction
-from .numba_support import by_law, chunk_bounds
 
 
 @functools.cache
@@ -325,18 +323,11 @@ def _kernel(n_levels: int, circular: bool, story_code: int, isolator_code: int):
 
 def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, history=None,
              arrays_y=None, mu_wall=None):
-    """numba_plan.run_plan on the device: the same arguments, the same (peaks, history)."""
+    """numba_plan.run_plan on the device: the same arguments, the same (peaks, history)
+    (cuda_loop.run_on_device)."""
     run = plan_run(ag, dt, arrays, contacts, moat, scale, angle, history, arrays_y, mu_wall)
-    host = (run["model"], run["memory"], run["kept"], run["written"])
-    model, memory, kept, written = to_device(host)
-    n_levels = len(run["levels"])
-    size = len(contacts[0])
-    groups = [(tuple(len(tag) - 1 for tag in tags), cuda.to_device(chosen))
-              for tags, chosen in by_law(np.arange(size), run["groups"])]
-    for s0, s1 in chunk_bounds(size, run["n_steps"], progress):
-        for (story_code, isolator_code), chosen in groups:
-            device.launch(_kernel(n_levels, run["circular"], story_code, isolator_code),
-                          chosen.size, chosen, s0, s1, model, memory, kept, written)
-    cuda.synchronize()
-    to_host((memory, kept, written), host[1:])
+    n_levels, circular = len(run["levels"]), run["circular"]
+    run_on_device((run["model"], run["memory"], run["kept"], run["written"]), run["groups"],
+                  run["n_steps"], progress,
+                  lambda story, isolator: _kernel(n_levels, circular, story, isolator))
     return plan_outcome(run, history)
