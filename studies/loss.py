@@ -92,6 +92,7 @@ def compute(args):
         curve = hazards.from_table(args.hazard) if args.hazard else hazards.default(s_mt)
     except ValueError as e:
         raise SweepError(f"--hazard: {e}") from None
+    same_basis(fragility, suite)
     gaps = fragility.gap.values
     known = np.isclose(fragility.gap_fraction.values[:, None],
                        collapse.gap_fractions(suite.design)[None]).any(axis=1)
@@ -103,6 +104,50 @@ def compute(args):
     peaks, swept = run(suite, levels, gaps, counts, args)
     ds = dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, args)
     return ds.assign_attrs({**provenance(swept), **ds.attrs})
+
+
+BASIS = ("S_MS_g", "S_M1_g", "T_L", "scaling_rule", "isolator_bound")
+"""The attributes of a collapse archive that must be this loss run's (pipeline.suite_labels):
+the site, the scaling rule and the isolator bound; and every building_* attribute (the
+building designed for them, pipeline.provenance.building_attributes)."""
+
+
+def same_basis(fragility, suite) -> None:
+    """SweepError, one line naming the first difference, unless the collapse archive
+    `fragility` was run on this loss run's site, rule, bound and building (its gaps, D_TM
+    fractions, and its fragilities are theirs: a loss at another site would use them
+    silently)."""
+    from pipeline.errors import SweepError
+    from pipeline.provenance import building_attributes
+    from pipeline.suite_labels import archive_variables
+
+    mine = {**archive_variables(suite)[2], **building_attributes(suite.building)}
+    theirs = fragility.attrs
+    for key in (*BASIS, *sorted(k for k in mine if k.startswith("building_"))):
+        a, b = theirs.get(key), mine.get(key)
+        if a is None and b is None:
+            continue
+        if a is None or b is None or not _same(a, b):
+            raise SweepError(f"--collapse: the archive was run with {key} = {_text(a)}, this "
+                             f"loss run has {_text(b)}: run the collapse study with this "
+                             f"run's site, rule, bound and building options, or leave "
+                             f"--collapse out to run it now")
+
+
+def _same(a, b) -> bool:
+    """Whether two attribute values are the same (numbers to 1e-12, text exactly)."""
+    if isinstance(a, str) or isinstance(b, str):
+        return str(a) == str(b)
+    a, b = np.atleast_1d(np.asarray(a, dtype=float)), np.atleast_1d(np.asarray(b, dtype=float))
+    return a.shape == b.shape and bool(np.allclose(a, b, rtol=1e-12, atol=0.0))
+
+
+def _text(value) -> str:
+    """An attribute value in a message: none when absent, at most 60 characters."""
+    if value is None:
+        return "none"
+    text = str(np.asarray(value).tolist()) if not isinstance(value, str) else value
+    return text if len(text) <= 60 else text[:57] + "..."
 
 
 def collapse_archive(args):

@@ -176,3 +176,26 @@ def test_the_loss_study_refuses_a_missing_collapse_archive_in_one_line(tmp_path,
     assert loss.main(["--quick", "--collapse", str(missing), "--out", str(tmp_path)]) == 2
     err = capsys.readouterr().err
     assert "--collapse: cannot read" in err and len(err.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize("option, value, named", [("--sm1-g", "0.6", "S_M1_g = 0.9"),
+                                                   ("--bound", "upper", "isolator_bound"),
+                                                   ("--building", "zeta_sup=0.03",
+                                                    "building_zeta_sup = 0.02")])
+def test_the_loss_study_refuses_a_collapse_archive_of_another_basis(quick_path, tmp_path,
+                                                                    capsys, option, value,
+                                                                    named):
+    """Another site, bound or building than the collapse archive's: refused before any
+    compute, in one line naming the difference (issue 40: a loss at S_M1 0.6 g used the gaps
+    and fragilities of a run at 0.9 g); the quick loss run above, on the same options, is
+    the advice followed."""
+    pytest.importorskip("pelicun")
+    from studies import loss
+
+    out = tmp_path / "out"
+    archive = quick_path / "quick" / "collapse.nc"
+    assert loss.main(["--quick", option, value, "--collapse", str(archive),
+                      "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and named in err, err
+    assert not out.exists() or not any(out.rglob("*.nc"))
