@@ -91,21 +91,29 @@ class CodeSuite:
 def code_suite(pairs, names, building, rule: str = DEFAULT_RULE, s_ms: float = SITE["s_ms"],
                s_m1: float = SITE["s_m1"], t_long: float = SITE["t_long"],
                dt: float | None = None, bound: str = DEFAULT_BOUND,
-               factors=None) -> CodeSuite:
+               factors=None, target=None) -> CodeSuite:
     """Scale the pairs (RecordPair) to the site's MCE_R by the rule (see the module
     docstring), for the building (engine.Building, at nominal properties) run at `bound`
     (pipeline.motions.bounds.BOUND_NAMES; factors: its PropertyFactors, default the module's).
-    Pairs the rule excludes (factor limits) are dropped and listed in .scaled.excluded."""
+    Pairs the rule excludes (factor limits) are dropped and listed in .scaled.excluded.
+    target: None for the two-period spectrum of s_ms, s_m1, t_long (g, g, s); or a
+    site-specific MCE_R TargetSpectrum (site_specific.read_target_table), whose S_MS and S_M1
+    come from it (ASCE 7-22 21.4, site_specific.site_specific_parameters; s_ms, s_m1 and
+    t_long are then not used, T_L NaN in the suite's site)."""
     from .bounds import design_basis
+    from .site_specific import site_specific_parameters
     from .target import asce7_target
     from .weights import event_weights
 
     scaling = scaling_rules.rule(rule)  # ValueError listing the rules for another name
+    if target is None:
+        target = asce7_target(s_ms, s_m1, t_long, level="MCE_R")
+    else:
+        (s_ms, s_m1), t_long = site_specific_parameters(target), float("nan")
     # D_M and T_M from the isolators' hysteresis at each bound (ASCE 7-22 17.2.8.4, 17.5.3):
     # the model's isolation dashpot is numerical damping no prototype test measures, shown
     # beside (basis.with_dashpot), never counted.
     basis = design_basis(s_m1, building, bound, factors)
-    target = asce7_target(s_ms, s_m1, t_long, level="MCE_R")
     chosen, kept, scaled = scaling.factors(pairs, target, basis, basis.building, dt)
     pairs = [pairs[i] for i in chosen]
     names = [names[i] for i in chosen]
@@ -122,8 +130,9 @@ def describe(suite: CodeSuite) -> str:
     basis = suite.basis
     dashpot = "" if basis.with_dashpot is None else \
         f" ({basis.with_dashpot[basis.bound].d_m * 100:.3g} cm with the model's dashpot counted)"
+    at = f"T_L {site['t_long']:g} s" if np.isfinite(site["t_long"]) else suite.target.source
     return (f"{len(suite.pairs)} pairs scaled to the MCE_R by {suite.rule} (S_MS "
-            f"{site['s_ms']:g} g, S_M1 {site['s_m1']:g} g, T_L {site['t_long']:g} s); "
+            f"{site['s_ms']:.3g} g, S_M1 {site['s_m1']:.3g} g, {at}); "
             f"{basis.bound}-bound isolator properties: T_M {suite.design.t_m:.3g} s, D_M "
             f"{suite.design.d_m * 100:.3g} cm{dashpot}, D_TM {suite.design.d_tm * 100:.3g} cm; "
             f"factors {f.min():.3g}-{f.max():.3g} (median {np.median(f):.3g})")

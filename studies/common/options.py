@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from pathlib import Path
 
 from engine.results import WALLS
 from engine.units import KN_PER_MM
@@ -102,14 +103,21 @@ def bare_wall_text() -> str:
 
 
 def site_options(p) -> None:
-    """The site's and the rule's command-line options."""
-    p.add_argument("--sms-g", type=float, default=SITE["s_ms"], metavar="G",
+    """The site's and the rule's command-line options: the two-period spectrum's parameters
+    (default None, read as SITE's by checked_site, so that a site-specific spectrum given
+    beside them is told apart) or a site-specific spectrum's table."""
+    p.add_argument("--sms-g", type=float, default=None, metavar="G",
                    help=f"MCE_R short-period spectral acceleration S_MS in g (default "
                         f"{SITE['s_ms']:g})")
-    p.add_argument("--sm1-g", type=float, default=SITE["s_m1"], metavar="G",
+    p.add_argument("--sm1-g", type=float, default=None, metavar="G",
                    help=f"MCE_R 1-s spectral acceleration S_M1 in g (default {SITE['s_m1']:g})")
-    p.add_argument("--tl", type=float, default=SITE["t_long"], metavar="S",
+    p.add_argument("--tl", type=float, default=None, metavar="S",
                    help=f"long-period transition period T_L in s (default {SITE['t_long']:g})")
+    p.add_argument("--target-spectrum", type=Path, default=None, metavar="CSV",
+                   help="a site-specific MCE_R spectrum (RotD100) instead of the two-period "
+                        "one of --sms-g, --sm1-g, --tl: a CSV table with the columns "
+                        "period_s and sa_g covering 0.2 to 5 s at least; S_MS and S_M1 come "
+                        "from it by ASCE 7-22 section 21.4")
     p.add_argument("--rule", choices=tuple(RULE_TEXT), default=DEFAULT_RULE,
                    help="how the pairs are scaled: " + "; ".join(
                        f"{k}: {v}" for k, v in RULE_TEXT.items()))
@@ -196,9 +204,18 @@ site-specific spectra stay well below; beyond it, most likely a value in percent
 
 def checked_site(args) -> None:
     """Refuse a site option no real site has, in one line naming the option, its unit and,
-    for a spectral value in percent, the conversion (SweepError; before any compute)."""
+    for a spectral value in percent, the conversion, or site options given beside
+    --target-spectrum (SweepError; before any compute); the options not given take SITE's
+    values."""
     from pipeline.errors import SweepError
 
+    given = [SITE_OPTIONS[name][0] for name in SITE_OPTIONS if getattr(args, name) is not None]
+    if getattr(args, "target_spectrum", None) is not None and given:
+        raise SweepError(f"--target-spectrum is the site's whole MCE_R spectrum: give it or "
+                         f"{', '.join(given)}, not both")
+    for name, key in zip(SITE_OPTIONS, ("s_ms", "s_m1", "t_long"), strict=True):
+        if getattr(args, name) is None:
+            setattr(args, name, SITE[key])
     for name, (option, what, unit, largest) in SITE_OPTIONS.items():
         value = getattr(args, name)
         if not (math.isfinite(value) and value > 0):
@@ -220,13 +237,19 @@ def scaled_suite(args, pairs, names):
     prints."""
     from pipeline.errors import SweepError
     from pipeline.motions.code_suite import code_suite
+    from pipeline.motions.site_specific import read_target_table
 
     checked_site(args)
     factors = property_factors(args)
     try:
+        table = getattr(args, "target_spectrum", None)
+        target = None if table is None else read_target_table(table)
+    except ValueError as err:
+        raise SweepError(f"--target-spectrum: {err}") from None
+    try:
         suite = code_suite(pairs, names, args.building, args.rule, args.sms_g, args.sm1_g,
                            args.tl, args.dt, bound=getattr(args, "bound", "nominal"),
-                           factors=factors)
+                           factors=factors, target=target)
         stories = getattr(args, "stories", "linear")
         if stories != "linear":
             suite = suite.with_superstructure(stories, r_i=args.r_i,

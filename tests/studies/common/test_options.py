@@ -243,3 +243,65 @@ def test_a_malformed_option_is_one_line_and_an_unwritable_output_is_refused(tmp_
     (line,) = capsys.readouterr().err.strip().splitlines()
     assert line.startswith("fragility: error: out: cannot write to /sys")
     assert not list(tmp_path.iterdir())
+
+
+SITE_STUDIES = ("suite", "fragility", "collapse", "loss", "design", "torsion")
+"""The studies that scale their pairs to a site's MCE_R spectrum (site_options)."""
+
+
+@pytest.mark.parametrize("name", SITE_STUDIES)
+def test_every_study_with_a_site_takes_a_site_specific_spectrum(name):
+    parser = importlib.import_module(f"studies.{name}").recipe.parser()
+    args = parser.parse_args(["--target-spectrum", "site.csv"])
+    assert args.target_spectrum == Path("site.csv") and args.sm1_g is None
+
+
+def _code_spectrum_table(path: Path) -> Path:
+    """The two-period spectrum of the default site (S_MS 1.5 g, S_M1 0.9 g, T_L 8 s) as a
+    --target-spectrum table."""
+    from pipeline.motions.target import asce7_target
+
+    target = asce7_target(1.5, 0.9, 8.0)
+    path.write_text("period_s,sa_g\n" + "".join(
+        f"{float(t)!r},{float(s)!r}\n" for t, s in zip(target.periods, target.sa_g,
+                                                       strict=True)))
+    return path
+
+
+@pytest.mark.parametrize("extra, said", [
+    (["--sm1-g", "0.6"], "error: --target-spectrum is the site's whole MCE_R spectrum: give "
+                         "it or --sm1-g, not both"),
+    (["--tl", "6"], "give it or --tl, not both"),
+])
+def test_a_spectrum_beside_site_values_is_refused_and_alone_it_runs(extra, said, tmp_path,
+                                                                    capsys):
+    """Site values beside a site-specific spectrum: refused before compute in one line; the
+    spectrum alone (the advice followed) runs, S_M1 from it by ASCE 7-22 21.4 (the code's
+    spectrum as a table: 0.9 g, its S_M1), the archive naming the table."""
+    from studies import suite
+
+    table = _code_spectrum_table(tmp_path / "site.csv")
+    out = tmp_path / "out"
+    assert suite.main(["--quick", "--target-spectrum", str(table), *extra,
+                       "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and said in err and not out.exists()
+    if extra[0] != "--sm1-g":
+        return
+    assert suite.main(["--quick", "--target-spectrum", str(table), "--quiet",
+                       "--out", str(out)]) == 0
+    with xr.open_dataset(out / "quick" / "suite.nc") as ds:
+        assert ds.attrs["S_M1_g"] == pytest.approx(0.9, rel=1e-12)
+        assert np.isnan(ds.attrs["T_L"]) and "site.csv" in ds.attrs["target"]
+
+
+def test_a_spectrum_table_the_code_cannot_use_is_refused_in_one_line(tmp_path, capsys):
+    from studies import suite
+
+    table = tmp_path / "short.csv"
+    table.write_text("period_s,sa_g\n0.5,1.0\n1.0,0.9\n3.0,0.3\n")
+    assert suite.main(["--quick", "--target-spectrum", str(table), "--out",
+                       str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "covers 0.5 to 3 s" in err
+    assert "need 0.2 to 5 s at least (ASCE 7-22 section 21.4)" in err
