@@ -233,7 +233,8 @@ def _text_hint(item) -> str:
 
 def resolve_records(records, records_dir=None) -> tuple[list[Record], list[str]]:
     """Records given by name, path or object, and the names they take in an archive's record
-    coordinate (a paper record is named by its key, others by their name).
+    coordinate: a name or selector as given (RSN1106:000 stays RSN1106:000, a scaled one with
+    its factor as the record writes it), a file or a Record by its paper key or its name.
 
     records: one or a list of paper keys, library names, ``RSN<n>:<component>`` selectors,
     AT2 paths, each optionally scaled as ``name*factor`` (see :func:`load_record`), or
@@ -269,8 +270,24 @@ def resolve_records(records, records_dir=None) -> tuple[list[Record], list[str]]
             loaded.append(load_record(item, records_dir, check=True))
         except RecordError as err:
             raise RecordError(f"records: {err}") from err
-    names = [getattr(rec, "paper_key", None) or str(rec.name) for rec in loaded]
-    repeated = sorted({n for n in names if names.count(n) > 1})
+    # A record is itself whatever it was called (kobe and RSN1106:000 are one record), and
+    # labelled as the user called it: a name or selector as given, a file by its record's name.
+    identities = [getattr(rec, "paper_key", None) or str(rec.name) for rec in loaded]
+    names = [_label(item, identity) for item, identity in zip(records, identities, strict=True)]
+    repeated = sorted({n for n in identities if identities.count(n) > 1})
     if repeated:
-        raise RecordError(f"records: each record must appear once, repeated {repeated}")
+        given = {n: list(dict.fromkeys(m for m, i in zip(names, identities, strict=True)
+                                       if i == n)) for n in repeated}
+        text = [n if given[n] == [n] else f"{n} (as {', '.join(given[n])})" for n in repeated]
+        raise RecordError(f"records: each record must appear once, repeated {text}")
     return loaded, names
+
+
+def _label(item, identity: str) -> str:
+    """A record's label in an archive: a name or selector as the user gave it (RSN1106:000
+    stays RSN1106:000, not the paper's kobe; scaled, its factor as the record writes it:
+    RSN1106:000*2.0), a Record or a file by its record's name or paper key (`identity`)."""
+    base = item.split("*")[0].strip() if isinstance(item, str) else None
+    if base is None or _is_path(base):
+        return identity
+    return base + identity[identity.index("*"):] if "*" in item and "*" in identity else base

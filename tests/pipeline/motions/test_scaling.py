@@ -46,7 +46,8 @@ def test_engine_scale_refuses_bad_factors(pacoima):
 
 def test_scaled_record_names_values_and_archive_coordinates(pacoima):
     recs, names = resolve_records(["pacoima*1.5", "pacoima", "RSN77:164 * 0.8"])
-    assert names == ["pacoima*1.5", "pacoima", "pacoima*0.8"]
+    # labelled as given (issue 40), the factor as the record writes it
+    assert names == ["pacoima*1.5", "pacoima", "RSN77:164*0.8"]
     np.testing.assert_array_equal(recs[0].accel, pacoima.accel * 1.5)
     assert recs[0].scale == 1.5 and recs[0].unscaled_pga == pacoima.pga
     assert recs[2].pga == pytest.approx(0.8 * pacoima.pga, rel=1e-15)
@@ -88,7 +89,7 @@ def test_records_out_of_range_are_reported_not_kept():
     suite = scale_to_displacement(["pacoima", "RSN1690:360"])
     assert suite.names[0].startswith("pacoima*") and len(suite.records) == 1
     ((name, needed, reason),) = suite.excluded
-    assert name == "Northridge05-SylmarCountyHospitalGrounds-360"
+    assert name == "RSN1690:360"  # as given (issue 40)
     assert needed > 5 and "highest factor" in reason
     low = scale_to_displacement(["pacoima"], limits=(2.0, 5.0))
     assert not low.records and "lowest factor" in low.excluded[0][2]

@@ -59,3 +59,27 @@ def test_missing_records_directory(tmp_path, monkeypatch):
     monkeypatch.setenv(R.RECORDS_DIR_ENV, str(missing))
     with pytest.raises(RecordError, match=r"no-such-dir: records directory \(\$BUMPERS"):
         R.paper_records()
+
+
+# ------------------------------------------------------------------ labels as given
+
+def test_a_record_is_labelled_as_the_user_called_it():
+    """Issue 40: RSN1106:000 was stored as kobe, so ds.sel(record="RSN1106:000") failed. A
+    name or selector is the label as given (a scaled one with its factor as the record writes
+    it); one record called two ways is still one record, refused naming both."""
+    assert R.resolve_records(["RSN1106:000"])[1] == ["RSN1106:000"]
+    assert R.resolve_records(["kobe", "sylmar_converter"])[1] == ["kobe", "sylmar_converter"]
+    assert R.resolve_records(["RSN1106:000*2"])[1] == ["RSN1106:000*2.0"]
+    with pytest.raises(RecordError, match=r"repeated \['kobe \(as kobe, RSN1106:000\)'\]"):
+        R.resolve_records(["kobe", "RSN1106:000"])
+
+
+def test_a_sweep_selects_the_record_by_the_label_given():
+    import pipeline
+    from pipeline.histories import segment
+
+    ds = pipeline.sweep([segment(R.load_record("RSN1106:000"), 2.0)], gap=0.1, dt=0.002,
+                        quiet=True)
+    assert ds.record.values.tolist() == ["kobe"]  # a Record: its paper key (else its name)
+    ds = pipeline.sweep(["RSN1106:000"], gap=0.1, dt=0.002, quiet=True)
+    assert float(ds.sel(record="RSN1106:000").peak_isolator_disp) > 0
