@@ -274,6 +274,10 @@ def resolve_records(records, records_dir=None) -> tuple[list[Record], list[str]]
     # labelled as the user called it: a name or selector as given, a file by its record's name.
     identities = [getattr(rec, "paper_key", None) or str(rec.name) for rec in loaded]
     names = [_label(item, identity) for item, identity in zip(records, identities, strict=True)]
+    # the label travels with the record (a recipe passing the records on keeps its names)
+    loaded = [rec if name == identity or not dataclasses.is_dataclass(rec)
+              else dataclasses.replace(rec, label=name)
+              for rec, name, identity in zip(loaded, names, identities, strict=True)]
     repeated = sorted({n for n in identities if identities.count(n) > 1})
     if repeated:
         given = {n: list(dict.fromkeys(m for m, i in zip(names, identities, strict=True)
@@ -286,8 +290,11 @@ def resolve_records(records, records_dir=None) -> tuple[list[Record], list[str]]
 def _label(item, identity: str) -> str:
     """A record's label in an archive: a name or selector as the user gave it (RSN1106:000
     stays RSN1106:000, not the paper's kobe; scaled, its factor as the record writes it:
-    RSN1106:000*2.0), a Record or a file by its record's name or paper key (`identity`)."""
-    base = item.split("*")[0].strip() if isinstance(item, str) else None
-    if base is None or _is_path(base):
+    RSN1106:000*2.0), a file by its record's paper key or name (`identity`), a Record by its
+    label (the one resolve_records gave it) or else `identity`."""
+    if not isinstance(item, str):
+        return getattr(item, "label", None) or identity
+    base = item.split("*")[0].strip()
+    if _is_path(base):
         return identity
     return base + identity[identity.index("*"):] if "*" in item and "*" in identity else base

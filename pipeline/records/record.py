@@ -106,6 +106,8 @@ class Record:
     ``pga`` in m/s^2. ``found_in``/``note``/``paper_key`` are set only for the paper's
     records (see :func:`paper_record`). ``scale`` (-) is the factor the original record was
     multiplied by (1 unscaled; see :meth:`scaled`), ``unscaled_pga`` its PGA before (m/s^2).
+    ``label`` is what the user called it where that is not its paper key or name (a library
+    selector such as RSN1106:000: resolve_records), the name an archive gives it.
     """
 
     name: str
@@ -121,6 +123,7 @@ class Record:
     paper_key: str | None = None
     scale: float = 1.0
     unscaled_pga: float | None = None
+    label: str | None = None
     pga: float = field(init=False)
 
     def __post_init__(self):

@@ -67,7 +67,9 @@ def test_a_record_is_labelled_as_the_user_called_it():
     """Issue 40: RSN1106:000 was stored as kobe, so ds.sel(record="RSN1106:000") failed. A
     name or selector is the label as given (a scaled one with its factor as the record writes
     it); one record called two ways is still one record, refused naming both."""
-    assert R.resolve_records(["RSN1106:000"])[1] == ["RSN1106:000"]
+    records, names = R.resolve_records(["RSN1106:000"])
+    assert names == ["RSN1106:000"]
+    assert R.resolve_records(records)[1] == names  # passed on as Records (a recipe's), kept
     assert R.resolve_records(["kobe", "sylmar_converter"])[1] == ["kobe", "sylmar_converter"]
     assert R.resolve_records(["RSN1106:000*2"])[1] == ["RSN1106:000*2.0"]
     with pytest.raises(RecordError, match=r"repeated \['kobe \(as kobe, RSN1106:000\)'\]"):
