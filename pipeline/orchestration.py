@@ -177,7 +177,7 @@ def sweep(records, **keywords):
     backend: the engine's time loop (engine.simulate's: None for its default, the compiled
         kernel; "cuda" runs on an NVIDIA GPU, DEVICE_BATCH members a call unless batch_size
         says otherwise, in this process, or on a scheduler's workers started with `--resources
-        GPU=1`, one per GPU). The archive's `arguments` record it when given.
+        GPU=1`, one per GPU). The archive's `sweep_arguments` record it when given.
     force: replace an existing `out` that holds another sweep. Without it such an archive is
         kept and SweepError raised before any compute; an archive of this very sweep (the
         same records, dt, building, members and engine: its `configuration_key` attribute)

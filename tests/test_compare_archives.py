@@ -49,3 +49,17 @@ def test_a_renamed_label_is_compared_under_its_new_name(tmp_path, capsys):
                attrs={"building_torsion_mass_offset": "[0, 0]",
                       "arguments": '{"y": [1]}'}).to_netcdf(after / "a.nc")
     assert compare.main([str(before), str(after), *renamed]) == 1
+
+
+def test_array_attributes_compare_by_value(tmp_path, capsys):
+    """A variable's attribute may be an array (a flag variable's flag_values): equal ones
+    pass, a changed one is named (it once raised NumPy's ambiguous truth value)."""
+    for name, flags in (("before", [0, 1, 2]), ("same", [0, 1, 2]), ("changed", [0, 1, 3])):
+        (tmp_path / name).mkdir()
+        xr.Dataset({"mode": ("n", np.array([0, 2], np.int8),
+                             {"flag_values": np.array(flags, np.int8)})}
+                   ).to_netcdf(tmp_path / name / "a.nc")
+    assert compare.main([str(tmp_path / "before"), str(tmp_path / "same")]) == 0
+    assert "a: equal" in capsys.readouterr().out
+    assert compare.main([str(tmp_path / "before"), str(tmp_path / "changed")]) == 1
+    assert "mode: attributes flag_values differ" in capsys.readouterr().out

@@ -78,9 +78,10 @@ def differences(before: xr.Dataset, after: xr.Dataset) -> tuple[list[str], list[
             issues.append(f"{name}: {old.dims} {old.dtype} -> {new.dims} {new.dtype}")
         elif np.asarray(old.values).tobytes() != np.asarray(new.values).tobytes():
             issues.append(f"{name}: values differ")
-        if old.attrs != new.attrs:
-            changed = sorted(k for k in {*old.attrs, *new.attrs}
-                             if str(old.attrs.get(k)) != str(new.attrs.get(k)))
+        # as text: an attribute may be an array (flag_values), which != does not reduce
+        changed = sorted(k for k in {*old.attrs, *new.attrs}
+                         if str(old.attrs.get(k)) != str(new.attrs.get(k)))
+        if changed:
             issues.append(f"{name}: attributes {', '.join(changed)} differ")
     added = [name for name in after.variables if name not in before.variables]
     for key in sorted({*before.attrs, *after.attrs} - VOLATILE):
