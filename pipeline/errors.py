@@ -12,6 +12,11 @@ class PlausibilityWarning(UserWarning):
     one); raised before any compute, shown by the commands as one 'warning: ...' line."""
 
 
+class KeptWorkNotice(UserWarning):
+    """A finished run's work folder still holds simulations of another configuration (a run
+    interrupted, then run with other options): kept, not deleted, and said in one line."""
+
+
 class BuildingError(SweepError):
     """A building file or setting that does not describe a building; the message names the
     key and what it expects."""

@@ -62,6 +62,50 @@ class WorkFolder:
             found.update(entries)
         return found
 
+    USED: dict = {}
+    """folder -> {context key (keys.context_key): the members (MEMBER_DTYPE)} of the sweeps
+    this process completed with it: the work a finished run may delete (`finish`); any other
+    batch is another configuration's (an interrupted run's too: it never completed)."""
+
+    def use(self, contexts, members_of) -> None:
+        """Note that a sweep of this process completed these contexts with this folder, the
+        members of context i being members_of(i)."""
+        used = self.USED.setdefault(self.path, {})
+        for i, context in enumerate(contexts):
+            runs = used.setdefault(context, [])
+            runs.append(members_of(i))
+
+    def finish(self) -> int:
+        """Remove the batch files of the sweeps this process completed with this folder (USED:
+        their contexts and members), and the folder with them when nothing else is left; a
+        file of another configuration (a run interrupted, then run with other options) is
+        kept, never deleted unasked. Returns the simulations kept, after a KeptWorkNotice
+        saying where when there are any."""
+        import warnings
+
+        from ..errors import KeptWorkNotice
+
+        used = self.USED.pop(self.path, {})
+        kept = 0
+        for file in sorted(self.path.glob("*.npz")):
+            try:
+                context, members = _batch_of(file, self.READ.get(file))
+            except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
+                context, members = None, None  # damaged: nothing anyone can resume from
+            if members is not None and not _ran(members, used.get(context, ())):
+                kept += len(members)
+                continue
+            file.unlink(missing_ok=True)
+            self.READ.pop(file, None)
+        if kept:
+            warnings.warn(KeptWorkNotice(
+                f"{self.path} keeps {kept} finished simulations of another configuration (an "
+                f"earlier run with other options: running it again resumes from them); delete "
+                f"the folder to drop them"), stacklevel=2)
+        else:
+            self.remove()
+        return kept
+
     def remove(self) -> None:
         """The folder gone, and what this process remembers of its files with it."""
         shutil.rmtree(self.path, ignore_errors=True)
@@ -93,6 +137,26 @@ class WorkFolder:
             Path(tmp).unlink(missing_ok=True)
             raise
         self.READ[file] = (_stamp(file), (context, members, peaks))
+
+
+def _batch_of(file: Path, known) -> tuple[str, np.ndarray | None]:
+    """(context key, members) of a batch file: from what this process wrote (WorkFolder.READ's
+    entry), else read from the file (members None: another version's, which nothing runs)."""
+    if known is not None and isinstance(known[1], tuple):  # written here: (context, members,
+        return known[1][0], known[1][1]                    # peaks)
+    with np.load(file, allow_pickle=False) as data:
+        members = data["members"]
+        return str(data["context"]), members if members.dtype == MEMBER_DTYPE else None
+
+
+def _ran(members: np.ndarray, runs) -> bool:
+    """Whether every one of a batch's members is among those of one of `runs` (member arrays
+    of completed sweeps under the batch's context)."""
+    def rows(x):
+        return np.ascontiguousarray(x).view(f"V{x.dtype.itemsize}").ravel()
+
+    return any((len(run) == len(members) and np.array_equal(rows(run), rows(members)))
+               or np.isin(rows(members), rows(run)).all() for run in runs)
 
 
 def _stamp(file: Path) -> tuple[int, int]:
@@ -210,11 +274,14 @@ class NetCDFStore:
                     self.results[batch.record][name][copy] = value[k]
 
     def finish(self):
-        """The labelled Dataset, written to out when given (the own work folder then goes)."""
+        """The labelled Dataset, written to out when given (the own work folder then goes,
+        but for another configuration's work: WorkFolder.finish)."""
         ds = build_dataset(self.grid, self.run, self.results, derive=self.derive)
         ds.attrs[KEY_ATTRIBUTE] = self.key
         if self.out is not None:
             write_netcdf(ds, self.out)
+        if self.work is not None:  # this run's work, done: a finish may take it away
+            self.work.use(self.contexts, self.grid.members_of)
         if self.own_work_dir:
-            self.work.remove()
+            self.work.finish()
         return ds

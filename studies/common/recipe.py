@@ -247,7 +247,7 @@ class Recipe:
         else:
             from pipeline.execute.netcdf_store import WorkFolder
 
-            WorkFolder(args.work_dir).remove()
+            WorkFolder(args.work_dir).finish()  # another configuration's work is kept
             print("wrote", archive, *figures, *([f"({QUICK_NOTE})"] if args.quick else []))
         return 0
 
@@ -422,15 +422,16 @@ def provenance(swept) -> dict:
 
 @contextmanager
 def announce_stand_ins():
-    """Print a stand-in or plausibility warning as one 'warning: ...' line on stderr, when it
-    is raised (before any compute); other warnings keep their usual form."""
-    from pipeline.errors import PlausibilityWarning
+    """Print a stand-in or plausibility warning (before any compute) or a kept work folder's
+    notice (at the end) as one 'warning: ...' line on stderr, when it is raised; other
+    warnings keep their usual form."""
+    from pipeline.errors import KeptWorkNotice, PlausibilityWarning
     from pipeline.records import StandInWarning
 
     default = warnings.showwarning
 
     def show(message, category, filename, lineno, file=None, line=None):
-        if issubclass(category, (StandInWarning, PlausibilityWarning)):
+        if issubclass(category, (StandInWarning, PlausibilityWarning, KeptWorkNotice)):
             from engine.parameters import user_text
 
             print(f"warning: {user_text(str(message))}", file=sys.stderr)

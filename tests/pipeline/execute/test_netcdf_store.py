@@ -75,3 +75,40 @@ def test_damaged_work_file_is_recomputed(tmp_path, count_simulated):
     (work / "0123.npz").write_bytes(b"PK\x03\x04 truncated")
     pipeline.sweep(RECORDS[:1], **SMALL, workers=1, quiet=True, out=tmp_path / "w.nc")
     assert sum(count_simulated) == 6
+
+
+def test_a_run_with_other_options_keeps_the_interrupted_runs_work(tmp_path, monkeypatch,
+                                                                  count_simulated):
+    """Issue 40: an interrupted sweep rerun with one option changed deleted the kept work. Now
+    the changed run takes away only its own batch files, keeps the interrupted run's and says
+    so in one warning; the first configuration, run again, resumes from them, and its end
+    removes the folder."""
+    from pipeline.errors import KeptWorkNotice
+
+    out, work = tmp_path / "keep.nc", tmp_path / "keep.nc.work"
+    first = dict(**SMALL, workers=1, batch_size=2, quiet=True, out=out)
+    real_save = netcdf_store.WorkFolder.save
+    saved = []
+
+    def dying_save(self, *args):
+        real_save(self, *args)
+        saved.append(1)
+        if len(saved) == 3:
+            raise Killed
+
+    monkeypatch.setattr(netcdf_store.WorkFolder, "save", dying_save)
+    with pytest.raises(Killed):
+        pipeline.sweep(RECORDS, **first)
+    monkeypatch.setattr(netcdf_store.WorkFolder, "save", real_save)
+    kept = sorted(p.name for p in work.glob("*.npz"))
+    assert len(kept) == 3  # 3 batches of 2: 6 of the 12 simulations
+
+    with pytest.warns(KeptWorkNotice, match="keeps 6 finished simulations of another "
+                                            "configuration"):
+        pipeline.sweep(RECORDS, **{**first, "thickness": 0.04})
+    assert sorted(p.name for p in work.glob("*.npz")) == kept  # its own gone, the first's kept
+
+    count_simulated.clear()
+    pipeline.sweep(RECORDS, **first, force=True)  # the archive holds the other run now
+    assert sum(count_simulated) == 6  # only the rest
+    assert not work.exists()
