@@ -234,8 +234,15 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
     if not args.quiet:
         print(f"FEMA P-58 losses by pelicun {p58.version()}: {len(groups)} stripes x "
               f"configurations, {args.samples} realizations each", flush=True)
+    from pipeline.progress import Progress
+
+    modelled = sum(group is not None for group in groups)
+    bar = Progress(modelled, quiet=args.quiet, label="FEMA P-58",
+                   unit="stripes x configurations")
     out = p58.losses(groups, rows, stories=len(height), floor_area=args.floor_area,
-                     yield_drift=yield_drift, samples=args.samples, seed=1)
+                     yield_drift=yield_drift, samples=args.samples, seed=1,
+                     progress=lambda: bar.advance(1))
+    bar.close()
     shape = (levels.size, n_b, n_g)
     q = np.array(QUANTILES)
     p_c = out["collapse_probability"].reshape(shape)
@@ -375,10 +382,23 @@ def decision_table(ds) -> str:
                 f"{100 * float(ds.collapse_probability[at]):11.1f}% "
                 f"{float(ds.median_repair_cost_mce[at]) / 1e6:14.2f} M$ "
                 f"{float(ds.expected_annual_loss[at]) / 1e3:7.1f} k$ "
-                f"{float(ds.annual_rate_contact[at]):13.2e}"
-                + (f"  ({int(ds.runs_outside_range[at].sum())} runs outside the model's range "
-                   "left out)" if int(ds.runs_outside_range[at].sum()) else ""))
+                f"{float(ds.annual_rate_contact[at]):13.2e}" + _why(ds, at))
     return "\n".join(lines)
+
+
+def _why(ds, at) -> str:
+    """What the decision table's row at `at` says beside its numbers: the runs left out, and
+    why its EAL is not computed (NaN) where it is not."""
+    said = []
+    outside = int(ds.runs_outside_range[at].sum())
+    if outside:
+        said.append(f"{outside} runs outside the model's range left out")
+    if np.isnan(float(ds.expected_annual_loss[at])):
+        few = ds.level.values[ds.runs_used[at].values < p58.MIN_RUNS]
+        said.append(f"EAL not computed: fewer than {p58.MIN_RUNS} runs in the demand model at "
+                    + ", ".join(f"{level:g}" for level in few) + " x MCE_R" if few.size else
+                    "EAL not computed: a stripe's repair cost is not a number")
+    return f"  ({'; '.join(said)})" if said else ""
 
 
 def plot(ds):

@@ -153,7 +153,7 @@ def options(seed: int) -> dict:
 
 def losses(groups, rows, *, stories: int, floor_area: float, yield_drift: float,
            replacement_cost: float | None = None, replacement_time: float | None = None,
-           samples: int = SAMPLES, seed: int = 1) -> dict:
+           samples: int = SAMPLES, seed: int = 1, progress=None) -> dict:
     """Each group's loss realizations given no collapse, one pelicun assessment per group,
     every group with the same seed (common random numbers: realization k of every group draws
     the same component capacities and consequences, so that the groups differ by their
@@ -167,7 +167,8 @@ def losses(groups, rows, *, stories: int, floor_area: float, yield_drift: float,
     samples) bool, collapse_probability (G,) (Phi of the group's deviate), replacement_cost
     and replacement_time; NaN (False) for the groups without a model. The collapse enters
     exactly, not sampled (FEMA P-58-1 Eq. 7-1: P(C) times the replacement plus (1 - P(C))
-    times the loss given no collapse): `mixture` gives its statistics."""
+    times the loss given no collapse): `mixture` gives its statistics. progress: None, or
+    called with no argument as each group is done (pelicun takes seconds a group)."""
     pelicun()
     from scipy.stats import norm
 
@@ -191,6 +192,8 @@ def losses(groups, rows, *, stories: int, floor_area: float, yield_drift: float,
         for name, value in one.items():
             out[name][g] = value
         out["collapse_probability"][g] = norm.cdf(group.collapse_deviate)
+        if progress is not None:
+            progress()
     return out
 
 

@@ -199,3 +199,24 @@ def test_the_loss_study_refuses_a_collapse_archive_of_another_basis(quick_path, 
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and named in err, err
     assert not out.exists() or not any(out.rglob("*.nc"))
+
+
+def test_the_decision_table_says_why_an_eal_is_not_computed(loss_quick):
+    """Issue 40: `loss --quick` printed `nan k$` rows with no word on why. Every row whose
+    expected annual loss is NaN names the stripes with too few runs in the demand model
+    (fewer than pelicun's minimum: the run outside the model's range left out), and no
+    other row says so."""
+    from pipeline.assess import loss as p58
+    from studies import loss
+
+    rows = loss.decision_table(loss_quick).splitlines()[1:]
+    eal = loss_quick.expected_annual_loss.transpose("gap_fraction", "barrier").values.ravel()
+    used = loss_quick.runs_used.transpose("gap_fraction", "barrier", "level").values
+    assert len(rows) == eal.size
+    levels = loss_quick.level.values
+    assert np.isnan(eal).any()  # the quick run has such rows
+    for row, value, runs in zip(rows, eal, used.reshape(eal.size, -1), strict=True):
+        assert ("EAL not computed: fewer than" in row) == bool(np.isnan(value)), row
+        if np.isnan(value):
+            named = ", ".join(f"{level:g}" for level in levels[runs < p58.MIN_RUNS])
+            assert f"demand model at {named} x MCE_R" in row

@@ -50,8 +50,11 @@ def test_collapse_enters_by_its_probability():
     rng = np.random.default_rng(0)
     pfa = rng.lognormal(math.log(0.3 * G), 0.2, (10, 3, 2))
     pid = rng.lognormal(math.log(0.003), 0.2, (10, 2, 2))
+    done = []
     out = loss.losses([loss.Group(pfa, pid, 0.5), None, loss.Group(pfa, pid, -1.0)], rows,
-                      stories=2, floor_area=500.0, yield_drift=0.01, samples=300, seed=5)
+                      stories=2, floor_area=500.0, yield_drift=0.01, samples=300, seed=5,
+                      progress=lambda: done.append(1))
+    assert len(done) == 2  # progress once per group assessed (the loss study's progress line)
     assert out["collapse_probability"][[0, 2]] == pytest.approx(norm.cdf([0.5, -1.0]))
     assert out["replacement_cost"] == loss.COST_PER_M2 * 500.0 * 2
     # common random numbers: the same demands give the same realizations whatever the
