@@ -3,9 +3,10 @@ from the very source the CPU kernels compile (compiled.py): the impact laws' `fo
 chained on a member's law code, the story and isolator laws, the scheme's contact solve and
 onset weight, the collapse rule and the banded solve. Nothing is written twice: a law's
 functions are compiled with numba's CUDA target (device functions) by compiled.compiled_for,
-with one global replaced, `np`, by SCALAR_NUMPY, NumPy's functions on scalars as the device has
-them (math's, or a few lines here where math has none). The CPU kernels keep NumPy's own,
-so their bits do not change.
+with `np` replaced by SCALAR_NUMPY, NumPy's functions on scalars as the device has them
+(math's, or a few lines here where math has none), and in a CPU kernel's helper compiled.py's
+physics by its device twins (DEVICE). The CPU kernels keep NumPy's own, so their bits do not
+change.
 
 NumPy's ufuncs on scalars are what numba's CUDA target lacks (`np.sqrt` of a float fails to
 type there); the laws keep calling them, since the NumPy loops call the same functions on
