@@ -243,7 +243,12 @@ def to_device(arrays):
     (nested tuples likewise), numbers as they are."""
     if isinstance(arrays, tuple):
         return tuple(to_device(a) for a in arrays)
-    return cuda.to_device(arrays) if isinstance(arrays, np.ndarray) else arrays
+    if not isinstance(arrays, np.ndarray):
+        return arrays
+    if arrays.size == 0:  # no histories, no bands: a placeholder the kernel never reads (an
+        # empty device allocation is one thing fewer for a driver to get right)
+        return cuda.to_device(np.zeros(tuple(max(n, 1) for n in arrays.shape), arrays.dtype))
+    return cuda.to_device(arrays)
 
 
 def to_host(device_arrays, host_arrays) -> None:
@@ -251,7 +256,7 @@ def to_host(device_arrays, host_arrays) -> None:
     if isinstance(host_arrays, tuple):
         for d, h in zip(device_arrays, host_arrays, strict=True):
             to_host(d, h)
-    elif isinstance(host_arrays, np.ndarray):
+    elif isinstance(host_arrays, np.ndarray) and host_arrays.size:
         device_arrays.copy_to_host(host_arrays)
 
 
