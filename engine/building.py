@@ -410,7 +410,8 @@ ARRAY_FIELDS = tuple(f.name for f in dataclasses.fields(BuildingArrays))
 
 
 def building_arrays(building: Building | Sequence[Building], size: int) -> BuildingArrays:
-    """Stack one building (broadcast) or a sequence of `size` buildings into batch arrays."""
+    """Stack one building (broadcast) or a sequence of `size` buildings into batch arrays: of
+    one building (or a sequence of one), read-only views of its rows, no copy per member."""
     if isinstance(building, Building):
         members = [building]
     else:
@@ -425,7 +426,11 @@ def building_arrays(building: Building | Sequence[Building], size: int) -> Build
         raise EngineError(f"building: the members of one batch must have the same number of "
                           f"levels, got {sorted(levels)}; run each height in its own batch")
     rows = [{**_building_row(b), "distinct": i} for i, b in enumerate(unique)]
-    which = np.array([unique[b] for b in members]) if len(members) > 1 else np.zeros(size, int)
+    if len(rows) == 1:  # one building for every member (a sweep's million): read-only views
+        return BuildingArrays(**{name: np.broadcast_to(np.asarray(rows[0][name]),
+                                                       (size, *np.shape(rows[0][name])))
+                                 for name in ARRAY_FIELDS})
+    which = np.array([unique[b] for b in members])
     return BuildingArrays(**{name: np.array([row[name] for row in rows])[which]
                              for name in ARRAY_FIELDS})
 
@@ -445,8 +450,8 @@ def distinct_members(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 @lru_cache(maxsize=4096)
 def _building_row(b: Building) -> dict:
     """One building's batch arrays by BuildingArrays' field names (its damping needs
-    eigenvalues: computed once per Building; the arrays are copied into the batch, never
-    handed out)."""
+    eigenvalues: computed once per Building; the arrays are copied into a batch of several
+    buildings, or lent as read-only views to a batch of one)."""
     k = np.asarray(b.story_stiffness, float)
     law = b.story_law
     gravity = b.gravity_stiffness
