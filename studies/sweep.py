@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
 
 import numpy as np
 
@@ -177,6 +178,12 @@ def parser() -> argparse.ArgumentParser:
                    help="simulations per engine call (default: sized for the cores and the "
                         "records, at most 4096; with --backend cuda, 2^20)")
     add_backend(p)
+    p.add_argument("--history", action="append", default=[], metavar="NAME=VALUE[,...]",
+                   help="also keep the time histories of one configuration, its wall "
+                        "parameters in SI units (e.g. gap=0.2,n_bumpers=8; --impact's law, the "
+                        "others at their defaults), under every record: written to "
+                        "<archive>.histories.nc beside the archive (pipeline.histories; "
+                        "planar sweeps; repeatable)")
     p.add_argument("--out", default="results", metavar="PATH",
                    help="where the archive goes, as for every recipe: a path ending in .nc is "
                         "the archive itself (.zarr: a Zarr store, for large sweeps), anything "
@@ -284,6 +291,8 @@ def main(argv: list[str] | None = None) -> int:
             if (along[0] is None) != (along[1] is None):
                 raise SweepError("--bumpers-along-x and --bumpers-along-y go together: the "
                                  "bumpers' positions on the x walls and on the y walls")
+            m_eff = args.m_eff if args.m_eff_t is None else args.m_eff_t * 1e3
+            chosen = history_configurations(args.history, args.impact, args.moat, m_eff)
             ds = pipeline.sweep(
                 records=records, moat=args.moat,
                 bumper_positions=None if along[0] is None else along,
@@ -291,9 +300,10 @@ def main(argv: list[str] | None = None) -> int:
                 impact=args.impact, dt=args.dt, workers=args.workers,
                 scheduler=args.scheduler, out=archive, baseline=args.baseline,
                 unconstrained=args.unconstrained, building=building,
-                m_eff=args.m_eff if args.m_eff_t is None else args.m_eff_t * 1e3,
-                batch_size=args.batch_size, records_dir=args.records_dir, quiet=args.quiet,
-                force=args.force, backend=args.backend)
+                m_eff=m_eff, batch_size=args.batch_size, records_dir=args.records_dir,
+                quiet=args.quiet, force=args.force, backend=args.backend)
+            if chosen:
+                kept = write_histories(records, chosen, archive, args, (building, m_eff))
     except (SweepError, RecordError, engine.EngineError) as err:
         print("error: " + " ".join(str(err).split()), file=sys.stderr)  # one line
         return 2
@@ -304,7 +314,53 @@ def main(argv: list[str] | None = None) -> int:
         return 130
     dims = ", ".join(f"{d} {n}" for d, n in ds.sizes.items())
     print(f"wrote {archive} ({dims})")
+    if chosen:
+        print(f"wrote {kept} (the time histories of {'; '.join(chosen)})")
     return 0
+
+
+def history_configurations(given: list[str], impact: str, moat, m_eff) -> dict:
+    """--history's configurations, name -> pipeline.histories' parameters (--impact's law),
+    checked before any compute: SweepError, one line, for a malformed one, an unknown or
+    implausible parameter, or a sweep in plan (pipeline.histories runs the planar model)."""
+    from pipeline.errors import SweepError
+    from pipeline.histories import configuration_grid
+
+    if not given:
+        return {}
+    if moat is not None:
+        raise SweepError("--history keeps the time histories of planar sweeps; in plan, use "
+                         "engine.simulate(..., history=engine.History(...)) from Python")
+    chosen = {}
+    for text in given:
+        config = {"impact": impact}
+        for part in text.split(","):
+            name, sep, value = part.partition("=")
+            try:
+                config[name.strip()] = float(value)
+            except ValueError:
+                raise SweepError(f"--history {text}: give NAME=VALUE[,NAME=VALUE...] in SI "
+                                 f"units, e.g. gap=0.2,n_bumpers=8") from None
+            if not sep:
+                raise SweepError(f"--history {text}: give NAME=VALUE[,NAME=VALUE...]")
+        chosen[text] = config
+    configuration_grid(chosen, M_EFF.default if m_eff is None else m_eff)  # as the sweep's
+    return chosen
+
+
+def write_histories(records, chosen: dict, archive, args, model) -> Path:
+    """The time histories of --history's configurations under every record (pipeline.
+    histories, one engine batch a record), written beside the archive; its path."""
+    from pipeline.archive import write_netcdf
+    from pipeline.histories import concat_records, histories
+
+    building, m_eff = model
+    parts = [histories(record, chosen, dt=args.dt, records_dir=args.records_dir,
+                       building=building, m_eff=m_eff, quiet=args.quiet)
+             for record in records]
+    path = archive.with_name(archive.stem + ".histories.nc")
+    write_netcdf(concat_records(parts), path)
+    return path
 
 
 if __name__ == "__main__":

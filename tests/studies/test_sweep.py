@@ -54,3 +54,44 @@ def test_cli_writes_archive_and_reports_errors_on_one_line(tmp_path, capsys):
     for option in ("--gap-cm", "--wall-k-kn-mm", "--baseline", "--unconstrained", "--workers",
                    "--scheduler", "--quiet", "N/m"):
         assert option in help_text
+
+
+# --------------------------------------------------------------------------- --history
+
+def test_history_keeps_the_time_histories_of_chosen_configurations(tmp_path, capsys):
+    """Issue 40: time histories from the command line. --history writes <archive>.histories.nc
+    beside the archive; a configuration that is one of the sweep's members has its peaks,
+    bit for bit (the engine's result does not depend on the batch), and histories whose largest
+    |u| is at most that peak."""
+    from studies import sweep as cli
+
+    out = tmp_path / "x.nc"
+    assert cli.main(["--records", "pacoima", "--gap", "0.2", "0.3", "--dt", "0.002",
+                     "--history", "gap=0.2", "--history", "gap=0.3,n_bumpers=8",
+                     "--quiet", "--out", str(out)]) == 0
+    assert "(the time histories of gap=0.2; gap=0.3,n_bumpers=8)" in capsys.readouterr().out
+    with xr.open_dataset(out) as swept, \
+            xr.open_dataset(tmp_path / "x.histories.nc") as kept:
+        assert kept.configuration.values.tolist() == ["gap=0.2", "gap=0.3,n_bumpers=8"]
+        peak = kept.peak_isolator_disp.sel(configuration="gap=0.2").values.ravel()
+        assert peak.tobytes() == swept.peak_isolator_disp.sel(gap=0.2).values.ravel().tobytes()
+        assert kept.isolator_disp.attrs["units"] == "m"
+        u = np.abs(kept.isolator_disp.sel(configuration="gap=0.2")).max("time").values.ravel()
+        assert np.all(u <= peak) and np.all(u > 0.9 * peak)
+
+
+@pytest.mark.parametrize("extra, said", [
+    (["--history", "gap"], "--history gap: give NAME=VALUE"),
+    (["--history", "gap=0.2,colour=3"], "unknown parameter(s) ['colour']"),
+    (["--history", "gap=0.2", "--moat", "rectangular"], "--history keeps the time histories "
+                                                        "of planar sweeps"),
+])
+def test_a_history_the_sweep_cannot_keep_is_refused_before_compute(extra, said, tmp_path,
+                                                                   capsys):
+    from studies import sweep as cli
+
+    out = tmp_path / "x.nc"
+    assert cli.main(["--records", "pacoima", "--gap", "0.2", *extra, "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and said in err, err
+    assert not out.exists() and not list(tmp_path.iterdir())
