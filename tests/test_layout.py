@@ -352,6 +352,7 @@ TESTED_IN = {
     "tests/test_layout.py": ("the layout of the code and of its tests (this file)", ()),
     "tests/test_readme.py": ("the README's and the documentation's examples and links", ()),
     "tests/test_compare_archives.py": ("tools/compare_archives.py", ()),
+    "tests/test_variables_page.py": ("tools/variables_page.py and docs/variables.md", ()),
 }
 """The one table of exceptions to the mirror rule: a module tested through another module's
 tests (a loop through the loop it is compared with, a law through its registry's tests, a
