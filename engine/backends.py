@@ -27,10 +27,10 @@ _notice_given = False
 
 
 def model_loop(model, backend: str) -> ModuleType:
-    """The loop module of a model (engine.model.Model) and backend ("numba" or "numpy"):
-    engine/loops/<backend>_<model.loop>.py; ImportError for numba without numba. Imported on
-    first use: the NumPy loops need no compiler, and numba takes a second."""
-    model.check("backend", backend)
+    """The loop module of a model (engine.model.Model) and backend (BACKENDS; loop_of checks
+    that the model runs on it): engine/loops/<backend>_<model.loop>.py; ImportError for numba
+    without numba. Imported on first use: the NumPy loops need no compiler, and numba takes a
+    second."""
     return importlib.import_module(f"{__package__}.loops.{backend}_{model.loop}")
 
 
@@ -49,7 +49,9 @@ def time_loop(backend: str) -> ModuleType:
 
 
 def resolve_backend(backend: str | None) -> str:
-    """"numba" or "numpy" for a requested backend (None: numba if importable)."""
+    """The backend that runs for a requested one (None: numba if importable, else numpy);
+    EngineError in one line for one that cannot run here (numba without numba, cuda without
+    a GPU)."""
     global _notice_given
     if backend is None:
         try:

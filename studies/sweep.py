@@ -182,8 +182,10 @@ def parser() -> argparse.ArgumentParser:
                    help="also keep the time histories of one configuration, its wall "
                         "parameters in SI units (e.g. gap=0.2,n_bumpers=8; --impact's law, the "
                         "others at their defaults), under every record: written to "
-                        "<archive>.histories.nc beside the archive (pipeline.histories; "
-                        "planar sweeps; repeatable)")
+                        "<archive>.histories.nc beside the archive (pipeline.histories, in "
+                        "this process once the sweep is written: a few configurations, one "
+                        "engine call a record, run again in full rather than resumed; planar "
+                        "sweeps; repeatable)")
     p.add_argument("--out", default="results", metavar="PATH",
                    help="where the archive goes, as for every recipe: a path ending in .nc is "
                         "the archive itself (.zarr: a Zarr store, for large sweeps), anything "
