@@ -56,6 +56,7 @@ from .numba_support import (
     data_pointer,
     history_rows,
     install_cache_locator,
+    kernel_arrays,
     law_groups,
     run_members,
     stack_doubles,
@@ -355,6 +356,7 @@ def planar_run(ag, dt, arrays, contact, history, scale) -> dict:
     model = (ag, float(dt), np.ascontiguousarray(op.transpose(0, 2, 1)), bands,
              np.ascontiguousarray(wall_response), np.ascontiguousarray(arrays.masses), story,
              law, par, law_rows(contact), story_fields, isolator_rows(arrays))
+    model = kernel_arrays(model)
     return {"model": model, "memory": (u, v, story_state, state, isolator_state),
             "kept": (peaks["peak_total_accel"], peaks["peak_interstory_drift"], peak_scalar,
                      peaks["n_impacts"]),

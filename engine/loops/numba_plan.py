@@ -70,6 +70,7 @@ from .numba_support import (
     div2,
     history_rows,
     install_cache_locator,
+    kernel_arrays,
     law_groups,
     load_pair,
     max2,
@@ -444,6 +445,7 @@ def plan_run(ag, dt, arrays, contacts, moat: str, scale, angle, history=None, ar
     model = (np.ascontiguousarray(ag, dtype=np.float64), float(dt), op_xy, wall_xy, story_xy,
              np.ascontiguousarray(arrays.masses), story, law, par, gaps, law_par, story_fields,
              isolator_rows(arrays))
+    model = kernel_arrays(model)
     isolator_state = np.zeros((size, ISOLATOR_STATE_XY))  # every law's state is zero at rest
     memory = (u, v, f_story, story_state, state, wall_state, isolator_state)
     kept = (peaks["peak_total_accel"], peaks["peak_total_accel_xy"],

@@ -50,6 +50,14 @@ def install_cache_locator(kernel_file: Path, physics_files: list[str]) -> None:
         CacheImpl._locator_classes.insert(0, _PhysicsCacheLocator)
 
 
+def kernel_arrays(model: tuple) -> tuple:
+    """`model`'s arrays C-contiguous and writable, a read-only one copied (a one-building
+    batch's broadcast views at B = 1, a read-only record): numba types a read-only array apart
+    and would compile (and cache) every kernel variant a second time for it."""
+    return tuple(np.require(x, requirements=["C", "W"]) if isinstance(x, np.ndarray) else x
+                 for x in model)
+
+
 def history_rows(history, size: int):
     """Where a kernel writes each member's histories: (hist_row (size,) int64, the row of each
     member or -1, every, rows: how many, inverse: the asked members' rows, None without

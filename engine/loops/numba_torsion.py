@@ -66,6 +66,7 @@ from .numba_support import (
     data_pointer,
     history_rows,
     install_cache_locator,
+    kernel_arrays,
     law_groups,
     load_pair,
     mul2,
@@ -474,6 +475,7 @@ def run_torsion(ag, dt, b, t, contacts, points, progress, scale, angle, history=
              np.ascontiguousarray(g, dtype=np.float64),
              np.ascontiguousarray(tangent, dtype=np.float64), coupling, tangent_compliance,
              corners, isolator_rows(b, n_bearings))
+    model = kernel_arrays(model)
     memory = (u, v, isolator_state, state, point_state)
     kept = (peaks["peak_total_accel"], peaks["peak_total_accel_xy"],
             peaks["peak_interstory_drift"], peaks["peak_interstory_drift_xy"],
