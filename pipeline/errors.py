@@ -4,7 +4,21 @@ from __future__ import annotations
 
 
 class SweepError(ValueError):
-    """Invalid sweep input; the message names the offending parameter."""
+    """Invalid sweep input; the message names the offending parameter.
+
+    command_line: the same message for a user of the commands, where its advice names an
+    option as the command line spells it (`--force`) rather than as Python does
+    (`force=True`); the message itself when not given (see `said`)."""
+
+    def __init__(self, message: str = "", command_line: str | None = None):
+        super().__init__(message)
+        self.command_line = message if command_line is None else command_line
+
+
+def said(err: Exception) -> str:
+    """An error's message for a command's one line: a SweepError's command-line wording, any
+    other error's message, white space collapsed."""
+    return " ".join(str(getattr(err, "command_line", None) or err).split())
 
 
 class PlausibilityWarning(UserWarning):

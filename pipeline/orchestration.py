@@ -307,7 +307,7 @@ def execute_sweep(grid, arguments: dict, conditions: Conditions, compute: Comput
     else:
         store = NetCDFStore(grid, run, out, work_dir, derive=derived_variables)
         if out is not None:
-            guard(out, store.key, force, "force=True (--force)")
+            guard(out, store.key, force, python=True)
     try:
         execute(store, workers=workers, scheduler=scheduler, batch_size=batch_size,
                 quiet=quiet, device=backend == "cuda")

@@ -67,9 +67,11 @@ def check_writable_folder(folder: Path, option: str) -> None:
             from None
 
 
-def guard(path, key: str, force: bool = False, option: str = "--force") -> None:
+def guard(path, key: str, force: bool = False, python: bool = False) -> None:
     """Refuse to replace the archive at `path` unless it holds configuration `key` (the same
-    run: nothing is lost) or force is set. SweepError says what is there and how to go on."""
+    run: nothing is lost) or force is set. SweepError says what is there and how to go on:
+    with the command line's options (--force, --out), and where `python` (a function's
+    caller) with its arguments (force=True, out) as well."""
     path = Path(path)
     if force or not path.exists():
         return
@@ -78,8 +80,9 @@ def guard(path, key: str, force: bool = False, option: str = "--force") -> None:
         return
     what = ("an archive of another configuration" if found else
             "a file this version cannot identify (no configuration_key)")
-    raise SweepError(f"{path} exists and holds {what}: it is kept. Give {option} to replace "
-                     f"it, or another --out")
+    told = f"{path} exists and holds {what}: it is kept. Give {{}} to replace it, or another {{}}"
+    command_line = told.format("--force", "--out")
+    raise SweepError(told.format("force=True", "out") if python else command_line, command_line)
 
 
 def archive_key(path: Path) -> str | None:

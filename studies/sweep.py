@@ -269,7 +269,7 @@ def main(argv: list[str] | None = None) -> int:
     import pipeline
     from pipeline.building_file import building_from
     from pipeline.cluster import apply_tls_options
-    from pipeline.errors import SweepError
+    from pipeline.errors import SweepError, said
     from pipeline.records import RecordError
     from pipeline.records.lookup import read_text_records
 
@@ -307,7 +307,7 @@ def main(argv: list[str] | None = None) -> int:
             if chosen:
                 kept = write_histories(records, chosen, archive, args, (building, m_eff))
     except (SweepError, RecordError, engine.EngineError) as err:
-        print("error: " + " ".join(str(err).split()), file=sys.stderr)  # one line
+        print("error: " + said(err), file=sys.stderr)  # one line
         return 2
     except KeyboardInterrupt as stop:
         work = None if archive is None or archive.suffix == ".zarr" \

@@ -3,8 +3,10 @@
 compiling the same ones (measured on a fresh clone, 2 cores: a cold cache cost the suite 53 s of
 its 258, a warm one none). A kernel is compiled per isolator law, and per number of levels and
 story law (the planar one), per story law (in plan) and per multiple of 8 contact points
-(twisting): the variants below are those the suite's in-process tests compile. Two processes,
-one per core; a variant missing here is compiled by the first worker that needs it, as before."""
+(twisting): the variants below are all those the suite compiles (a variant missing here is
+compiled by every worker and subprocess that needs it before one has cached it: measured on a
+fresh clone, the 8 variants missing from this list cost the suite about 80 s of CPU). Four
+processes of about equal length on 2 cores."""
 from __future__ import annotations
 
 import subprocess
@@ -25,39 +27,55 @@ def planar(n, yielding, **isolator):
         story_yield_force=(6e6,) * n if yielding else None, **isolator)
     engine.simulate(accel, 0.01, wall, building, backend="numba")
 """
-PLANAR = COMMON + """
+SHORT = COMMON + """
 for n in (1, 4, 8):
     for yielding in (False, True):
         planar(n, yielding)
-planar(20, True)
+planar(15, False)
+planar(1, True, isolator=fp)
+"""
+TALL = COMMON + """
 for yielding in (False, True):
+    planar(20, yielding)
     planar(4, yielding, isolator=fp)
 planar(8, True, isolator=fp)
-"""
-IN_PLAN = COMMON + """
-planar(20, False)
+planar(20, True, isolator=fp)
+planar(4, False, isolator=engine.Isolator.triple_friction_pendulum(
+    L1=0.3, L2=2.0, L3=2.0, d1=0.05, d2=0.3, d3=0.3, mu1=0.02, mu2=0.04, mu3=0.08))
 imk = engine.Stories.imk(yield_force=3e6, plastic_deformation=0.09,
                          post_capping_deformation=0.35)
 engine.simulate(accel, 0.01, wall, engine.Building(stories=imk), backend="numba")
+"""
+IN_PLAN = COMMON + """
+imk = engine.Stories.imk(yield_force=3e6, plastic_deformation=0.09,
+                         post_capping_deformation=0.35)
+tfp = engine.Isolator.triple_friction_pendulum(L1=0.3, L2=2.0, L3=2.0, d1=0.05, d2=0.3, d3=0.3,
+                                               mu1=0.02, mu2=0.04, mu3=0.08)
 for building in (engine.Building(), engine.Building(story_yield_force=(3e6,) * 4),
-                 engine.Building(stories=imk),
-                 engine.Building(torsion=engine.Torsion(plan_size=(30.0, 20.0))),
-                 engine.Building(isolator=fp),
-                 engine.Building(isolator=fp, torsion=engine.Torsion(plan_size=(30.0, 20.0)))):
+                 engine.Building(stories=imk), engine.Building(isolator=fp),
+                 engine.Building(isolator=fp, story_yield_force=(3e6,) * 4),
+                 engine.Building(isolator=tfp)):
     engine.simulate(pair, 0.01, wall, building, backend="numba")
 """
-SCRIPTS = (PLANAR, IN_PLAN)
-"""What each process runs: the planar kernel on 1, 4 and 8 stories, linear and yielding, on 20
-yielding, and on friction pendulums (a kernel per isolator law) on 4, linear and yielding, and
-8 yielding; then on 20 linear, on 4 IMK stories, in plan (linear, bilinear and IMK stories,
-and on friction pendulums) and
-twisting (the default 16 bearings, 8 contact points; on bilinear isolators and on friction
-pendulums): about as long each."""
+TWISTING = COMMON + """
+for isolator in (engine.Isolator.bilinear(), fp):
+    engine.simulate(pair, 0.01, wall, engine.Building(
+        isolator=isolator, torsion=engine.Torsion(plan_size=(30.0, 20.0))), backend="numba")
+"""
+SCRIPTS = (IN_PLAN, SHORT, TALL, TWISTING)
+"""What each process runs, about as long each (the longest first): in plan, the kernel of
+linear, bilinear and IMK stories on bilinear isolators, of linear and bilinear stories on
+friction pendulums and of linear ones on triple friction pendulums; planar, on 1, 4 and 8
+stories, linear and yielding, on 15 linear, and on one yielding story on friction pendulums;
+on 20 stories linear and yielding, on friction pendulums (4 stories linear and yielding, 8 and
+20 yielding), on triple friction pendulums and on 4 IMK stories; twisting (the default 16
+bearings, 8 contact points) on bilinear isolators and on friction pendulums. These are every
+variant the suite compiles but the device simulator's."""
 
 
 def warm(root: Path) -> None:
-    """Compile SCRIPTS' kernels in `root`'s checkout, two processes at once; a failure is
-    left to the tests that run those kernels to report."""
+    """Compile SCRIPTS' kernels in `root`'s checkout, a process each, all at once; a failure
+    is left to the tests that run those kernels to report."""
     processes = [subprocess.Popen([sys.executable, "-c", script], cwd=root,
                                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
                  for script in SCRIPTS]

@@ -14,6 +14,8 @@ the executor only runs batches. The interface (`Store`):
                            progress=None, report=None), accel the record's samples
     store.accept(batch, output)  on the client, as each batch finishes, with what the
                            function returned
+    store.part(batch, start, stop)  optional: the batch's members start:stop as a batch of
+                           their own, kept on its own (a store without it keeps whole batches)
 
 Batches of the longest records run first (a long record's batch starting last would leave
 workers idle). In this process the compiled kernel spreads each batch over every core with
@@ -27,6 +29,7 @@ memory manager drops extra replicas within seconds), and every batch of the reco
 """
 from __future__ import annotations
 
+import time
 import uuid
 from collections import Counter
 from typing import Protocol
@@ -45,6 +48,14 @@ from .dask_client import client, silence_dask
 # runs on another worker, until it has been on distributed.scheduler.allowed-failures + 1 dead
 # ones (3 + 1 by default), when it fails with KilledWorker.
 RETRIES = 2
+
+KEEP_SECONDS = 5.0
+"""s: the most compute a part of a batch run in this process takes before its work is kept
+(where the store can keep a part: `store.part`), whatever the batch size: each part is sized
+from the last one's pace, the run's first from FIRST_PART members. A member's peaks do not
+depend on the members run beside it, so the parts give the batch's numbers."""
+FIRST_PART = 256
+"""Members of the first part a run measures its pace on (at most the batch)."""
 
 DEVICE_RESOURCES = {"GPU": 1}
 """What a batch on the device takes of a dask worker (dask's worker resources): one GPU, so
@@ -83,7 +94,7 @@ def execute(store: Store, *, workers: int, scheduler, batch_size: int,
     progress = Progress(store.total, store.total - sum(b.size for b in batches), quiet)
     try:
         if batches and in_process:
-            _run_here(store, batches, progress)
+            _run_here(store, batches, progress, device)
         elif batches:
             _run_on_dask(store, batches, workers, scheduler, progress, device)
     except KeyboardInterrupt:
@@ -93,17 +104,39 @@ def execute(store: Store, *, workers: int, scheduler, batch_size: int,
     progress.close()
 
 
-def _run_here(store: Store, batches: list[Batch], progress: Progress) -> None:
-    for batch in batches:
-        function, args = store.task(batch)
-        # The kernel returns to Python every ~1% of the steps to report progress, which is
-        # also where Ctrl-C takes effect: always pass the callback.
-        output = function(store.records[batch.record].accel, *args,
-                          progress=lambda step, steps, b=batch:
-                          progress.running(b.key, b.size * step / steps))
-        with sigint_held():  # a batch kept is a batch counted: Interrupted says so
-            store.accept(batch, output)
-            progress.advance(batch.size, batch.key)
+def _run_here(store: Store, batches: list[Batch], progress: Progress,
+              device: bool = False) -> None:
+    pace = {"last": None}  # s per member and record sample, the last part's (None: not yet)
+    for whole in batches:
+        samples_ = len(store.records[whole.record].accel)
+        for batch in _parts(store, whole, samples_, pace, device):
+            function, args = store.task(batch)
+            started = time.perf_counter()
+            # The kernel returns to Python every ~1% of the steps to report progress, which is
+            # also where Ctrl-C takes effect: always pass the callback.
+            output = function(store.records[batch.record].accel, *args,
+                              progress=lambda step, steps, b=batch:
+                              progress.running(b.key, b.size * step / steps))
+            pace["last"] = (time.perf_counter() - started) / (batch.size * samples_)
+            with sigint_held():  # a batch kept is a batch counted: Interrupted says so
+                store.accept(batch, output)
+                progress.advance(batch.size, batch.key)
+
+
+def _parts(store: Store, batch: Batch, samples_: int, pace, device: bool):
+    """The batch in parts of about KEEP_SECONDS of compute each, sized as they come from the
+    last part's pace (pace["last"]: s per member and sample, None before any); the batch whole
+    where the store keeps whole batches only, or on the device (one launch holds a batch)."""
+    if device or not hasattr(store, "part"):
+        yield batch
+        return
+    start = 0
+    while start < batch.size:
+        known = pace["last"]
+        size = FIRST_PART if known is None else int(KEEP_SECONDS / max(known * samples_, 1e-12))
+        stop = min(batch.size, start + max(size, 1))
+        yield batch if (start, stop) == (0, batch.size) else store.part(batch, start, stop)
+        start = stop
 
 
 def _run_on_dask(store: Store, batches: list[Batch], workers: int, scheduler,

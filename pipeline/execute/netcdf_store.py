@@ -253,6 +253,14 @@ class NetCDFStore:
                                           batch_key(context, members[which])))
         return todo
 
+    def part(self, batch: batches.Batch, start: int, stop: int) -> batches.Batch:
+        """The batch's members start:stop as a batch of their own (kept on its own: the
+        executor keeps a long batch's work a part at a time)."""
+        which = batch.members[start:stop]
+        return batches.Batch(batch.record, which, which.size,
+                             batch_key(self.contexts[batch.record],
+                                       self.grid.members_of(batch.record)[which]))
+
     def task(self, batch: batches.Batch) -> tuple:
         """The peaks of the batch: batches.simulate_batch."""
         run = self.run

@@ -169,8 +169,10 @@ class ZarrStore:
             except Exception:  # noqa: BLE001 - anything unreadable is not this sweep's store
                 same = False
             if not same:
-                raise SweepError(f"out: {out} holds another sweep (or no store): it is kept. "
-                                 "Give --force (force=True) to replace it, or another path")
+                told = f"{out} holds another sweep (or no store): it is kept. Give {{}} to " \
+                    "replace it, or another {}"
+                raise SweepError(told.format("force=True", "out"),
+                                 told.format("--force", "--out"))
             target = int(group.attrs["members_per_chunk"])  # the store's chunks, not batch_size
         self.regions = regions_for(grid, len(run.records), target)
         if resuming:

@@ -169,7 +169,7 @@ class Recipe:
     def main(self, argv=None) -> int:
         args = self.parser().parse_args(argv)
         from engine import EngineError
-        from pipeline.errors import SweepError
+        from pipeline.errors import SweepError, said
         from pipeline.records import RecordError
 
         try:
@@ -177,7 +177,7 @@ class Recipe:
                 return self._run(args)
         except (EngineError, SweepError, RecordError) as err:
             # Bad input: one line. Anything else is a bug and keeps its traceback.
-            print(f"{self.name}: error: {' '.join(str(err).split())}", file=sys.stderr)
+            print(f"{self.name}: error: {said(err)}", file=sys.stderr)
             return 2
         except KeyboardInterrupt as stop:
             told = interrupted(stop, getattr(args, 'work_dir', None)) if self.resumable else \

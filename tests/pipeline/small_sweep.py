@@ -1,6 +1,7 @@
 """The small sweep several of the pipeline's tests run: two short synthetic records (8 s) and a
 coarse, stable dt keep it to about a second; archives compared bar their creation time."""
 import numpy as np
+import pytest
 import xarray as xr
 
 from pipeline.execute import batches as batches_module
@@ -42,3 +43,23 @@ def no_compute(monkeypatch):
         raise AssertionError("simulated despite bad input")
 
     monkeypatch.setattr(batches_module, "simulate_batch", fail)
+
+
+def killed_after_three_batches(monkeypatch, kwargs) -> None:
+    """pipeline.sweep(RECORDS, **kwargs) killed once its third batch is kept."""
+    import pipeline
+    from pipeline.execute import netcdf_store
+
+    real_save = netcdf_store.WorkFolder.save
+    saved = []
+
+    def dying_save(self, *args):
+        real_save(self, *args)
+        saved.append(1)
+        if len(saved) == 3:
+            raise Killed
+
+    monkeypatch.setattr(netcdf_store.WorkFolder, "save", dying_save)
+    with pytest.raises(Killed):
+        pipeline.sweep(RECORDS, **kwargs)
+    monkeypatch.setattr(netcdf_store.WorkFolder, "save", real_save)

@@ -95,3 +95,17 @@ def test_a_history_the_sweep_cannot_keep_is_refused_before_compute(extra, said, 
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and said in err, err
     assert not out.exists() and not list(tmp_path.iterdir())
+
+
+def test_an_archive_of_another_sweep_is_refused_with_the_command_lines_options(tmp_path,
+                                                                               capsys):
+    from studies import sweep as cli
+
+    out = ["--out", str(tmp_path / "x.nc"), "--quiet", "--records", "pacoima", "--dt", "0.004"]
+    assert cli.main([*out, "--gap", "0.2"]) == 0
+    kept = (tmp_path / "x.nc").read_bytes()
+    capsys.readouterr()
+    assert cli.main([*out, "--gap", "0.3"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()[-1]  # after the coarse step's warning
+    assert err.startswith("error: ") and "Give --force to replace it, or another --out" in err
+    assert "force=True" not in err and (tmp_path / "x.nc").read_bytes() == kept

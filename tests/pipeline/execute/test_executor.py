@@ -1,5 +1,5 @@
-"""The executor (pipeline/execute/executor.py): worker processes and a dask scheduler change no
-number of the small sweep."""
+"""The executor (pipeline/execute/executor.py): worker processes, a dask scheduler and a batch
+kept in parts change no number of the small sweep."""
 
 import xarray as xr
 
@@ -8,6 +8,7 @@ from tests.pipeline.small_sweep import (
     RECORDS,
     SMALL,
     assert_same_archive,
+    killed_after_three_batches,
 )
 
 
@@ -23,3 +24,24 @@ def test_workers_and_scheduler_do_not_change_results(reference, tmp_path):
     assert_same_archive(remote, reference)
     with xr.open_dataset(tmp_path / "two.nc") as back:
         assert_same_archive(back.load(), reference)
+
+
+def test_a_batch_is_kept_a_part_at_a_time_whatever_its_size(reference, tmp_path, monkeypatch,
+                                                            count_simulated):
+    """Issue 40: work is kept every KEEP_SECONDS of compute, not a batch at a time. With the
+    parts shrunk to the least (a first part of 2 members, then 1), a run in one batch per
+    record keeps its work part by part, killed after three parts it has kept 4 simulations,
+    and resumed it computes only the rest and gives the reference's archive bit for bit."""
+    from pipeline.execute import executor
+
+    monkeypatch.setattr(executor, "FIRST_PART", 2)
+    monkeypatch.setattr(executor, "KEEP_SECONDS", 1e-12)
+    out, work = tmp_path / "parts.nc", tmp_path / "parts.nc.work"
+    kwargs = dict(**SMALL, workers=1, batch_size=100, baseline=True, unconstrained=True,
+                  quiet=True, out=out)
+    killed_after_three_batches(monkeypatch, kwargs)
+    assert count_simulated == [2, 1, 1] and len(list(work.glob("*.npz"))) == 3
+    count_simulated.clear()
+    ds = pipeline.sweep(RECORDS, **kwargs)
+    assert count_simulated == [2] + [1] * (2 * (6 + 3 + 1) - 4 - 2)  # the rest, in parts
+    assert_same_archive(ds, reference)

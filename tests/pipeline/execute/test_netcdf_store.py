@@ -12,26 +12,10 @@ from tests.pipeline.small_sweep import (
     SMALL,
     Killed,
     assert_same_archive,
+    killed_after_three_batches,
 )
 
 # --------------------------------------------------------------------------- resuming
-
-
-def _killed_after_three_batches(monkeypatch, kwargs) -> None:
-    """pipeline.sweep(RECORDS, **kwargs) killed once its third batch is kept."""
-    real_save = netcdf_store.WorkFolder.save
-    saved = []
-
-    def dying_save(self, *args):
-        real_save(self, *args)
-        saved.append(1)
-        if len(saved) == 3:
-            raise Killed
-
-    monkeypatch.setattr(netcdf_store.WorkFolder, "save", dying_save)
-    with pytest.raises(Killed):
-        pipeline.sweep(RECORDS, **kwargs)
-    monkeypatch.setattr(netcdf_store.WorkFolder, "save", real_save)
 
 
 def test_interrupted_sweep_resumes_with_only_the_rest(reference, tmp_path, monkeypatch,
@@ -40,7 +24,7 @@ def test_interrupted_sweep_resumes_with_only_the_rest(reference, tmp_path, monke
     work = tmp_path / "resume.nc.work"
     kwargs = dict(**SMALL, workers=1, baseline=True, unconstrained=True, batch_size=2,
                   quiet=True, out=out)
-    _killed_after_three_batches(monkeypatch, kwargs)
+    killed_after_three_batches(monkeypatch, kwargs)
     assert not out.exists() and len(list(work.glob("*.npz"))) == 3
 
     count_simulated.clear()
@@ -92,7 +76,7 @@ def test_a_run_with_other_options_keeps_the_interrupted_runs_work(tmp_path, monk
 
     out, work = tmp_path / "keep.nc", tmp_path / "keep.nc.work"
     first = dict(**SMALL, workers=1, batch_size=2, quiet=True, out=out)
-    _killed_after_three_batches(monkeypatch, first)
+    killed_after_three_batches(monkeypatch, first)
     kept = sorted(p.name for p in work.glob("*.npz"))
     assert len(kept) == 3  # 3 batches of 2: 6 of the 12 simulations
 

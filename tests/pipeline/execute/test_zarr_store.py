@@ -15,7 +15,7 @@ import xarray as xr
 import zarr
 
 import pipeline
-from pipeline.errors import SweepError
+from pipeline.errors import SweepError, said
 from pipeline.execute.zarr_store import block_chunks
 
 PROJECT = Path(__file__).resolve().parents[3]
@@ -64,8 +64,10 @@ def test_store_equals_netcdf_here_and_on_workers(record, reference, tmp_path):
 
 def test_a_store_of_another_sweep_is_refused(record, tmp_path):
     pipeline.sweep([record], out=tmp_path / "a.zarr", gap=0.2, quiet=True)
-    with pytest.raises(SweepError, match="holds another sweep"):
+    with pytest.raises(SweepError, match="holds another sweep") as refused:
         pipeline.sweep([record], out=tmp_path / "a.zarr", gap=0.3, quiet=True)
+    assert "Give force=True to replace it, or another out" in str(refused.value)
+    assert "Give --force to replace it, or another --out" in said(refused.value)
 
 
 def test_resume_after_the_client_is_killed(record, reference, tmp_path):

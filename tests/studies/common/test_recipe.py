@@ -15,7 +15,7 @@ import pytest
 import xarray as xr
 
 import pipeline
-from pipeline.errors import SweepError
+from pipeline.errors import SweepError, said
 from studies.common.recipe import Recipe
 from tests.pipeline.small_sweep import RECORDS
 
@@ -123,8 +123,11 @@ def test_sweep_archive_replaced_only_by_the_same_sweep(tmp_path):
     first = pipeline.sweep(RECORDS, **small)
     assert len(first.attrs["configuration_key"]) == 64
     pipeline.sweep(RECORDS, **small)  # the same sweep: replaced
-    with pytest.raises(SweepError, match="another configuration.*is kept"):
+    with pytest.raises(SweepError, match="another configuration.*is kept") as refused:
         pipeline.sweep(RECORDS, **{**small, "gap": [0.08, 0.14]})
+    # advice in its reader's spelling: Python's arguments here, the options on the command line
+    assert "Give force=True to replace it, or another out" in str(refused.value)
+    assert "Give --force to replace it, or another --out" in said(refused.value)
     with xr.open_dataset(out) as ds:
         np.testing.assert_array_equal(ds.gap, [0.08, 0.12])
     pipeline.sweep(RECORDS, **{**small, "gap": [0.08, 0.14]}, force=True)
