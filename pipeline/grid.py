@@ -205,6 +205,10 @@ def make_grid(gap=None, *, impact: str = "bumper", isolator: str = "bilinear",
         values[name] = plausible(name, param, checked_values(param, array, name))
         if is_swept:
             swept.append(name)
+    crowded = getattr(LAWS[impact], "crowded", None)  # a law whose walls hold a count
+    problem = None if crowded is None else crowded(values)
+    if problem is not None:
+        raise SweepError(problem)
     if baseline and impact != "bumper":
         raise SweepError(f"baseline compares bumpers with the bare wall: it needs "
                          f"impact='bumper', not {impact!r}")

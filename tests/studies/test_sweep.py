@@ -109,3 +109,28 @@ def test_an_archive_of_another_sweep_is_refused_with_the_command_lines_options(t
     err = capsys.readouterr().err.strip().splitlines()[-1]  # after the coarse step's warning
     assert err.startswith("error: ") and "Give --force to replace it, or another --out" in err
     assert "force=True" not in err and (tmp_path / "x.nc").read_bytes() == kept
+
+
+def test_more_bumpers_than_a_wall_holds_are_refused_and_the_advice_runs(tmp_path, capsys,
+                                                                        monkeypatch):
+    """Issue 40: `--n-bumpers 1000` on one wall ran. Now refused before compute in one line
+    giving the most 150 mm pads an 18 m wall holds; that count, as advised, runs and a wall of
+    them stays a plausible wall (impacts, a finite peak)."""
+    from studies import sweep as cli
+    from tests.pipeline.small_sweep import no_compute
+
+    at2 = tmp_path / "PULSE_A.AT2"
+    write_at2(at2, RECORDS[0])
+    out = tmp_path / "x.nc"
+    common = ["--records", str(at2), "--gap", "0.06", "--thickness", "0.03", "--dt", str(DT),
+              "--quiet", "--out", str(out)]
+    with monkeypatch.context() as nothing_runs:
+        no_compute(nothing_runs)
+        assert cli.main([*common, "--n-bumpers", "4", "1000"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "need 300 m of moat wall" in err, err
+    assert "give at most 60 bumpers a side" in err and not out.exists()
+    assert cli.main([*common, "--n-bumpers", "4", "60"]) == 0
+    with xr.open_dataset(out) as ds:
+        assert ds.n_bumpers.values.tolist() == [4, 60] and np.all(ds.n_impacts > 0)
+        assert np.all(np.isfinite(ds.peak_isolator_disp)) and np.all(ds.peak_isolator_disp > 0)

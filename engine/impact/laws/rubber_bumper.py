@@ -142,6 +142,32 @@ moderately rectangular (E_c = E (1 + 2 S^2)): the shape_k the design study uses 
 docstring; UNVERIFIED for the paper's rubber, whose hardness is not given)."""
 
 
+WALL_LENGTH = 18.0
+"""m: the length of moat wall one side's bumpers sit on where nothing else gives it (a planar
+run has no plan; the design study's default wall): NOT the paper's, which gives no plan. Its
+bumpers fit when 2 n side <= it (`most_bumpers`)."""
+
+
+def most_bumpers(area, wall_length=WALL_LENGTH) -> int:
+    """The most square pads of `area` (m^2) one side's wall of `wall_length` (m) holds, a pad's
+    side apart (2 n sqrt(A) <= L: the design study's rule): 60 of the paper's 150 mm pads on
+    18 m."""
+    return int(np.floor(wall_length / (2.0 * np.sqrt(area)) + 1e-9))
+
+
+def crowded(values) -> str | None:
+    """Why a sweep's bumper counts (values["n_bumpers"], each; the pad of the declared area)
+    cannot sit on a moat wall of WALL_LENGTH, or None where they fit."""
+    counts = np.asarray(values.get("n_bumpers", PARAMETERS.n_bumpers.default), dtype=float)
+    area, most = PARAMETERS.area.default, most_bumpers(PARAMETERS.area.default)
+    if not np.any(counts > most):
+        return None
+    n = float(counts[counts > most][0])
+    return (f"n_bumpers {n:g}: {n:g} pads of {np.sqrt(area) * 1e3:g} mm a side, a side apart, "
+            f"need {2 * n * np.sqrt(area):g} m of moat wall; a wall is taken as "
+            f"{WALL_LENGTH:g} m where no plan gives it: give at most {most} bumpers a side")
+
+
 def shape_factor(area, thickness):
     """Shape factor S (-) of a square pad: loaded area over the area free to bulge,
     A / (4 sqrt(A) t) = side / (4 t) (area m^2, thickness m). The paper's 150 x 150 x 50 mm

@@ -188,3 +188,12 @@ def test_design_search_uses_the_shape():
     assert keys[0] != keys[1]
     assert search._dynamics(space.row(table, 0)) [:3] == search._dynamics(space.row(table, 1))[:3]
     assert "S 0.5, k_st 0.5 x Eq. 11's" in search.describe(table, 0, 1.0)
+
+
+def test_a_wall_holds_its_length_over_two_pad_sides():
+    from engine.impact.laws.rubber_bumper import WALL_LENGTH, crowded, most_bumpers
+
+    assert most_bumpers(0.15 ** 2) == 60 == int(WALL_LENGTH / 0.3)  # 2 x 60 x 0.15 m = 18 m
+    assert most_bumpers(0.15 ** 2, wall_length=17.99) == 59
+    assert crowded({"n_bumpers": np.array([4, 60])}) is None
+    assert "give at most 60" in crowded({"n_bumpers": np.array([4, 61])})
