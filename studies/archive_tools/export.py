@@ -94,6 +94,17 @@ def story_heights(ds, given) -> np.ndarray:
     if len(given) not in (1, n) or not all(np.isfinite(given)) or min(given) <= 0:
         raise ArchiveError(f"--story-height-m: give one positive height or {n} (one per "
                            f"story), in m; got {' '.join(f'{h:g}' for h in given)}")
+    # A story's height as the building declares a plausible one (a 300 m story, a slip for
+    # cm or mm, would make every drift ratio 100 times too small).
+    from engine.building import FIELDS
+    from engine.parameters import interval, outside
+
+    plausible = FIELDS["story_height"].plausible
+    odd = np.asarray(given, float)[outside(np.asarray(given, float),
+                                           interval("story_height", plausible))]
+    if odd.size:
+        raise ArchiveError(f"--story-height-m: a story {odd[0]:g} m high is implausible "
+                           f"(outside {plausible} m); give the heights in m")
     return np.broadcast_to(np.asarray(given, dtype=float), (n,)).copy()
 
 
@@ -157,7 +168,7 @@ def main(argv: list[str] | None = None) -> int:
         print("error: " + " ".join(str(err).split()), file=sys.stderr)
         return 2
     rows = len(table) - (1 if args.pelicun else 0)
-    print(f"wrote {target} ({rows} runs, {table.shape[1]} columns)")
+    print(f"wrote {target} ({rows} run{'' if rows == 1 else 's'}, {table.shape[1]} columns)")
     return 0
 
 

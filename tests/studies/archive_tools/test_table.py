@@ -26,6 +26,9 @@ def test_bad_input_is_one_line_exit_2_nothing_written(archive, tmp_path, capsys)
         (export.main, [str(text), "--csv", str(out)], "not a NetCDF or Zarr archive"),
         (export.main, [str(other), "--csv", str(out)], "peak_total_accel"),
         (export.main, [str(path), "--pelicun", str(out)], "--story-height-m"),
+        # a height in cm for one in m (issue 40): every drift ratio 100 times too small
+        (export.main, [str(path), "--pelicun", str(out), "--story-height-m", "350"],
+         "a story 350 m high is implausible (outside [1.5, 30] m)"),
         (export.main, [str(path), "--csv", str(out), "--sel", "gap=0.5"], "0.06, 0.1"),
         (export.main, [str(path), "--csv", str(out), "--sel", "gapp=1"], "n_bumpers"),
         (export.main, [str(path), "--csv", str(tmp_path / "out.xlsx")], ".csv"),
