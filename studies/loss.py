@@ -40,6 +40,9 @@ design earthquake (2/3, ASCE 7-22 section 11.4.5), the MCE_R and 1.5 x MCE_R."""
 QUICK_LEVELS = (1.0, 1.5)
 FLOOR_AREA = 900.0
 """Floor area per story, m^2 (a 30 m square plan: a stated choice)."""
+PLAUSIBLE_FLOOR_AREA = (20.0, 1e5)
+"""m^2: the floor area of one story a loss study takes (a stated range: a room to about the
+largest floor plates built, 10 ha; 9,000,000 is most likely a slip)."""
 QUICK_SAMPLES = 100
 QUANTILES = (0.1, 0.5, 0.9)
 """The repair cost's and time's quantiles over the realizations."""
@@ -78,8 +81,11 @@ def compute(args):
         args.samples = QUICK_SAMPLES if args.quick else p58.SAMPLES
     if not 50 <= args.samples <= 100_000:
         raise SweepError(f"--samples must be 50 to 100000 realizations, got {args.samples}")
-    if not args.floor_area > 0:
-        raise SweepError(f"--floor-area must be positive (m^2), got {args.floor_area:g}")
+    low, high = PLAUSIBLE_FLOOR_AREA
+    if not low <= args.floor_area <= high:
+        raise SweepError(f"--floor-area {args.floor_area:g} m^2 is implausible for one story "
+                         f"(outside [{low:g}, {high:g}] m^2); give the floor area of a story "
+                         "in m^2")
     try:
         rows = p58.read_inventory(args.inventory)
     except ValueError as e:

@@ -35,6 +35,10 @@ OVERSTRENGTH = 2.0
 """Story strength over its design shear: stated choice, the overstrength factor Omega_0 of a
 steel special concentrically braced frame (ASCE 7-22 Table 12.2-1). A designed building's
 actual overstrength depends on its design (FEMA P695 measures it by pushover)."""
+PLAUSIBLE_OVERSTRENGTH = (1.0, 3.0)
+"""The overstrength a study takes: at least the design shear, at most 3, the largest Omega_0
+of ASCE 7-22 Table 12.2-1 (a stated bound; a pushover's measured overstrength of a real frame
+seldom exceeds it)."""
 STORY_HEIGHT = 3.5
 """m: the height of every story of a building that states none (the paper's building gives no
 heights; stated choice, a typical office story)."""

@@ -15,6 +15,7 @@ from .options import (
     add_bound,
     add_moat,
     add_stories,
+    checked_gaps,
     chosen_pairs,
     scaled_suite,
     site_options,
@@ -81,7 +82,7 @@ def compute(args):
     fractions = gap_fractions(suite.design)
     if args.quick:
         fractions = fractions[[0, 2]]
-    gaps = fractions * suite.design.d_m
+    gaps = checked_gaps(fractions * suite.design.d_m, suite.design)
     mode, swept = run(suite, levels, gaps, counts, args)
     intensity, at_intensity = refined(suite, levels, gaps, counts, mode, args,
                                       args.refinements)

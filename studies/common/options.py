@@ -11,6 +11,8 @@ import math
 from collections.abc import Sequence
 from pathlib import Path
 
+import numpy as np
+
 from engine.results import WALLS
 from engine.units import KN_PER_MM
 from pipeline.motions.bounds import (
@@ -19,6 +21,7 @@ from pipeline.motions.bounds import (
     DEFAULT_BOUND,
     LAMBDA_MAX,
     LAMBDA_MIN,
+    PLAUSIBLE_FACTORS,
 )
 from pipeline.motions.code_suite import DEFAULT_RULE, RULE_TEXT, SITE
 
@@ -190,7 +193,31 @@ def property_factors(args):
     if not (math.isfinite(low) and 0 < low <= 1):
         raise SweepError(f"--lambda-min must be in (0, 1] (the lower bound's factor), got "
                          f"{low:g}")
+    most, least = PLAUSIBLE_FACTORS
+    if high > most or low < least:
+        option, value, bound = ("--lambda-max", high, f"above {most:g}") if high > most \
+            else ("--lambda-min", low, f"below {least:g}")
+        raise SweepError(f"{option} {value:g} is implausible ({bound}: a bound no bearing's "
+                         f"tests support); give the factor itself, e.g. {option} "
+                         f"{LAMBDA_MAX if option == '--lambda-max' else LAMBDA_MIN:g}")
     return PropertyFactors.uniform(high, low)
+
+
+def checked_gaps(gaps, design) -> np.ndarray:
+    """A study's gaps (m), fractions of the code's D_M or D_TM (design: its IsolationDesign):
+    SweepError, one line, naming the design where one lies beyond any moat (GAP's plausible
+    range: the sweep would take it for a gap typed in cm)."""
+    from engine.impact.parameters import GAP
+    from pipeline.errors import SweepError
+
+    gaps = np.asarray(gaps, dtype=float)
+    if GAP.implausible(gaps).size:
+        raise SweepError(f"the code's design gives D_M {design.d_m:.3g} m and D_TM "
+                         f"{design.d_tm:.3g} m (T_M {design.t_m:.3g} s), and the study's gaps "
+                         f"up to {gaps.max():.3g} m, beyond a plausible moat's gap, {GAP.plausible} m: check "
+                         "the site (--sm1-g, --sms-g), the bound (--bound, --lambda-min) and the "
+                         "building's isolators")
+    return gaps
 
 
 SITE_OPTIONS = {  # attribute: (option, what, unit, largest plausible value)
@@ -227,6 +254,19 @@ def checked_site(args) -> None:
                              f"{largest:g} {unit}){hint}")
 
 
+def checked_overstrength(value: float) -> float:
+    """--overstrength within PLAUSIBLE_OVERSTRENGTH (SweepError, one line, otherwise)."""
+    from pipeline.errors import SweepError
+    from pipeline.motions.superstructure import PLAUSIBLE_OVERSTRENGTH
+
+    low, high = PLAUSIBLE_OVERSTRENGTH
+    if not (math.isfinite(value) and low <= value <= high):
+        raise SweepError(f"--overstrength {value:g} is implausible (outside [{low:g}, "
+                         f"{high:g}]: a story's strength over its design shear, at most the "
+                         "largest Omega_0 of ASCE 7-22 Table 12.2-1)")
+    return value
+
+
 def scaled_suite(args, pairs, names):
     """The pairs scaled to the site's MCE_R by --rule (pipeline.motions.code_suite), for the
     building run at --bound (a study without add_bound's options: the nominal bound, the
@@ -252,6 +292,7 @@ def scaled_suite(args, pairs, names):
                            factors=factors, target=target)
         stories = getattr(args, "stories", "linear")
         if stories != "linear":
+            checked_overstrength(args.overstrength)
             suite = suite.with_superstructure(stories, r_i=args.r_i,
                                               overstrength=args.overstrength)
         return suite

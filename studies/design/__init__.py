@@ -88,6 +88,7 @@ from ..common.options import (
     add_moat,
     add_stories,
     add_wall_capacity,
+    checked_gaps,
     chosen_pairs,
     scaled_suite,
     site_options,
@@ -199,7 +200,7 @@ def design_gap(args, design) -> float:
         gap = (GAP_FRACTION if args.gap_dm is None else args.gap_dm) * design.d_m
     if not gap > 0:
         raise SweepError(f"the gap must be positive, got {gap:g} m")
-    return gap
+    return gap if args.gap_cm is not None else float(checked_gaps([gap], design)[0])
 
 
 def compute(args):

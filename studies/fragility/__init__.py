@@ -48,6 +48,7 @@ from ..common.options import (
     add_stories,
     add_wall_capacity,
     bare_wall_text,
+    checked_gaps,
     chosen_pairs,
     scaled_suite,
     site_options,
@@ -146,7 +147,7 @@ def compute(args):
     suite = scaled_suite(args, pairs, names)  # at --bound: its building, its D_M and D_TM
     levels = np.array(QUICK_LEVELS if args.quick else LEVELS)
     fractions = np.array([*GAPS, suite.design.d_tm / suite.design.d_m])
-    gaps = fractions * suite.design.d_m
+    gaps = checked_gaps(fractions * suite.design.d_m, suite.design)
     peaks, swept = run(suite, levels, gaps, args)
     ds = _dataset(suite, levels, fractions, gaps, peaks, args)
     return ds.assign_attrs({**provenance(swept), **ds.attrs})
