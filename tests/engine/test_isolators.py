@@ -187,11 +187,16 @@ def test_stories_that_never_yield_are_linear(backend):
     _assert_close(_run(strong, backend), _run(Building(), backend), 1e-9)
 
 
-@pytest.mark.parametrize("n", [1, 8, 20])
-def test_both_loops_agree_on_any_height(n):
+# A kernel compiles per number of levels and isolator law (engine/loops/numba_loop.py), the
+# laws' physics alike at every height: the friction pendulum on 8 stories, the bilinear
+# isolator on 1 and 20 (kernels the suite compiles anyway, tests/warm_kernels.py).
+@pytest.mark.parametrize("n, isolator", [(1, Isolator.bilinear()),
+                                         (8, Isolator.friction_pendulum(**FP)),
+                                         (20, Isolator.bilinear())])
+def test_both_loops_agree_on_any_height(n, isolator):
     yields = tuple(np.linspace(6e6, 2e6, n))
     building = Building(masses=(500e3,) + (400e3,) * n, story_stiffness=(900e6,) * n,
-                        isolator=Isolator.friction_pendulum(**FP), story_yield_force=yields)
+                        isolator=isolator, story_yield_force=yields)
     fast, ref = _run(building, "numba", 8.0), _run(building, "numpy", 8.0)
     assert fast.peak_total_accel.shape == (3, n + 1)
     assert fast.peak_interstory_drift.shape == (3, n)
