@@ -49,10 +49,9 @@ LAMBDA_MAX = 1.8
 LAMBDA_MIN = 0.8
 """Default lower-bound property modification factor on Q_d and K_d (UNVERIFIED: FACTORS_SOURCE)."""
 PLAUSIBLE_FACTORS = (3.0, 0.3)
-"""The largest lambda_max and the smallest lambda_min a study takes: beyond them a bound no
-bearing's tests support (a stated choice, not the standard's: the defaults above are 1.8 and
-0.8, the project's own factors seldom beyond 2.5 and 0.4); a factor of 15 is most likely 1.5
-typed without its point."""
+"""The largest lambda_max and the smallest lambda_min a study takes (a stated choice, not the
+standard's: 2.5 and 3.5 times the defaults' distance from 1): a factor outside them is most
+likely a slip (15 for 1.5, typed without its point)."""
 FACTORS_SOURCE = (
     "ASCE 7-22 section 17.2.8.4 (property modification factors lambda_max = (1 + 0.75 "
     "(lambda_ae,max - 1)) lambda_test,max lambda_spec,max and lambda_min likewise, eqs. 17.2-1 "

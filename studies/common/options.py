@@ -214,9 +214,9 @@ def checked_gaps(gaps, design) -> np.ndarray:
     if GAP.implausible(gaps).size:
         raise SweepError(f"the code's design gives D_M {design.d_m:.3g} m and D_TM "
                          f"{design.d_tm:.3g} m (T_M {design.t_m:.3g} s), and the study's gaps "
-                         f"up to {gaps.max():.3g} m, beyond a plausible moat's gap, {GAP.plausible} m: check "
-                         "the site (--sm1-g, --sms-g), the bound (--bound, --lambda-min) and the "
-                         "building's isolators")
+                         f"up to {gaps.max():.3g} m, beyond a plausible moat's gap, "
+                         f"{GAP.plausible} m: check the site (--sm1-g, --sms-g), the bound "
+                         "(--bound, --lambda-min) and the building's isolators")
     return gaps
 
 
