@@ -59,8 +59,8 @@ def plausible(name: str, param, array: np.ndarray, option: bool = True) -> np.nd
     if bad.size == 0:
         return array
     worst = float(bad[0])
-    text = f"{name} {worst:g} {param.units} is implausible (outside {param.plausible} " \
-           f"{param.units})"
+    unit = "" if param.units == "1" else f" {param.units}"  # a ratio: no unit to say
+    text = f"{name} {worst:g}{unit} is implausible (outside {param.plausible}{unit})"
     if param.units in UNIT_SLIPS:
         unit, factor, suffix = UNIT_SLIPS[param.units]
         text += f": give {param.units} ({worst:g} {unit} is {worst * factor:g} {param.units})"

@@ -222,6 +222,20 @@ def sweep(records, **keywords):
                          Output(o.out, o.work_dir, o.force))
 
 
+def check_levels(grid, recs, names) -> None:
+    """RecordError where the grid's largest intensity level takes a record's PGA beyond what
+    earthquakes have recorded (records.plausible.check_level): `kobe*100` is refused, and so
+    is level 100 on kobe."""
+    from .records.plausible import check_level
+
+    levels = grid.every_member["level"]
+    if np.all(np.isnan(levels)):
+        return
+    top = float(np.nanmax(levels))
+    for record, name in zip(recs, names, strict=True):
+        check_level(record.pga, top, name)
+
+
 def completed_sweep():
     """`sweep`, its signature listing the sweep parameters by name (keyword-only, default
     None) for help() and IDEs: what `pipeline.sweep` is. Deriving them imports the impact and
@@ -280,6 +294,8 @@ def execute_sweep(grid, arguments: dict, conditions: Conditions, compute: Comput
     else:
         recs, names = resolve_records(records, records_dir)
     factors = checked_factors(factors, len(recs))
+    if factors is None:  # levels on the records as they are (a study's levels multiply its
+        check_levels(grid, recs, names)  # suite's factors: its design bounds them)
     if grid.table is not None:
         check_records(grid, len(recs))
     if batch_size is None:

@@ -160,6 +160,19 @@ def check_scaled(unscaled_pga: float, factor: float, where: str) -> None:
                       f"and {_rounded(high, -1)}")
 
 
+def check_level(pga: float, level: float, where: str) -> None:
+    """Refuse an intensity level (a sweep's `level`, on a record run as it is) that takes the
+    record's PGA (m/s^2, as run) beyond what earthquakes have recorded (PGA_BOUNDS_G's top):
+    RecordError, starting with `where` (the record's name), naming the largest level that
+    keeps it inside (rounded down, so that the advice followed runs)."""
+    pga_g = pga * level / G
+    if pga_g <= PGA_BOUNDS_G[1] or pga <= 0.0:
+        return
+    raise RecordError(f"{where}: level {level:g} takes its PGA to {pga_g:.3g} g, implausible "
+                      f"(above {PGA_BOUNDS_G[1]:g} g, the most earthquakes have recorded); give "
+                      f"levels up to {_rounded(PGA_BOUNDS_G[1] * G / pga, -1)}")
+
+
 def _rounded(value: float, direction: int) -> str:
     """`value` to 3 significant digits, rounded up (direction 1) or down (-1)."""
     step = 10.0 ** (np.floor(np.log10(value)) - 2)

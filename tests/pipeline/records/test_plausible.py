@@ -220,3 +220,22 @@ def test_a_scaled_record_or_pair_past_any_recorded_pga_is_refused_before_compute
     assert not list(tmp_path.iterdir())
     with pytest.raises(RecordError, match="RSN953\\*100: a PGA of 51.6 g"):
         pipeline.records.load_pair("RSN953*100")
+
+
+def test_a_level_past_any_recorded_pga_is_refused_and_the_level_it_gives_runs(tmp_path,
+                                                                              capsys):
+    """Issue 40, the same slip by another road: `--level 50` on kobe as it is (PGA 42 g) ran.
+    Refused before compute naming the largest level within 5 g, which runs; a study's levels
+    multiply its suite's factors and are bounded by its design instead (not checked here)."""
+    from tests.pipeline.small_sweep import no_compute
+
+    out = ["--records", "kobe", "--gap", "0.1", "--dt", "0.002", "--quiet", "--out",
+           str(tmp_path / "k.nc")]
+    with pytest.MonkeyPatch.context() as nothing_runs:
+        no_compute(nothing_runs)
+        assert sweep_cli.main([*out, "--level", "1", "50"]) == 2
+    line = capsys.readouterr().err.strip().splitlines()[-1]
+    assert line.startswith("error: kobe: level 50 takes its PGA to 41.7 g, implausible")
+    advised = float(line.split("levels up to ")[1])
+    assert 4.95 < advised * load_record("kobe").pga / G <= 5.0 and not list(tmp_path.iterdir())
+    assert sweep_cli.main([*out, "--level", "1", f"{advised:g}"]) == 0
