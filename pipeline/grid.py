@@ -371,6 +371,12 @@ def buildings_for(members: np.ndarray, building: engine.Building):
     return [variants[i] for i in which.ravel()]
 
 
+FINEST_DT = 1e-6
+"""s: the finest step a sweep takes, 500 x finer than the converged one (engine.DEFAULT_DT;
+a convergence study's finest is some tens of times finer): below it most likely a slip (a
+step in ms or us given as s), a run of days."""
+
+
 def check_dt(grid: Grid, dt: float, building: engine.Building) -> float:
     """Refuse a step at or above the engine's stability limit for any member (s); the
     engine's own checks of every member's parameters (its isolator's too) run here, before
@@ -378,6 +384,11 @@ def check_dt(grid: Grid, dt: float, building: engine.Building) -> float:
     dt = _scalar("dt", dt)
     if not (dt > 0 and math.isfinite(dt)):
         raise SweepError(f"dt must be positive (s), got {dt}")
+    if dt < FINEST_DT:
+        raise SweepError(f"dt = {dt:g} s is implausible (a 40 s record would take "
+                         f"{40.0 / dt:.3g} steps): give a step of at least {FINEST_DT:g} s, "
+                         f"{engine.DEFAULT_DT / FINEST_DT:g} x finer than the converged "
+                         f"{engine.DEFAULT_DT:g} s")
     members = grid.every_member
     worst, limit = 0, math.inf
     # In slices: a million members' contacts and operators at once would take gigabytes.

@@ -8,7 +8,9 @@ from __future__ import annotations
 
 import dataclasses
 import inspect
+import os
 import shutil
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -18,7 +20,7 @@ import engine
 from .assess.sweep_variables import derived_variables
 from .building_file import check_building
 from .checks import check_count, resolve_pairs, resolve_records
-from .errors import SweepError
+from .errors import PlausibilityWarning, SweepError
 from .execute.batches import default_batch_size
 from .execute.executor import execute
 from .execute.netcdf_store import NetCDFStore
@@ -284,6 +286,12 @@ def execute_sweep(grid, arguments: dict, conditions: Conditions, compute: Comput
     model = run_model(moat, building)
     dt = check_dt(grid, engine.DEFAULT_DT if dt is None else dt, building)
     workers = check_count("workers", workers, minimum=0)
+    cores = os.cpu_count() or 1
+    if scheduler is None and workers > cores:
+        warnings.warn(PlausibilityWarning(
+            f"workers = {workers} on a machine of {cores} core{'s' * (cores != 1)}: the "
+            "worker processes share them, the run no faster than with one worker a core"),
+            stacklevel=2)
     backend = check_backend(compute.backend, model, workers if scheduler is None else 1)
     if scheduler is not None and not isinstance(scheduler, str) \
             and not hasattr(scheduler, "submit"):

@@ -24,6 +24,9 @@ from tests.pipeline.small_sweep import RECORDS, SMALL, no_compute
     ({"n_bumpers": [4, 2.5]}, "n_bumpers"),
     ({"dt": 0.05}, "dt"),
     ({"dt": -0.001}, "dt"),
+    ({"dt": 1e-9}, r"dt = 1e-09 s is implausible \(a 40 s record would take 4e\+10 steps\): "
+                   r"give a step of at least 1e-06 s"),  # a run of days (issue 40)
+    ({"n_bumpers": [4, 1000]}, "n_bumpers 1000: 1000 pads of 150 mm"),  # an 18 m wall
     ({"impact": "elastic"}, "impact"),
     ({"impact": "linear"}, "thickness"),  # bumper-only parameter given to another law
     ({"impact": "jankowski", "thickness": None, "n_bumpers": None}, "wall_k"),  # required

@@ -164,3 +164,20 @@ def test_stand_in_is_announced_before_any_compute(monkeypatch, tmp_path, capsys)
     assert rec.found_in == "stand-in"
     found = record_coords([rec, RECORDS[0]], ["kobe", "own"])["record_found_in"]
     assert found.values.tolist() == ["stand-in", "given"]
+
+
+def test_more_worker_processes_than_cores_are_announced(monkeypatch):
+    """Issue 40: `--workers 64` on 2 cores started 64 processes without a word. Said in one
+    warning before any compute (a run that goes on: more workers are slower, not wrong)."""
+    import os
+
+    from pipeline.errors import PlausibilityWarning
+
+    monkeypatch.setattr(os, "cpu_count", lambda: 2)
+    with pytest.warns(PlausibilityWarning, match="workers = 64 on a machine of 2 cores"), \
+            pytest.raises(SweepError):  # stopped right after, by a record that is not there
+        pipeline.sweep(["no-such-record"], gap=0.1, workers=64, quiet=True)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", PlausibilityWarning)
+        with pytest.raises(SweepError):
+            pipeline.sweep(["no-such-record"], gap=0.1, workers=2, quiet=True)
