@@ -51,10 +51,11 @@ def install_cache_locator(kernel_file: Path, physics_files: list[str]) -> None:
 
 
 def kernel_arrays(model: tuple) -> tuple:
-    """`model`'s arrays C-contiguous and writable, a read-only one copied (a one-building
-    batch's broadcast views at B = 1, a read-only record): numba types a read-only array apart
-    and would compile (and cache) every kernel variant a second time for it."""
-    return tuple(np.require(x, requirements=["C", "W"]) if isinstance(x, np.ndarray) else x
+    """`model` with each read-only array copied (C-contiguous; a one-building batch's
+    broadcast views at B = 1, a read-only record): numba types a read-only array apart and
+    would compile (and cache) every kernel variant a second time for it. The others, C-
+    contiguous already, are passed as they are."""
+    return tuple(x.copy() if isinstance(x, np.ndarray) and not x.flags.writeable else x
                  for x in model)
 
 
