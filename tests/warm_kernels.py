@@ -5,9 +5,9 @@ its 258, a warm one none). A kernel is compiled per isolator law, and per number
 story law (the planar one), per story law (in plan) and per multiple of 8 contact points
 (twisting): the variants below are all those the suite compiles (a variant missing here is
 compiled by every worker and subprocess that needs it before one has cached it). Four
-processes of about equal length on 2 cores: 67 s and 127 s of CPU for the 25 variants, the
-suite 290 s and 542 s of CPU on a fresh clone (303-308 s and 559-568 s with 19 variants
-warmed in two processes, the other 6 left to the workers)."""
+processes of about equal length on 2 cores, measured on a fresh clone: 58 s for these 22
+variants, the suite 262-267 s and 487-495 s of CPU (303 s and 559 s with 19 of 25 variants
+warmed in two processes, the other 6 left to the workers; 67 s and 127 s of CPU for 25)."""
 from __future__ import annotations
 
 import subprocess
