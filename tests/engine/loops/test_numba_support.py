@@ -93,3 +93,25 @@ def test_the_root_of_a_square_is_the_magnitude_bit_for_bit():
     x = rng.uniform(1.0, 2.0, 10**6) * 2.0 ** rng.integers(-500, 500, 10**6)
     x[::2] *= -1.0
     np.testing.assert_array_equal(np.sqrt(x * x), np.abs(x))
+
+
+def test_members_run_on_threads_kept_for_the_next_batch(monkeypatch):
+    """run_members hands members to a pool it keeps (numba_support._POOLS): a second batch
+    reuses its threads, and every member's steps run once per chunk whatever the pool."""
+    import numba
+
+    from engine.loops import numba_support
+
+    monkeypatch.setattr(numba_support, "_POOLS", {})
+    monkeypatch.setattr(numba, "get_num_threads", lambda: 2)
+    seen = []
+
+    def steps(members, s0, s1):
+        seen.append((tuple(members.tolist()), s0, s1))
+
+    numba_support.run_members(5, 10, None, steps)
+    (pool,) = numba_support._POOLS.values()
+    numba_support.run_members(3, 10, None, steps)
+    assert list(numba_support._POOLS.values()) == [pool]
+    assert sorted(m for members, _, _ in seen for m in members) == [0, 0, 1, 1, 2, 2, 3, 4]
+    assert {(s0, s1) for _, s0, s1 in seen} == {(0, 10)}

@@ -89,3 +89,25 @@ def test_a_run_with_other_options_keeps_the_interrupted_runs_work(tmp_path, monk
     pipeline.sweep(RECORDS, **first, force=True)  # the archive holds the other run now
     assert sum(count_simulated) == 6  # only the rest
     assert not work.exists()
+
+
+def test_a_finished_run_takes_out_the_files_whose_members_all_ran_under_their_context():
+    """WorkFolder.finish's check (netcdf_store._Completed), on member records as bytes: a
+    file goes when every member ran under its context in the sweeps completed, whichever of
+    them; a member that did not, another context, or no completed sweep keeps it."""
+    import numpy as np
+
+    from pipeline.members import MEMBER_DTYPE
+
+    members = np.zeros(6, dtype=MEMBER_DTYPE)
+    members["gap"] = np.arange(6) * 0.01
+    members["law"] = "bumper"
+    ran = netcdf_store._Completed({"a": [members[:4], members[4:5]]})
+    assert ran("a", members[:4])  # one sweep's members, whole
+    assert ran("a", members[2:5])  # members of two sweeps under the context
+    assert not ran("a", members[3:6])  # the last never ran
+    assert not ran("b", members[:2])  # another context
+    assert not netcdf_store._Completed({})("a", members[:1])
+    changed = members[:1].copy()
+    changed["gap"] = np.nextafter(changed["gap"], 1.0)  # a record differing in its last bit
+    assert not ran("a", changed)
