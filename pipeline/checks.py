@@ -69,6 +69,16 @@ def plausible(name: str, param, array: np.ndarray, option: bool = True) -> np.nd
     raise SweepError(text)
 
 
+def fits_the_wall(law: str, values) -> None:
+    """SweepError, one line, where the wall of `law` cannot hold the members' parameters
+    (values: name -> array; a law's optional `crowded`, e.g. more bumpers than a wall holds):
+    for a grid and a listed table alike."""
+    crowded = getattr(engine.impact.LAWS[law], "crowded", None)
+    problem = None if crowded is None else crowded(values)
+    if problem is not None:
+        raise SweepError(problem)
+
+
 def checked_values(param, array: np.ndarray, name: str) -> np.ndarray:
     """The declaration's range check, in the sweep's vocabulary; a ratio given in percent
     (strain 80) is said to be one."""

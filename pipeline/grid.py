@@ -41,7 +41,7 @@ from engine.impact import LAWS, M_EFF, NO_WALL
 from engine.isolators import LAWS as ISOLATOR_LAWS
 from engine.torsion import shifted
 
-from .checks import checked_values, plausible
+from .checks import checked_values, fits_the_wall, plausible
 from .errors import PlausibilityWarning, SweepError
 from .members import (
     COLUMNS,
@@ -205,10 +205,7 @@ def make_grid(gap=None, *, impact: str = "bumper", isolator: str = "bilinear",
         values[name] = plausible(name, param, checked_values(param, array, name))
         if is_swept:
             swept.append(name)
-    crowded = getattr(LAWS[impact], "crowded", None)  # a law whose walls hold a count
-    problem = None if crowded is None else crowded(values)
-    if problem is not None:
-        raise SweepError(problem)
+    fits_the_wall(impact, values)
     if baseline and impact != "bumper":
         raise SweepError(f"baseline compares bumpers with the bare wall: it needs "
                          f"impact='bumper', not {impact!r}")

@@ -29,7 +29,7 @@ import numpy as np
 
 from engine.impact import LAWS, M_EFF, NO_WALL
 
-from .checks import checked_values, plausible
+from .checks import checked_values, fits_the_wall, plausible
 from .errors import SweepError
 from .grid import Block, Grid
 from .members import (
@@ -146,6 +146,8 @@ def _fill(rows: np.ndarray, where: np.ndarray, law: str) -> None:
         plausible(name, param, checked_values(param, values, name))
         column = rows[name]
         column[where] = values
+    if law != NO_WALL:
+        fits_the_wall(law, {name: rows[name][where] for name in declared})
     plausible("m_eff", M_EFF, checked_values(M_EFF, rows["m_eff"][where], "m_eff"))
 
 

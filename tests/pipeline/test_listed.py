@@ -49,6 +49,9 @@ def test_each_record_runs_its_own_members(tmp_path):
     ({"law": ["linear"]}, "gap is required"),
     ({"law": ["linear"], "gap": [[0.1], [0.2], [0.3]]}, "one row per record"),
     ({"law": ["linear"], "gap": [-0.1]}, "gap"),
+    # as a grid's: more bumpers than a moat wall holds (issue 40)
+    ({"law": ["bumper", "bumper"], "gap": [0.1, 0.1], "n_bumpers": [4, 1000]},
+     "n_bumpers 1000: 1000 pads of 150 mm a side"),
 ])
 def test_bad_tables_are_refused_in_one_line(table, words):
     with pytest.raises(SweepError, match=words):
