@@ -147,7 +147,7 @@ def _fill(rows: np.ndarray, where: np.ndarray, law: str) -> None:
         column = rows[name]
         column[where] = values
     if law != NO_WALL:
-        fits_the_wall(law, {name: rows[name][where] for name in declared})
+        fits_the_wall(law, {name: rows[name][where] for name in (*declared, *LISTED_PARAMS)})
     plausible("m_eff", M_EFF, checked_values(M_EFF, rows["m_eff"][where], "m_eff"))
 
 

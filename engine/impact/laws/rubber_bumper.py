@@ -149,23 +149,29 @@ bumpers fit when 2 n side <= it (`most_bumpers`)."""
 
 
 def most_bumpers(area, wall_length=WALL_LENGTH) -> int:
-    """The most square pads of `area` (m^2) one side's wall of `wall_length` (m) holds, a pad's
-    side apart (2 n sqrt(A) <= L: the design study's rule): 60 of the paper's 150 mm pads on
-    18 m."""
-    return int(np.floor(wall_length / (2.0 * np.sqrt(area)) + 1e-9))
+    """The most square pads of `area` (m^2, one or an array) one side's wall of `wall_length`
+    (m) holds, a pad's side apart (2 n sqrt(A) <= L: the design study's rule): 60 of the
+    paper's 150 mm pads on 18 m."""
+    most = np.floor(wall_length / (2.0 * np.sqrt(area)) + 1e-9)
+    return int(most) if np.ndim(most) == 0 else most.astype(int)
 
 
 def crowded(values) -> str | None:
-    """Why a sweep's bumper counts (values["n_bumpers"], each; the pad of the declared area)
-    cannot sit on a moat wall of WALL_LENGTH, or None where they fit."""
+    """Why members' bumper counts (values["n_bumpers"]) cannot sit on a moat wall of
+    WALL_LENGTH, each with its own pads (values["area"] where given and not NaN, a listed
+    table's; else the declared area), or None where they fit."""
     counts = np.asarray(values.get("n_bumpers", PARAMETERS.n_bumpers.default), dtype=float)
-    area, most = PARAMETERS.area.default, most_bumpers(PARAMETERS.area.default)
-    if not np.any(counts > most):
+    area = np.asarray(values.get("area", np.nan), dtype=float)
+    area = np.broadcast_to(np.where(np.isnan(area), PARAMETERS.area.default, area),
+                           counts.shape)
+    most = most_bumpers(area)
+    over = np.flatnonzero(counts > most)
+    if over.size == 0:
         return None
-    n = float(counts[counts > most][0])
-    return (f"n_bumpers {n:g}: {n:g} pads of {np.sqrt(area) * 1e3:g} mm a side, a side apart, "
-            f"need {2 * n * np.sqrt(area):g} m of moat wall; a wall is taken as "
-            f"{WALL_LENGTH:g} m where no plan gives it: give at most {most} bumpers a side")
+    n, side = float(counts[over[0]]), float(np.sqrt(area[over[0]]))
+    return (f"n_bumpers {n:g}: {n:g} pads of {side * 1e3:g} mm a side, a side apart, "
+            f"need {2 * n * side:g} m of moat wall; a wall is taken as {WALL_LENGTH:g} m "
+            f"where no plan gives it: give at most {int(most[over[0]])} bumpers a side")
 
 
 def shape_factor(area, thickness):

@@ -197,3 +197,7 @@ def test_a_wall_holds_its_length_over_two_pad_sides():
     assert most_bumpers(0.15 ** 2, wall_length=17.99) == 59
     assert crowded({"n_bumpers": np.array([4, 60])}) is None
     assert "give at most 60" in crowded({"n_bumpers": np.array([4, 61])})
+    # a listed member's own pads: 100 pads of 60 mm need 12 m, 100 of 150 mm 30 m
+    assert crowded({"n_bumpers": np.array([100.0]), "area": np.array([0.06 ** 2])}) is None
+    assert "pads of 150 mm" in crowded({"n_bumpers": np.array([4.0, 100.0]),
+                                        "area": np.array([0.06 ** 2, np.nan])})
