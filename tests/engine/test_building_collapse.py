@@ -25,7 +25,9 @@ def test_gravity_stiffness_is_the_weight_above_over_the_height():
     assert np.all(Building(story_height=HEIGHTS).gravity_stiffness == 0)
 
 
-@pytest.mark.parametrize("backend", ["numba", "numpy"])
+# On the compiled loop: the NumPy loop gives its numbers with P-Delta, in a plane and in plan
+# (test_collapse_ends_the_run_at_the_same_step_in_both_loops below).
+@pytest.mark.parametrize("backend", ["numba"])
 @pytest.mark.parametrize("plan", [False, True])
 def test_p_delta_on_linear_stories_is_a_softer_story(backend, plan):
     """With no story dashpots (their rule reads the elastic stiffness), P-Delta on linear

@@ -17,6 +17,9 @@ def pacoima():
     return load_record("pacoima")
 
 
+# On the compiled loop: the NumPy loop gives its numbers on scaled members, from standing to
+# collapse (tests/engine/test_building_collapse.py::test_collapse_ends_the_run_at_the_same_...).
+@pytest.mark.parametrize("backend", ["numba"])
 def test_engine_scale_equals_a_scaled_record(pacoima, backend):
     """Member-wise factors equal running the record multiplied beforehand (to round-off: the
     interpolation onto dt and the product commute up to one rounding), and a factor of 1
