@@ -26,6 +26,7 @@ from .results import (
     PEAKS,
     PLAN_HISTORIES,
     PLAN_PEAKS,
+    RESIDUALS,
     TORSION_HISTORIES,
     TORSION_PEAKS,
     WALLS,
@@ -92,10 +93,10 @@ class Model:
         return self.components == 2
 
     def quantities(self, collapse: bool = False) -> tuple[Quantity, ...]:
-        """What a run of this model returns and an archive keeps of it: its peaks, then
-        COLLAPSE for a building with a collapse criterion (so that a building without one,
-        the paper's, keeps the archive it had)."""
-        return (*self.peaks, *(COLLAPSE if collapse else ()))
+        """What a run of this model returns and an archive keeps of it: its peaks, the
+        RESIDUALS, then COLLAPSE for a building with a collapse criterion (so that a building
+        without one, the paper's, keeps the archive it had)."""
+        return (*self.peaks, *RESIDUALS, *(COLLAPSE if collapse else ()))
 
     def takes(self, what: str):
         """This model's entry of the SUPPORTS row `what`."""

@@ -59,8 +59,26 @@ PEAKS: tuple[Quantity, ...] = (
     Quantity("n_impacts", "1", "number of impacts on the moat wall", dtype=np.int64,
              wall=True),
     Quantity("impact_energy", "J", "energy dissipated by the moat-wall contacts", wall=True),
+    Quantity("peak_isolator_force", "N", "peak force of the isolators' law, hysteretic or "
+             "frictional (the isolation system's shear V_b of ASCE 7-22 17.5.4.1, the "
+             "isolation dashpot's share not included)"),
+    Quantity("peak_story_shear", "N", "peak shear force of each story's law, its stiffness "
+             "and strength (its dashpot's and P-Delta's shares not included; story 1: the "
+             "superstructure's base shear V_s of ASCE 7-22 17.5.4.2)", "story"),
+    Quantity("peak_floor_velocity", "m s-1", "peak velocity of each level relative to the "
+             "ground", "floor"),
 )
 """The peaks of every member, over every step of the run, in Result's order."""
+
+RESIDUALS: tuple[Quantity, ...] = (
+    Quantity("residual_isolator_disp", "m", "isolator displacement at the end of the run "
+             "(the record's end, no free vibration added; NaN: the run collapsed)"),
+    Quantity("residual_interstory_drift", "m", "interstory deflection of each story at the "
+             "end of the run (the record's end, no free vibration added; NaN: the run "
+             "collapsed)", "story"),
+)
+"""What stays of the run at its end: magnitudes (resultants in plan; at the plan's centre in
+a building that twists), from the loops' last displacements (`residuals`)."""
 
 COLLAPSE_MODES = ("none", "story_drift", "isolator_capacity", "numerical_instability")
 """How a run can end in collapse, by code: 0 it did not; 1 a story's drift past its collapse
@@ -90,6 +108,8 @@ HISTORIES: tuple[Quantity, ...] = (
              wall=True),
     Quantity("indentation", "m", "indentation at the moat wall (0 out of contact)",
              wall=True),
+    Quantity("isolator_force", "N", "force of the isolators' law (against isolator_disp: its "
+             "hysteresis loop)"),
 )
 """The time histories kept for the members an engine.History asks for, against time."""
 
@@ -121,6 +141,8 @@ PLAN_HISTORIES: tuple[Quantity, ...] = (
              "contact)", wall=True),
     Quantity("indentation", "m", "deepest indentation into a wall (0 out of contact)",
              wall=True),
+    Quantity("isolator_force", "N", "force of the isolators' law in each direction (against "
+             "isolator_disp: its hysteresis loops)", direction=True),
 )
 """The time histories of a run in plan: HISTORIES with a last axis of directions where a
 quantity has one."""
@@ -188,7 +210,22 @@ def run_quantities(moat: str | None = None, collapse: bool = False,
     building with a collapse criterion (so that a building without one, the paper's, keeps
     the archive it had)."""
     return (*PEAKS, *(PLAN_PEAKS if moat is not None else ()),
-            *(TORSION_PEAKS if torsion else ()), *(COLLAPSE if collapse else ()))
+            *(TORSION_PEAKS if torsion else ()), *RESIDUALS, *(COLLAPSE if collapse else ()))
+
+
+def residuals(disp: np.ndarray, collapsed: np.ndarray) -> dict[str, np.ndarray]:
+    """RESIDUALS from the last displacements `disp` (B, L) m of each level relative to the
+    ground ((B, L, 2) in plan: magnitudes of the vectors), NaN where `collapsed` (B,)."""
+    disp = np.asarray(disp, dtype=np.float64)
+    drift = np.diff(disp, axis=1)
+    if disp.ndim == 3:
+        base, drift = np.hypot(disp[:, 0, 0], disp[:, 0, 1]), np.hypot(drift[..., 0],
+                                                                         drift[..., 1])
+    else:
+        base, drift = np.abs(disp[:, 0]), np.abs(drift)
+    fallen = np.asarray(collapsed, dtype=bool)
+    return {"residual_isolator_disp": np.where(fallen, np.nan, base),
+            "residual_interstory_drift": np.where(fallen[:, None], np.nan, drift)}
 
 
 def empty_collapse(size: int) -> dict[str, np.ndarray]:
@@ -227,10 +264,12 @@ class Result:
     peak_total_accel (B, levels) m/s^2, peak_interstory_drift (B, stories) m,
     peak_isolator_disp (B,) m, max_indentation (B,) m, max_impact_force (B,) N, n_impacts (B,),
     impact_energy (B,) J: work done on the wall contacts, i.e. energy dissipated by impacts
-    once contacts close; dt: the integration step (s); collapsed (B,) bool, collapse_time
-    (B,) s, NaN where none, and collapse_mode (B,) int8 (COLLAPSE, COLLAPSE_MODES); history:
-    None or a dict of time (T,) s, members (M,) and every HISTORIES quantity, (M, T) or
-    (M, T, levels).
+    once contacts close; peak_isolator_force (B,) N, peak_story_shear (B, stories) N,
+    peak_floor_velocity (B, levels) m/s; residual_isolator_disp (B,) m and
+    residual_interstory_drift (B, stories) m (RESIDUALS); dt: the integration step (s);
+    collapsed (B,) bool, collapse_time (B,) s, NaN where none, and collapse_mode (B,) int8
+    (COLLAPSE, COLLAPSE_MODES); history: None or a dict of time (T,) s, members (M,) and every
+    HISTORIES quantity, (M, T) or (M, T, levels).
     """
 
     peak_total_accel: np.ndarray
@@ -240,6 +279,11 @@ class Result:
     max_impact_force: np.ndarray
     n_impacts: np.ndarray
     impact_energy: np.ndarray
+    peak_isolator_force: np.ndarray
+    peak_story_shear: np.ndarray
+    peak_floor_velocity: np.ndarray
+    residual_isolator_disp: np.ndarray
+    residual_interstory_drift: np.ndarray
     dt: float
     history: dict | None = None
     collapsed: np.ndarray | None = None
@@ -249,6 +293,10 @@ class Result:
     def peaks(self) -> dict[str, np.ndarray]:
         """Peak name -> array, in PEAKS order."""
         return {name: getattr(self, name) for name in PEAK_NAMES}
+
+    def residuals(self) -> dict[str, np.ndarray]:
+        """RESIDUALS name -> array."""
+        return {q.name: getattr(self, q.name) for q in RESIDUALS}
 
 
 @dataclass

@@ -31,7 +31,7 @@ import xarray as xr
 
 import engine
 from engine.impact import M_EFF
-from engine.results import HISTORIES, HISTORY_NAMES
+from engine.results import HISTORIES, HISTORY_NAMES, RESIDUALS
 
 from .archive import (
     labelled_dataset,
@@ -88,15 +88,16 @@ def histories(record, configurations: Mapping[str, Mapping], dt: float | None = 
         those of the segment, and the archive says so); quiet: no progress bar.
 
     Returns an xarray.Dataset, dims configuration, time, floor (0-4), story (1-4) for the
-    paper's building:
-    isolator_disp (m), total_accel (m/s^2; floor), impact_force (N), indentation (m) against
-    time, and the peaks peak_total_accel (m/s^2; floor), peak_interstory_drift (m; story),
-    peak_isolator_disp (m), max_indentation (m), max_impact_force (N), n_impacts,
-    impact_energy (J); per-configuration coordinates impact, the parameters (NaN where a law
-    does not use one), clear_gap and crush_indentation (the engine's clear_gap and delta_u,
-    m); scalar coordinates of the record; provenance attributes (pipeline.provenance: common,
-    the run, the decisions, the record, and the histories' own). Raises
-    SweepError, naming the parameter, before any simulation runs.
+    paper's building: isolator_disp (m), total_accel (m/s^2; floor), impact_force (N),
+    indentation (m) and isolator_force (N) against time (engine.results.HISTORIES), the peaks
+    (engine.results.PEAKS: peak_total_accel (m/s^2; floor), peak_interstory_drift (m; story),
+    peak_isolator_disp (m), max_indentation (m), max_impact_force (N), n_impacts, impact_energy
+    (J), peak_isolator_force (N), peak_story_shear (N; story), peak_floor_velocity (m/s; floor))
+    and the residuals (engine.results.RESIDUALS); per-configuration coordinates impact, the
+    parameters (NaN where a law does not use one), clear_gap and crush_indentation (the engine's
+    clear_gap and delta_u, m); scalar coordinates of the record; provenance attributes
+    (pipeline.provenance: common, the run, the decisions, the record, and the histories' own).
+    Raises SweepError, naming the parameter, before any simulation runs.
     """
     m_eff = M_EFF.default if m_eff is None else m_eff
     names, grid = configuration_grid(configurations, m_eff)
@@ -277,6 +278,7 @@ def _dataset(names, grid, contact, rec, rec_name, result, dt, every, building,
     data_vars = {q.name: quantity_variable(q, (config, "time"), hist[q.name])
                  for q in HISTORIES}
     data_vars.update(peak_variables(result.peaks(), (config,)))
+    data_vars.update(peak_variables(result.residuals(), (config,), quantities=RESIDUALS))
 
     members = grid.members
     laws = [str(law) for law in members["law"]]  # each configuration's

@@ -271,9 +271,6 @@ TESTED_IN = {
         "the story laws and the stories of any height against the references",
         ("engine.stories.stories", "engine.stories.laws.bilinear",
          "engine.stories.laws.linear")),
-    "tests/engine/test_simulate.py": (
-        "what a run returns: histories whose maxima are the peaks, in any batch",
-        ("engine.results",)),
     "tests/engine/test_building.py": (
         "the chain of stories' matrices, through the building's exact linear response",
         ("engine.chain",)),

@@ -5,8 +5,8 @@
 
 What a sweep's archive (pipeline.sweep, python -m studies.sweep) and a histories archive
 (pipeline.histories, --history) hold, each variable with its unit and long name as the archive
-writes them: the engine's results (engine.results: PEAKS, COLLAPSE, PLAN_PEAKS, TORSION_PEAKS
-and the histories), the blocks' prefixes, the derived variables and the validity flags
+writes them: the engine's results (engine.results: PEAKS, RESIDUALS, COLLAPSE, PLAN_PEAKS,
+TORSION_PEAKS and the histories), the blocks' prefixes, the derived variables and the validity flags
 (pipeline.assess.sweep_variables, pipeline.assess.validity), and the swept parameters'
 coordinates (the laws' declarations). tests/test_variables_page.py checks that the page is
 this text, so that it cannot drift from the code. The studies' own archives add variables of
@@ -47,6 +47,7 @@ def page() -> str:
         PEAKS,
         PLAN_HISTORIES,
         PLAN_PEAKS,
+        RESIDUALS,
         TORSION_HISTORIES,
         TORSION_PEAKS,
     )
@@ -71,6 +72,11 @@ def page() -> str:
         "## Peaks (every sweep)",
         "",
         *_table(_quantities(PEAKS)),
+        "",
+        "What stays at the end of the run (resultants in plan, at the plan's centre in a "
+        "building that twists):",
+        "",
+        *_table(_quantities(RESIDUALS)),
         "",
         "With a collapse criterion (a building's `collapse_drift_ratio`, an isolator's "
         "capacity):",

@@ -71,8 +71,8 @@ def _kernel(n_levels: int, story_code: int, isolator_code: int, banded: bool):
         b = members[t]
         ag, dt, op, bands, wall, mass, story, law, par, law_par, story_fields, isolator = model
         u_all, v_all, story_state, state, isolator_state = memory
-        peak_level, peak_story, peak_scalar, n_impacts = peaks
-        hist_row, every, h_u, h_acc, h_f, h_d = hist
+        peak_level, peak_story, peak_velocity, peak_shear, peak_scalar, n_impacts = peaks
+        hist_row, every, h_u, h_acc, h_f, h_d, h_fi = hist
         st = state[b]
         if st[PLANAR_STATE.collapsed] != 0.0:
             return
@@ -88,20 +88,23 @@ def _kernel(n_levels: int, story_code: int, isolator_code: int, banded: bool):
         u = cuda.local.array(levels, float64)
         v = cuda.local.array(levels, float64)
         pa = cuda.local.array(levels, float64)
+        pv = cuda.local.array(levels, float64)
         for i in range(levels):
             w[i], m[i] = wall[b, i], mass[b, i]
             u[i], v[i], pa[i] = u_all[b, i], v_all[b, i], peak_level[b, i]
+            pv[i] = peak_velocity[b, i]
         k_story = cuda.local.array(stories, float64)
         gravity = cuda.local.array(stories, float64)
         collapse_drift = cuda.local.array(stories, float64)
         pd = cuda.local.array(stories, float64)
+        ps = cuda.local.array(stories, float64)
         s_fields = cuda.local.array((stories, MAX_FIELDS), float64)
         s_state = cuda.local.array((stories, MAX_STATE), float64)
         for i in range(n_levels - 1):
             k_story[i] = story[b, PLANAR_STORY.story_k, i]
             gravity[i] = story[b, PLANAR_STORY.story_gravity, i]
             collapse_drift[i] = story[b, PLANAR_STORY.collapse_drift, i]
-            pd[i] = peak_story[b, i]
+            pd[i], ps[i] = peak_story[b, i], peak_shear[b, i]
             for j in range(MAX_FIELDS):
                 s_fields[i, j] = story_fields[b, i, j]
             for j in range(MAX_STATE):
@@ -130,6 +133,7 @@ def _kernel(n_levels: int, story_code: int, isolator_code: int, banded: bool):
         p_indent = peak_scalar[b, PLANAR_PEAK_COLUMNS.max_indentation]
         p_force = peak_scalar[b, PLANAR_PEAK_COLUMNS.max_impact_force]
         energy = peak_scalar[b, PLANAR_PEAK_COLUMNS.impact_energy]
+        p_fiso = peak_scalar[b, PLANAR_PEAK_COLUMNS.peak_isolator_force]
         n_imp = n_impacts[b]
         half_dt = 0.5 * dt
 
@@ -199,11 +203,14 @@ def _kernel(n_levels: int, story_code: int, isolator_code: int, banded: bool):
             for i in range(n_levels):
                 total = (nxt[i] - v[i]) / dt + a
                 pa[i] = max(pa[i], abs(total))
+                pv[i] = max(pv[i], abs(nxt[i]))
                 if keep:
                     h_acc[hrow, step // every, i] = total
             for i in range(n_levels - 1):
                 pd[i] = max(pd[i], abs(drift[i]))
+                ps[i] = max(ps[i], abs(chain[i + 1] + gravity[i] * drift[i]))
             p_iso = max(p_iso, abs(u0))
+            p_fiso = max(p_fiso, abs(chain[0]))
             p_indent = max(p_indent, delta)
             p_force = max(p_force, force)
             energy += force * side * (v[0] + nxt[0]) * half_dt
@@ -212,6 +219,7 @@ def _kernel(n_levels: int, story_code: int, isolator_code: int, banded: bool):
                 h_u[hrow, k] = u0
                 h_f[hrow, k] = force
                 h_d[hrow, k] = max(delta, 0.0)
+                h_fi[hrow, k] = chain[0]
 
             isolator_advance(iso_state, nxt[0], dt, iso_row)
             for i in range(n_levels):
@@ -220,8 +228,9 @@ def _kernel(n_levels: int, story_code: int, isolator_code: int, banded: bool):
 
         for i in range(n_levels):
             u_all[b, i], v_all[b, i], peak_level[b, i] = u[i], v[i], pa[i]
+            peak_velocity[b, i] = pv[i]
         for i in range(n_levels - 1):
-            peak_story[b, i] = pd[i]
+            peak_story[b, i], peak_shear[b, i] = pd[i], ps[i]
             for j in range(MAX_STATE):
                 story_state[b, i, j] = s_state[i, j]
         for j in range(ISOLATOR_STATE):
@@ -233,6 +242,7 @@ def _kernel(n_levels: int, story_code: int, isolator_code: int, banded: bool):
         peak_scalar[b, PLANAR_PEAK_COLUMNS.max_indentation] = p_indent
         peak_scalar[b, PLANAR_PEAK_COLUMNS.max_impact_force] = p_force
         peak_scalar[b, PLANAR_PEAK_COLUMNS.impact_energy] = energy
+        peak_scalar[b, PLANAR_PEAK_COLUMNS.peak_isolator_force] = p_fiso
         n_impacts[b] = n_imp
 
     return cuda.jit(kernel)

@@ -59,8 +59,8 @@ def _kernel(n_levels: int, circular: bool, story_code: int, isolator_code: int):
          isolator) = model
         u_all, v_all, f_story_all, story_state, state, wall_state, isolator_state = memory
         (peak_level, peak_level_xy, peak_story, peak_story_xy, peak_iso_xy, peak_scalar,
-         n_impacts, peak_wall) = peaks
-        hist_row, every, h_u, h_acc, h_f, h_d = hist
+         n_impacts, peak_wall, peak_velocity, peak_shear) = peaks
+        hist_row, every, h_u, h_acc, h_f, h_d, h_fi = hist
         st = state[b]
         if st[PLAN_STATE.collapsed] != 0.0:
             return
@@ -128,6 +128,7 @@ def _kernel(n_levels: int, circular: bool, story_code: int, isolator_code: int):
         p_force = pk[PLAN_PEAK_COLUMNS.max_impact_force]
         energy = pk[PLAN_PEAK_COLUMNS.impact_energy]
         p_iso_x, p_iso_y = peak_iso_xy[b, 0], peak_iso_xy[b, 1]
+        p_fiso2 = pk[PLAN_PEAK_COLUMNS.peak_isolator_force]
         n_imp = n_impacts[b]
         pw = peak_wall[b]
         hrow = hist_row[b]
@@ -143,16 +144,18 @@ def _kernel(n_levels: int, circular: bool, story_code: int, isolator_code: int):
         fs = cuda.local.array((levels, 2), float64)
         pd2 = cuda.local.array(levels, float64)
         pd = cuda.local.array((levels, 2), float64)
+        pv2 = cuda.local.array(levels, float64)
+        ps2 = cuda.local.array(levels, float64)
         for i in range(n_levels):
             for e in range(2):
                 u[i, e], v[i, e] = u_all[b, i, e], v_all[b, i, e]
                 pa[i, e] = peak_level_xy[b, i, e]
-            pa2[i] = peak_level[b, i]
+            pa2[i], pv2[i] = peak_level[b, i], peak_velocity[b, i]
         for i in range(n_st):
             for e in range(2):
                 fs[i, e] = f_story_all[b, i, e]
                 pd[i, e] = peak_story_xy[b, i, e]
-            pd2[i] = peak_story[b, i]
+            pd2[i], ps2[i] = peak_story[b, i], peak_shear[b, i]
 
         for step in range(s0, s1):
             mode = 0
@@ -263,6 +266,7 @@ def _kernel(n_levels: int, circular: bool, story_code: int, isolator_code: int):
                 h_u[hrow, k, 0], h_u[hrow, k, 1] = u[0, 0], u[0, 1]
                 h_f[hrow, k] = math.hypot(wfx, wfy)
                 h_d[hrow, k] = max(deepest, 0.0)
+                h_fi[hrow, k, 0], h_fi[hrow, k, 1] = c[0, 0], c[0, 1]
             for i in range(n_levels):
                 total_x = (nx[i, 0] - v[i, 0]) / dt + acc_x
                 total_y = (nx[i, 1] - v[i, 1]) / dt + acc_y
@@ -273,11 +277,16 @@ def _kernel(n_levels: int, circular: bool, story_code: int, isolator_code: int):
                 pa[i, 0] = max(pa[i, 0], square_x)
                 pa[i, 1] = max(pa[i, 1], square_y)
                 pa2[i] = max(pa2[i], square_x + square_y)
+                pv2[i] = max(pv2[i], nx[i, 0] * nx[i, 0] + nx[i, 1] * nx[i, 1])
             for i in range(n_st):
                 square_x, square_y = dr[i, 0] * dr[i, 0], dr[i, 1] * dr[i, 1]
                 pd[i, 0] = max(pd[i, 0], square_x)
                 pd[i, 1] = max(pd[i, 1], square_y)
                 pd2[i] = max(pd2[i], square_x + square_y)
+                shear_x = c[i + 1, 0] + gravity[i] * dr[i, 0]
+                shear_y = c[i + 1, 1] + gravity[i] * dr[i, 1]
+                ps2[i] = max(ps2[i], shear_x * shear_x + shear_y * shear_y)
+            p_fiso2 = max(p_fiso2, c[0, 0] * c[0, 0] + c[0, 1] * c[0, 1])
             square_x, square_y = u[0, 0] * u[0, 0], u[0, 1] * u[0, 1]
             p_iso2 = max(p_iso2, square_x + square_y)
             p_iso_x = max(p_iso_x, square_x)
@@ -298,14 +307,14 @@ def _kernel(n_levels: int, circular: bool, story_code: int, isolator_code: int):
             for e in range(2):
                 u_all[b, i, e], v_all[b, i, e] = u[i, e], v[i, e]
                 peak_level_xy[b, i, e] = pa[i, e]
-            peak_level[b, i] = pa2[i]
+            peak_level[b, i], peak_velocity[b, i] = pa2[i], pv2[i]
         for i in range(n_st):
             for e in range(2):
                 f_story_all[b, i, e] = fs[i, e]
                 peak_story_xy[b, i, e] = pd[i, e]
                 for j in range(MAX_STATE):
                     story_state[b, i, e, j] = s_state[i, e, j]
-            peak_story[b, i] = pd2[i]
+            peak_story[b, i], peak_shear[b, i] = pd2[i], ps2[i]
         for j in range(ISOLATOR_STATE_XY):
             isolator_state[b, j] = iso_state[j]
         for d in range(n_walls):
@@ -315,6 +324,7 @@ def _kernel(n_levels: int, circular: bool, story_code: int, isolator_code: int):
         pk[PLAN_PEAK_COLUMNS.max_indentation] = p_indent
         pk[PLAN_PEAK_COLUMNS.max_impact_force] = p_force
         pk[PLAN_PEAK_COLUMNS.impact_energy] = energy
+        pk[PLAN_PEAK_COLUMNS.peak_isolator_force] = p_fiso2
         peak_iso_xy[b, 0], peak_iso_xy[b, 1] = p_iso_x, p_iso_y
         n_impacts[b] = n_imp
 

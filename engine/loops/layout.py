@@ -72,10 +72,10 @@ TORSION_PEAK_COLUMNS = columns("TorsionPeaks",
 """numba_torsion's scalar float peaks."""
 
 SQUARED = tuple(q.name for q in (*PEAKS, *PLAN_PEAKS, *TORSION_PEAKS)
-                if q.units in ("m", "m s-2") and not q.wall)
-"""The peaks of the structure's displacements and accelerations, which the kernels in plan
-keep squared while running (no root per step: sqrt is monotone, and sqrt(x * x) == |x| in
-binary floating point) and finish_peaks roots."""
+                if q.units in ("m", "m s-1", "m s-2", "N") and not q.wall)
+"""The peaks of the structure's displacements, velocities, accelerations and forces, which the
+kernels in plan keep squared while running (no root per step: sqrt is monotone, and
+sqrt(x * x) == |x| in binary floating point) and finish_peaks roots."""
 
 
 def packed(layout, source=None, size=None, axis=1, **values) -> np.ndarray:

@@ -23,7 +23,7 @@ from numba.np.unsafe.ndarray import to_fixed_tuple
 
 from ..impact.contact import law_rows
 from ..impact.registry import ROW_WIDTH
-from ..results import MODE, empty_peaks
+from ..results import MODE, empty_peaks, residuals
 from ..scheme import banded_operators, step_operators
 from ..stories.registry import MAX_FIELDS, MAX_STATE
 from . import compiled, layout
@@ -106,15 +106,16 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     law and isolator law. model = (ag, dt, op, bands, wall, mass, story, law, par, law_par,
     story_fields, isolator), what the run reads (isolator: the isolator law's rows); memory = (u, v,
     story_state, state, isolator_state), what it carries between chunks; peaks = (peak_level,
-    peak_story, peak_scalar, n_impacts); hist = (hist_row, every, h_u, h_acc, h_f, h_d)
+    peak_story, peak_velocity, peak_shear, peak_scalar, n_impacts); hist = (hist_row, every,
+    h_u, h_acc, h_f, h_d, h_fi)
     (run_simulation builds them; layout.py names their columns). Sums run in the order of the scalar
     kernel this loop replaced, and a member's result never depends on the batch. A member that has
     collapsed stops."""
     levels, law_tag, isolator_tag = shape
     ag, dt, op, bands, wall, mass, story, law, par, law_par, story_fields, isolator = model
     u_all, v_all, story_state, state, isolator_state = memory
-    peak_level, peak_story, peak_scalar, n_impacts = peaks
-    hist_row, every, h_u, h_acc, h_f, h_d = hist
+    peak_level, peak_story, peak_velocity, peak_shear, peak_scalar, n_impacts = peaks
+    hist_row, every, h_u, h_acc, h_f, h_d, h_fi = hist
     st = state[b]
     if st[PLANAR_STATE.collapsed] != 0.0:
         return
@@ -147,6 +148,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     p_indent = pk[PLANAR_PEAK_COLUMNS.max_indentation]
     p_force = pk[PLANAR_PEAK_COLUMNS.max_impact_force]
     energy = pk[PLANAR_PEAK_COLUMNS.impact_energy]
+    p_fiso = pk[PLANAR_PEAK_COLUMNS.peak_isolator_force]
     n_imp = n_impacts[b]
     half_dt = 0.5 * dt
 
@@ -155,10 +157,12 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     v = carray(stack_doubles(levels), (n_levels,))
     pa = carray(stack_doubles(levels), (n_levels,))
     pd = carray(stack_doubles(levels), (n_levels - 1,))
+    pv = carray(stack_doubles(levels), (n_levels,))
+    ps = carray(stack_doubles(levels), (n_levels - 1,))
     for i in range(n_levels):
-        u[i], v[i], pa[i] = u_all[b, i], v_all[b, i], peak_level[b, i]
+        u[i], v[i], pa[i], pv[i] = u_all[b, i], v_all[b, i], peak_level[b, i], peak_velocity[b, i]
     for i in range(n_levels - 1):
-        pd[i] = peak_story[b, i]
+        pd[i], ps[i] = peak_story[b, i], peak_shear[b, i]
     chain = carray(stack_doubles(levels), (n_levels,))  # isolator, stories 1..N
     drift = carray(stack_doubles(levels), (n_levels - 1,))
     r = carray(stack_doubles(levels), (n_levels,))
@@ -236,11 +240,15 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
         for i in range(n_levels):
             total = (nxt[i] - v[i]) / dt + a
             pa[i] = max(pa[i], abs(total))
+            pv[i] = max(pv[i], abs(nxt[i]))
             if keep:
                 h_acc[hrow, step // every, i] = total
         for i in range(n_levels - 1):
             pd[i] = max(pd[i], abs(drift[i]))
+            # The story law's shear: P-Delta's share, taken from the chain above, given back.
+            ps[i] = max(ps[i], abs(chain[i + 1] + gravity[i] * drift[i]))
         p_iso = max(p_iso, abs(u0))
+        p_fiso = max(p_fiso, abs(chain[0]))
         p_indent = max(p_indent, delta)
         p_force = max(p_force, force)
         energy += force * side * (v[0] + nxt[0]) * half_dt
@@ -250,6 +258,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
             h_u[hrow, t] = u0
             h_f[hrow, t] = force
             h_d[hrow, t] = max(delta, 0.0)
+            h_fi[hrow, t] = chain[0]
 
         # Advance: the isolator law's state after this step, at its velocity.
         isolator_advance(isolator_tag, iso_state, nxt[0], dt, iso_row)
@@ -258,9 +267,9 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
             u[i] = u[i] + dt * nxt[i]
 
     for i in range(n_levels):
-        u_all[b, i], v_all[b, i], peak_level[b, i] = u[i], v[i], pa[i]
+        u_all[b, i], v_all[b, i], peak_level[b, i], peak_velocity[b, i] = u[i], v[i], pa[i], pv[i]
     for i in range(n_levels - 1):
-        peak_story[b, i] = pd[i]
+        peak_story[b, i], peak_shear[b, i] = pd[i], ps[i]
     for j in range(ISOLATOR_STATE):
         isolator_state[b, j] = iso_state[j]
     st[PLANAR_STATE.v_imp] = v_imp
@@ -270,6 +279,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     pk[PLANAR_PEAK_COLUMNS.max_indentation] = p_indent
     pk[PLANAR_PEAK_COLUMNS.max_impact_force] = p_force
     pk[PLANAR_PEAK_COLUMNS.impact_energy] = energy
+    pk[PLANAR_PEAK_COLUMNS.peak_isolator_force] = p_fiso
     n_impacts[b] = n_imp
 
 
@@ -350,7 +360,7 @@ def planar_run(ag, dt, arrays, contact, history, scale) -> dict:
 
     hist_row, every, rows, inverse = history_rows(history, size)
     n_out = 0 if history is None else (n_steps - 1) // every + 1
-    h_u, h_f, h_d = (np.zeros((rows, n_out)) for _ in range(3))
+    h_u, h_f, h_d, h_fi = (np.zeros((rows, n_out)) for _ in range(4))
     h_acc = np.zeros((rows, n_out, n_levels))
 
     model = (ag, float(dt), np.ascontiguousarray(op.transpose(0, 2, 1)), bands,
@@ -358,9 +368,10 @@ def planar_run(ag, dt, arrays, contact, history, scale) -> dict:
              law, par, law_rows(contact), story_fields, isolator_rows(arrays))
     model = kernel_arrays(model)
     return {"model": model, "memory": (u, v, story_state, state, isolator_state),
-            "kept": (peaks["peak_total_accel"], peaks["peak_interstory_drift"], peak_scalar,
+            "kept": (peaks["peak_total_accel"], peaks["peak_interstory_drift"],
+                     peaks["peak_floor_velocity"], peaks["peak_story_shear"], peak_scalar,
                      peaks["n_impacts"]),
-            "hist": (hist_row, every, h_u, h_acc, h_f, h_d),
+            "hist": (hist_row, every, h_u, h_acc, h_f, h_d, h_fi),
             "groups": law_groups(arrays.story_code, arrays.isolator_code),
             "levels": (0,) * n_levels,  # its length, part of its type, specialises the kernel
             "peaks": peaks, "inverse": inverse, "n_out": n_out}
@@ -369,14 +380,15 @@ def planar_run(ag, dt, arrays, contact, history, scale) -> dict:
 def planar_outcome(run: dict, dt: float, history) -> tuple[dict, dict | None]:
     """(peaks dict, history dict or None) of a planar run (planar_run) once its kernel ran."""
     state = run["memory"][3]
-    result = finish_peaks(run["peaks"], run["kept"][2], PLANAR_PEAK_COLUMNS, state)
+    result = finish_peaks(run["peaks"], run["kept"][4], PLANAR_PEAK_COLUMNS, state)
+    result.update(residuals(run["memory"][0], result["collapsed"]))
     if history is None:
         return result, None
-    _, every, h_u, h_acc, h_f, h_d = run["hist"]
+    _, every, h_u, h_acc, h_f, h_d, h_fi = run["hist"]
     inverse = run["inverse"]
     return result, {"time": np.arange(run["n_out"]) * every * dt, "isolator_disp": h_u[inverse],
                     "total_accel": h_acc[inverse], "impact_force": h_f[inverse],
-                    "indentation": h_d[inverse],
+                    "indentation": h_d[inverse], "isolator_force": h_fi[inverse],
                     "members": np.asarray(history.members, dtype=int)}
 
 

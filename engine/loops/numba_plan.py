@@ -27,11 +27,10 @@ from ..impact.contact import law_rows
 from ..results import (
     DIRECTIONS,
     MODE,
-    PEAKS,
     PLAN_HISTORIES,
-    PLAN_PEAKS,
-    WALLS,
+    empty_peaks,
     empty_plan_history,
+    residuals,
 )
 from ..scheme import step_operators
 from ..stories.registry import MAX_FIELDS, MAX_STATE
@@ -124,24 +123,25 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     gaps, law_par, story_fields, isolator), what the run reads (isolator: the isolator law's rows);
     memory = (u, v, f_story, story_state, state, wall_state, isolator_state), what it carries
     between chunks; peaks = (peak_level, peak_level_xy, peak_story, peak_story_xy, peak_iso_xy,
-    peak_scalar, n_impacts, peak_wall); hist = (hist_row, every, h_u, h_acc, h_f, h_d) (run_plan
-    builds them). Like the planar kernel, the member's state lives in scalars and arrays on the
-    stack while it runs, each level's x and y side by side (a last axis of 2, as the operators: op
-    (2L, L, 2), the operator along x and along y transposed, wall (L, 2), story_k (L - 1, 2)), and
-    the two directions' identical arithmetic done on pairs, both lanes at once (numba_support.add2
-    and kin). Peaks are kept squared, per direction and resultant: the square root of the largest
-    square is the largest magnitude, bit for bit (sqrt(x * x) == |x| in binary floating point), and
-    run_plan roots them at the end. Stories of a uniaxial law (one without plan_fields,
-    engine/stories/) act along x and y each on their own (two springs of the law per story,
-    uncoupled), its force compiled in for the member's law only (law_tag, as the planar kernel's),
-    and so is its isolator law's (isolator_tag). A member that has collapsed stops."""
+    peak_scalar, n_impacts, peak_wall, peak_velocity, peak_shear); hist = (hist_row, every, h_u,
+    h_acc, h_f, h_d, h_fi) (run_plan builds them). Like the planar kernel, the member's state lives
+    in scalars and arrays on the stack while it runs, each level's x and y side by side (a last axis
+    of 2, as the operators: op (2L, L, 2), the operator along x and along y transposed, wall (L, 2),
+    story_k (L - 1, 2)), and the two directions' identical arithmetic done on pairs, both lanes at
+    once (numba_support.add2 and kin). Peaks are kept squared, per direction and resultant: the
+    square root of the largest square is the largest magnitude, bit for bit (sqrt(x * x) == |x| in
+    binary floating point), and run_plan roots them at the end. Stories of a uniaxial law (one
+    without plan_fields, engine/stories/) act along x and y each on their own (two springs of the
+    law per story, uncoupled), its force compiled in for the member's law only (law_tag, as the
+    planar kernel's), and so is its isolator law's (isolator_tag). A member that has collapsed
+    stops."""
     levels, pairs, circular, law_tag, isolator_tag = shape
     (ag, dt, op, wall, story_k, mass, story, law, par, gaps_all, law_par, story_fields,
      isolator) = model
     u_all, v_all, f_story_all, story_state, state, wall_state, isolator_state = memory
     (peak_level, peak_level_xy, peak_story, peak_story_xy, peak_iso_xy, peak_scalar, n_impacts,
-     peak_wall) = peaks
-    hist_row, every, h_u, h_acc, h_f, h_d = hist
+     peak_wall, peak_velocity, peak_shear) = peaks
+    hist_row, every, h_u, h_acc, h_f, h_d, h_fi = hist
     st = state[b]
     if st[PLAN_STATE.collapsed] != 0.0:
         return
@@ -192,6 +192,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     p_indent = pk[PLAN_PEAK_COLUMNS.max_indentation]
     p_force, energy = pk[PLAN_PEAK_COLUMNS.max_impact_force], pk[PLAN_PEAK_COLUMNS.impact_energy]
     p_iso_x, p_iso_y = peak_iso_xy[b, 0], peak_iso_xy[b, 1]
+    p_fiso2 = pk[PLAN_PEAK_COLUMNS.peak_isolator_force]
     n_imp = n_impacts[b]
     pw = peak_wall[b]
     hrow = hist_row[b]
@@ -207,16 +208,18 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     fs = carray(stack_doubles(pairs), (n_levels, 2))
     pd2 = carray(stack_doubles(levels), (n_levels,))
     pd = carray(stack_doubles(pairs), (n_levels, 2))
+    pv2 = carray(stack_doubles(levels), (n_levels,))
+    ps2 = carray(stack_doubles(levels), (n_levels,))
     for i in range(n_levels):
         for e in range(2):
             u[i, e], v[i, e] = u_all[b, i, e], v_all[b, i, e]
             pa[i, e] = peak_level_xy[b, i, e]
-        pa2[i] = peak_level[b, i]
+        pa2[i], pv2[i] = peak_level[b, i], peak_velocity[b, i]
     for i in range(n_st):
         for e in range(2):
             fs[i, e] = f_story_all[b, i, e]
             pd[i, e] = peak_story_xy[b, i, e]
-        pd2[i] = peak_story[b, i]
+        pd2[i], ps2[i] = peak_story[b, i], peak_shear[b, i]
 
     capacity_square = p[PLAN.capacity_square]
     for step in range(s0, s1):
@@ -333,6 +336,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
             h_u[hrow, t, 0], h_u[hrow, t, 1] = u[0, 0], u[0, 1]
             h_f[hrow, t] = math.hypot(wfx, wfy)
             h_d[hrow, t] = max(deepest, 0.0)
+            h_fi[hrow, t, 0], h_fi[hrow, t, 1] = c[0, 0], c[0, 1]
         for i in range(n_levels):
             total = add2(div2(sub2(load_pair(nx, i), load_pair(v, i)), (dt, dt)), acc)
             if keep:
@@ -340,10 +344,18 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
             square = mul2(total, total)
             store_pair(pa, i, max2(load_pair(pa, i), square))
             pa2[i] = max(pa2[i], square[0] + square[1])
+            square = mul2(load_pair(nx, i), load_pair(nx, i))
+            pv2[i] = max(pv2[i], square[0] + square[1])
         for i in range(n_st):
             square = mul2(load_pair(dr, i), load_pair(dr, i))
             store_pair(pd, i, max2(load_pair(pd, i), square))
             pd2[i] = max(pd2[i], square[0] + square[1])
+            # The story law's shear: P-Delta's share, taken from the chain above, given back.
+            shear = add2(load_pair(c, i + 1), mul2((gravity[i], gravity[i]), load_pair(dr, i)))
+            square = mul2(shear, shear)
+            ps2[i] = max(ps2[i], square[0] + square[1])
+        square = mul2(load_pair(c, 0), load_pair(c, 0))
+        p_fiso2 = max(p_fiso2, square[0] + square[1])
         square = mul2(load_pair(u, 0), load_pair(u, 0))
         p_iso2 = max(p_iso2, square[0] + square[1])
         p_iso_x = max(p_iso_x, square[0])
@@ -365,12 +377,12 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
         for e in range(2):
             u_all[b, i, e], v_all[b, i, e] = u[i, e], v[i, e]
             peak_level_xy[b, i, e] = pa[i, e]
-        peak_level[b, i] = pa2[i]
+        peak_level[b, i], peak_velocity[b, i] = pa2[i], pv2[i]
     for i in range(n_st):
         for e in range(2):
             f_story_all[b, i, e] = fs[i, e]
             peak_story_xy[b, i, e] = pd[i, e]
-        peak_story[b, i] = pd2[i]
+        peak_story[b, i], peak_shear[b, i] = pd2[i], ps2[i]
     for j in range(ISOLATOR_STATE_XY):
         isolator_state[b, j] = iso_state[j]
     for d in range(n_walls):
@@ -380,16 +392,16 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     pk[PLAN_PEAK_COLUMNS.max_indentation] = p_indent
     pk[PLAN_PEAK_COLUMNS.max_impact_force] = p_force
     pk[PLAN_PEAK_COLUMNS.impact_energy] = energy
+    pk[PLAN_PEAK_COLUMNS.peak_isolator_force] = p_fiso2
     peak_iso_xy[b, 0], peak_iso_xy[b, 1] = p_iso_x, p_iso_y
     n_impacts[b] = n_imp
 
 
 @njit(**JIT)
 def _run(shape, members, s0, s1, model, memory, peaks, hist):
-    """Steps s0 <= step < s1 of the members in `members` (indices), one after the other (the
-    other arguments: _member's). It releases the GIL (nogil), so that run_plan's threads run
-    batches of members at once: the same parallelism as numba's parallel loops, at a third of
-    their compile time."""
+    """Steps s0 <= step < s1 of the members in `members`, one after the other (the other
+    arguments: _member's), the GIL released: run_plan's threads run batches of members at once
+    (numba's parallel loops' parallelism at a third of their compile time)."""
     for b in members:
         _member(shape, b, s0, s1, model, memory, peaks, hist)
 
@@ -436,8 +448,7 @@ def plan_run(ag, dt, arrays, contacts, moat: str, scale, angle, history=None, ar
     f_story = np.zeros((size, n_levels - 1, n_dirs))
     state = np.zeros((size, len(PLAN_STATE)))
     wall_state = contact_state(size, n_dir)
-    peaks = {q.name: np.zeros((size, *q.trailing_shape(n_levels, len(WALLS[moat]))),
-                              dtype=q.dtype) for q in (*PEAKS, *PLAN_PEAKS)}
+    peaks = empty_peaks(size, n_levels, moat)
     scalar = np.zeros((size, len(PLAN_PEAK_COLUMNS)))
     n_steps = ag.shape[0]
     hist_row, every, rows, inverse = history_rows(history, size)
@@ -451,9 +462,10 @@ def plan_run(ag, dt, arrays, contacts, moat: str, scale, angle, history=None, ar
     kept = (peaks["peak_total_accel"], peaks["peak_total_accel_xy"],
             peaks["peak_interstory_drift"], peaks["peak_interstory_drift_xy"],
             peaks["peak_isolator_disp_xy"], scalar, peaks["n_impacts"],
-            peaks["max_impact_force_wall"])
+            peaks["max_impact_force_wall"], peaks["peak_floor_velocity"],
+            peaks["peak_story_shear"])
     written = (hist_row, every, hist["isolator_disp"], hist["total_accel"],
-               hist["impact_force"], hist["indentation"])
+               hist["impact_force"], hist["indentation"], hist["isolator_force"])
     return {"model": model, "memory": memory, "kept": kept, "written": written,
             "groups": law_groups(arrays.story_code, arrays.isolator_code), "levels": levels,
             "pairs": pairs, "circular": moat == "circular", "peaks": peaks, "scalar": scalar,
@@ -464,6 +476,7 @@ def plan_outcome(run: dict, history) -> tuple[dict, dict | None]:
     """(peaks, history) of a run in plan (plan_run) once its kernel ran."""
     state = run["memory"][4]
     peaks = finish_peaks(run["peaks"], run["scalar"], PLAN_PEAK_COLUMNS, state, rooted=True)
+    peaks.update(residuals(run["memory"][0], peaks["collapsed"]))
     if history is None:
         return peaks, None
     hist, inverse = run["hist"], run["inverse"]

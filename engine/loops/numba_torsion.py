@@ -28,12 +28,10 @@ from numba import carray, njit
 
 from ..results import (
     MODE,
-    PEAKS,
-    PLAN_PEAKS,
     TORSION_HISTORIES,
-    TORSION_PEAKS,
-    WALLS,
+    empty_peaks,
     empty_plan_history,
+    residuals,
 )
 from ..scheme import full_step_operator
 from ..torsion import CORNERS
@@ -89,28 +87,28 @@ multiple): the slab's corners, or two pads a wall, are 8."""
 @njit(**LINK)
 def _member(shape, b, s0, s1, model, memory, peaks, hist):
     """Steps s0 <= step < s1 of member b (the module docstring). shape = (levels, padded, slots,
-    isolator_tag); model = (ag, dt, op, respond, load, story_k, story_centre, collapse_square,
-    par, bearings, point_wall, point_axis, codes, gaps, point_par, direction, tangent, coupling,
-    tangent_compliance, corners, isolator), what the run reads (isolator: the isolator law's
-    rows, a bearing's share); memory = (u, v, isolator_state, state, point_state),
-    what it carries between chunks (isolator_state: per bearing); peaks = (peak_level,
-    peak_level_xy, peak_story, peak_story_xy, peak_iso_xy, scalar, n_impacts, peak_wall,
-    peak_point_force, peak_point_indent); hist = (hist_row, every, h_u, h_acc, h_f, h_d,
-    h_floor, h_floor_rot) (run_torsion builds them). The state's 3L degrees of freedom sit on
-    the stack as Q pairs (Q = len(padded) / 2, the last lane of an odd 3L unused, its operator
-    rows 0): op (B, 6L, Q, 2) the transposed step operator, respond (B, 3, Q, 2) its first three
-    columns transposed; the P contact points' state and this step's values too, on POINT_SLOTS-
-    sized stack arrays (len(slots) of them: the kernel compiles once per number of levels and
-    multiple of POINT_SLOTS, P = len(point_wall) at run time, and per isolator law: the
-    bearings' law, numba_support.law_tag). A member that has collapsed stops."""
+    isolator_tag); model = (ag, dt, op, respond, load, story_k, story_centre, collapse_square, par,
+    bearings, point_wall, point_axis, codes, gaps, point_par, direction, tangent, coupling,
+    tangent_compliance, corners, isolator), what the run reads (isolator: the isolator law's rows, a
+    bearing's share); memory = (u, v, isolator_state, state, point_state), what it carries between
+    chunks (isolator_state: per bearing); peaks = (peak_level, peak_level_xy, peak_story,
+    peak_story_xy, peak_iso_xy, scalar, n_impacts, peak_wall, peak_point_force, peak_point_indent,
+    peak_velocity, peak_shear); hist = (hist_row, every, h_u, h_acc, h_f, h_d, h_floor, h_floor_rot,
+    h_fi) (run_torsion builds them). The state's 3L degrees of freedom sit on the stack as Q pairs
+    (Q = len(padded) / 2, the last lane of an odd 3L unused, its operator rows 0): op (B, 6L, Q, 2)
+    the transposed step operator, respond (B, 3, Q, 2) its first three columns transposed; the P
+    contact points' state and this step's values too, on POINT_SLOTS- sized stack arrays (len(slots)
+    of them: the kernel compiles once per number of levels and multiple of POINT_SLOTS, P =
+    len(point_wall) at run time, and per isolator law: the bearings' law, numba_support.law_tag). A
+    member that has collapsed stops."""
     levels, padded, slots, isolator_tag = shape
     (ag, dt, op, respond, load, story_k, story_centre, collapse_square, par, bearings,
      point_wall, point_axis, codes, gaps_all, point_par, direction, tangent, coupling,
      tangent_compliance, corners, isolator) = model
     u_all, v_all, isolator_state, state, point_state = memory
     (peak_level, peak_level_xy, peak_story, peak_story_xy, peak_iso_xy, scalar, n_impacts,
-     peak_wall, peak_point_force, peak_point_indent) = peaks
-    hist_row, every, h_u, h_acc, h_f, h_d, h_floor, h_floor_rot = hist
+     peak_wall, peak_point_force, peak_point_indent, peak_velocity, peak_shear) = peaks
+    hist_row, every, h_u, h_acc, h_f, h_d, h_floor, h_floor_rot, h_fi = hist
     st = state[b]
     if st[TORSION_STATE.collapsed] != 0.0:
         return
@@ -150,14 +148,10 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
 
     # The member's state: displacements, half-step velocities, the next ones, the right-hand
     # side, each 3L degrees of freedom as pairs (flat views beside them).
-    pu = stack_doubles(padded)
-    pv = stack_doubles(padded)
-    pn = stack_doubles(padded)
-    pr = stack_doubles(padded)
-    u = carray(pu, (n_pad,))
-    v = carray(pv, (n_pad,))
-    nx = carray(pn, (n_pad,))
-    r = carray(pr, (n_pad,))
+    pu, pv = stack_doubles(padded), stack_doubles(padded)
+    pn, pr = stack_doubles(padded), stack_doubles(padded)
+    u, v = carray(pu, (n_pad,)), carray(pv, (n_pad,))
+    nx, r = carray(pn, (n_pad,)), carray(pr, (n_pad,))
     u2 = carray(pu, (n_pairs, 2))
     v2 = carray(pv, (n_pairs, 2))
     nx2 = carray(pn, (n_pairs, 2))
@@ -165,6 +159,8 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     pa2 = carray(stack_doubles(levels), (n_levels,))
     pa = carray(stack_doubles(padded), (n_pad,))  # per level x and y, squared
     pd2 = carray(stack_doubles(levels), (n_levels,))
+    pv2 = carray(stack_doubles(levels), (n_levels,))
+    ps2 = carray(stack_doubles(levels), (n_levels,))
     pd = carray(stack_doubles(padded), (n_pad,))
     for i in range(n_pad):
         u[i], v[i], r[i] = 0.0, 0.0, 0.0
@@ -173,11 +169,11 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
             u[3 * i + d], v[i * 3 + d] = u_all[b, i, d], v_all[b, i, d]
         for e in range(2):
             pa[2 * i + e] = peak_level_xy[b, i, e]
-        pa2[i] = peak_level[b, i]
+        pa2[i], pv2[i] = peak_level[b, i], peak_velocity[b, i]
     for i in range(n_st):
         for e in range(2):
             pd[2 * i + e] = peak_story_xy[b, i, e]
-        pd2[i] = peak_story[b, i]
+        pd2[i], ps2[i] = peak_story[b, i], peak_shear[b, i]
     p_iso2 = pk[TORSION_PEAK_COLUMNS.peak_isolator_disp]
     p_iso_x, p_iso_y = peak_iso_xy[b, 0], peak_iso_xy[b, 1]
     p_indent = pk[TORSION_PEAK_COLUMNS.max_indentation]
@@ -185,6 +181,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     energy = pk[TORSION_PEAK_COLUMNS.impact_energy]
     p_corner = pk[TORSION_PEAK_COLUMNS.peak_corner_disp]
     p_rot = pk[TORSION_PEAK_COLUMNS.peak_rotation]
+    p_fiso2 = pk[TORSION_PEAK_COLUMNS.peak_isolator_force]
     n_imp = n_impacts[b]
     touch_x = st[TORSION_STATE.touch_x] != 0.0
     touch_y = st[TORSION_STATE.touch_y] != 0.0
@@ -248,6 +245,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
                 cx = ks[i, 0] * (dr[3 * i] - dr[3 * i + 2] * sc[i, 1])
                 cy = ks[i, 1] * (dr[3 * i + 1] + dr[3 * i + 2] * sc[i, 0])
                 ct = ks[i, 2] * dr[3 * i + 2] + sc[i, 0] * cy - sc[i, 1] * cx
+                ps2[i] = max(ps2[i], cx * cx + cy * cy)
             else:
                 cx, cy, ct = 0.0, 0.0, 0.0
             j = 3 * i
@@ -353,6 +351,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
             h_u[hrow, t, 0], h_u[hrow, t, 1] = u0x, u0y
             h_f[hrow, t] = math.hypot(px, py)
             h_d[hrow, t] = max(deepest, 0.0)
+            h_fi[hrow, t, 0], h_fi[hrow, t, 1] = sx, sy
             for i in range(n_levels):
                 h_floor[hrow, t, i, 0] = u[3 * i]
                 h_floor[hrow, t, i, 1] = u[3 * i + 1]
@@ -366,11 +365,13 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
             pa[2 * i] = max(pa[2 * i], sqx)
             pa[2 * i + 1] = max(pa[2 * i + 1], sqy)
             pa2[i] = max(pa2[i], sqx + sqy)
+            pv2[i] = max(pv2[i], nx[3 * i] * nx[3 * i] + nx[3 * i + 1] * nx[3 * i + 1])
         for i in range(n_st):
             sqx, sqy = dr[3 * i] * dr[3 * i], dr[3 * i + 1] * dr[3 * i + 1]
             pd[2 * i] = max(pd[2 * i], sqx)
             pd[2 * i + 1] = max(pd[2 * i + 1], sqy)
             pd2[i] = max(pd2[i], sqx + sqy)
+        p_fiso2 = max(p_fiso2, sx * sx + sy * sy)
         sqx, sqy = u0x * u0x, u0y * u0y
         p_iso2 = max(p_iso2, sqx + sqy)
         p_iso_x = max(p_iso_x, sqx)
@@ -393,11 +394,11 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
             u_all[b, i, d], v_all[b, i, d] = u[3 * i + d], v[3 * i + d]
         for e in range(2):
             peak_level_xy[b, i, e] = pa[2 * i + e]
-        peak_level[b, i] = pa2[i]
+        peak_level[b, i], peak_velocity[b, i] = pa2[i], pv2[i]
     for i in range(n_st):
         for e in range(2):
             peak_story_xy[b, i, e] = pd[2 * i + e]
-        peak_story[b, i] = pd2[i]
+        peak_story[b, i], peak_shear[b, i] = pd2[i], ps2[i]
     pk[TORSION_PEAK_COLUMNS.peak_isolator_disp] = p_iso2
     peak_iso_xy[b, 0], peak_iso_xy[b, 1] = p_iso_x, p_iso_y
     pk[TORSION_PEAK_COLUMNS.max_indentation] = p_indent
@@ -405,6 +406,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     pk[TORSION_PEAK_COLUMNS.impact_energy] = energy
     pk[TORSION_PEAK_COLUMNS.peak_corner_disp] = p_corner
     pk[TORSION_PEAK_COLUMNS.peak_rotation] = p_rot
+    pk[TORSION_PEAK_COLUMNS.peak_isolator_force] = p_fiso2
     n_impacts[b] = n_imp
     for q in range(n_points):
         ps[q, CONTACT.v_imp], ps[q, CONTACT.delta_prev] = v_imp[q], delta_prev[q]
@@ -416,9 +418,8 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
 
 @njit(**JIT)
 def _run(shape, members, s0, s1, model, memory, peaks, hist):
-    """Steps s0 <= step < s1 of the members in `members` (indices), one after the other (the
-    other arguments: _member's); it releases the GIL (nogil), so that run_torsion's threads
-    run batches of members at once."""
+    """Steps s0 <= step < s1 of the members in `members`, one after the other (the other
+    arguments: _member's), the GIL released: run_torsion's threads run batches at once."""
     for b in members:
         _member(shape, b, s0, s1, model, memory, peaks, hist)
 
@@ -457,9 +458,7 @@ def run_torsion(ag, dt, b, t, contacts, points, progress, scale, angle, history=
     isolator_state = np.zeros((size, n_bearings, ISOLATOR_STATE_XY))
     state = np.zeros((size, len(TORSION_STATE)))
     point_state = contact_state(size, n_points)
-    n_walls = len(WALLS["rectangular"])
-    peaks = {q.name: np.zeros((size, *q.trailing_shape(n_levels, n_walls, n_points)),
-                              dtype=q.dtype) for q in (*PEAKS, *PLAN_PEAKS, *TORSION_PEAKS)}
+    peaks = empty_peaks(size, n_levels, "rectangular", n_points=n_points)
     scalar = np.zeros((size, len(TORSION_PEAK_COLUMNS)))
     n_steps = ag.shape[0]
     hist_row, every, rows, inverse = history_rows(history, size)
@@ -481,10 +480,11 @@ def run_torsion(ag, dt, b, t, contacts, points, progress, scale, angle, history=
             peaks["peak_interstory_drift"], peaks["peak_interstory_drift_xy"],
             peaks["peak_isolator_disp_xy"], scalar, peaks["n_impacts"],
             peaks["max_impact_force_wall"], peaks["max_point_force"],
-            peaks["max_point_indentation"])
+            peaks["max_point_indentation"], peaks["peak_floor_velocity"],
+            peaks["peak_story_shear"])
     written = (hist_row, every, hist["isolator_disp"], hist["total_accel"],
                hist["impact_force"], hist["indentation"], hist["floor_disp"],
-               hist["floor_rotation"])
+               hist["floor_rotation"], hist["isolator_force"])
     groups = law_groups(b.isolator_code)  # one kernel per isolator law, as the planar loop
     run_members(size, n_steps, progress,
                 lambda members, s0, s1: [
@@ -492,6 +492,7 @@ def run_torsion(ag, dt, b, t, contacts, points, progress, scale, angle, history=
                          written)
                     for tags, chosen in by_law(members, groups)])
     peaks = finish_peaks(peaks, scalar, TORSION_PEAK_COLUMNS, state, rooted=True)
+    peaks.update(residuals(u[..., :2], peaks["collapsed"]))
     if history is None:
         return peaks, None
     hist = {"time": hist["time"], **{q.name: hist[q.name][inverse] for q in TORSION_HISTORIES},

@@ -12,7 +12,7 @@ import numpy as np
 
 from ..building import BuildingArrays
 from ..impact.contact import fill_force_terms, law_blocks
-from ..results import MODE, empty_collapse, empty_peaks
+from ..results import MODE, empty_collapse, empty_peaks, residuals
 from ..scheme import implicit_force, onset_weight, step_operators
 from ..stories.registry import BY_CODE as STORY_LAWS_BY_CODE
 from .numpy_isolators import IsolatorBatch
@@ -73,6 +73,8 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
     peak_iso, max_indent = peaks["peak_isolator_disp"], peaks["max_indentation"]
     max_force, n_impacts = peaks["max_impact_force"], peaks["n_impacts"]
     energy = peaks["impact_energy"]
+    peak_fiso, peak_shear = peaks["peak_isolator_force"], peaks["peak_story_shear"]
+    peak_velocity = peaks["peak_floor_velocity"]
 
     n_steps = ag.size
     hist = None
@@ -83,7 +85,8 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
                 "isolator_disp": np.zeros((m_out, n_out)),
                 "total_accel": np.zeros((m_out, n_out, n_levels)),
                 "impact_force": np.zeros((m_out, n_out)),
-                "indentation": np.zeros((m_out, n_out))}
+                "indentation": np.zeros((m_out, n_out)),
+                "isolator_force": np.zeros((m_out, n_out))}
     report_every = max(n_steps // 100, 1)
 
     for step in range(n_steps):
@@ -146,7 +149,12 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
         total_accel = (v_next - v_half) / dt + a[:, None]
         np.maximum(peak_accel, np.abs(total_accel), out=peak_accel)
         np.maximum(peak_drift, np.abs(drift), out=peak_drift)
+        np.maximum(peak_velocity, np.abs(v_next), out=peak_velocity)
+        # The story law's shear: P-Delta's share, taken from the chain above, given back.
+        np.maximum(peak_shear, np.abs(chain[:, 1:n_levels] + b.story_gravity * drift),
+                   out=peak_shear)
         np.maximum(peak_iso, np.abs(u0), out=peak_iso)
+        np.maximum(peak_fiso, np.abs(chain[:, 0]), out=peak_fiso)
         np.maximum(max_indent, delta, out=max_indent)
         np.maximum(max_force, force, out=max_force)
         # Work on the wall over this step, with the central velocity of level 0.
@@ -158,6 +166,7 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
             hist["total_accel"][:, k] = total_accel[hist_members]
             hist["impact_force"][:, k] = force[hist_members]
             hist["indentation"][:, k] = np.maximum(delta[hist_members], 0.0)
+            hist["isolator_force"][:, k] = chain[hist_members, 0]
 
         # Advance: the isolator law's state after this step, at its velocity.
         isolators.advance(v_next[:, 0], dt)
@@ -168,7 +177,7 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
     if progress is not None:
         progress(n_steps, n_steps)
 
-    return {**peaks, **collapse}, hist
+    return {**peaks, **collapse, **residuals(u, collapsed)}, hist
 
 
 def collapse_modes(isolator, capacity, story, collapse_drift) -> np.ndarray:

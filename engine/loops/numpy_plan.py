@@ -30,7 +30,15 @@ import numpy as np
 from ..building import BuildingArrays
 from ..impact.contact import fill_force_terms, law_blocks
 from ..isolators.hysteresis import radial_return
-from ..results import DIRECTIONS, PEAKS, PLAN_PEAKS, WALLS, empty_collapse, empty_plan_history
+from ..results import (
+    DIRECTIONS,
+    PEAKS,
+    PLAN_PEAKS,
+    WALLS,
+    empty_collapse,
+    empty_plan_history,
+    residuals,
+)
 from ..scheme import implicit_force, onset_weight, step_operators
 from ..stories.registry import BY_CODE as STORY_LAWS_BY_CODE
 from .numpy_isolators import IsolatorBatch
@@ -215,9 +223,15 @@ def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, an
             hist["total_accel"][:, k] = total_accel[rows]
             hist["impact_force"][:, k] = np.hypot(wall_force[rows, 0], wall_force[rows, 1])
             hist["indentation"][:, k] = np.maximum(step_delta[rows], 0.0)
+            hist["isolator_force"][:, k] = chain[rows, 0]
         raise_peak(peaks, "peak_total_accel", total_accel)
         raise_peak(peaks, "peak_interstory_drift", drift)
         raise_peak(peaks, "peak_isolator_disp", u0)
+        raise_peak(peaks, "peak_floor_velocity", v_next, directions=False)
+        raise_peak(peaks, "peak_isolator_force", chain[:, 0], directions=False)
+        # The story law's shear: P-Delta's share, taken from the chain above, given back.
+        raise_peak(peaks, "peak_story_shear", chain[:, 1:n_levels]
+                   + b.story_gravity[:, :, None] * drift, directions=False)
 
         # Advance: the isolator law's state after this step, at its velocity; the stories'
         # slip elements see this step's increments.
@@ -236,7 +250,7 @@ def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, an
         progress(n_steps, n_steps)
     if hist is not None:
         hist["members"] = np.asarray(history.members, dtype=int)
-    return {**peaks, **collapse}, hist
+    return {**peaks, **collapse, **residuals(u, collapse["collapsed"])}, hist
 
 
 def _friction(v_next, respond, comp_xy, limit, normal):
@@ -253,10 +267,12 @@ def _friction(v_next, respond, comp_xy, limit, normal):
     return force
 
 
-def raise_peak(peaks, name, vectors):
-    """Raise the resultant peak `name` and its per-direction peak `name`_xy."""
+def raise_peak(peaks, name, vectors, directions=True):
+    """Raise the resultant peak `name` and, with `directions`, its per-direction peak
+    `name`_xy."""
     np.maximum(peaks[name], np.sqrt(np.sum(vectors * vectors, axis=-1)), out=peaks[name])
-    np.maximum(peaks[name + "_xy"], np.abs(vectors), out=peaks[name + "_xy"])
+    if directions:
+        np.maximum(peaks[name + "_xy"], np.abs(vectors), out=peaks[name + "_xy"])
 
 
 def _wall_peaks(peaks, force, delta, new, wall):

@@ -27,7 +27,15 @@ import numpy as np
 
 from ..building import BuildingArrays
 from ..impact.contact import fill_force_terms, law_blocks
-from ..results import PEAKS, PLAN_PEAKS, TORSION_PEAKS, WALLS, empty_collapse, empty_plan_history
+from ..results import (
+    PEAKS,
+    PLAN_PEAKS,
+    TORSION_PEAKS,
+    WALLS,
+    empty_collapse,
+    empty_plan_history,
+    residuals,
+)
 from ..scheme import full_step_operator, onset_weight
 from ..torsion import CORNERS, ContactPoints, TorsionArrays, corner_orbits, point_laws
 from .numpy_isolators import IsolatorBatch
@@ -213,7 +221,11 @@ def run_torsion(ag, dt, b: BuildingArrays, t: TorsionArrays, contacts, points: C
             hist["indentation"][:, k] = np.maximum(delta[rows].max(axis=1, initial=-1.0), 0.0)
             hist["floor_disp"][:, k] = u[rows, :, :2]
             hist["floor_rotation"][:, k] = u[rows, :, 2]
+            hist["isolator_force"][:, k] = chain[rows, 0, :2]
         raise_peak(peaks, "peak_total_accel", total_accel)
+        raise_peak(peaks, "peak_floor_velocity", v_next[..., :2], directions=False)
+        raise_peak(peaks, "peak_isolator_force", chain[:, 0, :2], directions=False)
+        raise_peak(peaks, "peak_story_shear", chain[:, 1:n_levels, :2], directions=False)
         raise_peak(peaks, "peak_interstory_drift", drift[..., :2])
         raise_peak(peaks, "peak_isolator_disp", u0[:, :2])
         np.maximum(peaks["peak_corner_disp"], np.sqrt(np.sum(corner * corner, axis=-1)).max(
@@ -232,7 +244,7 @@ def run_torsion(ag, dt, b: BuildingArrays, t: TorsionArrays, contacts, points: C
         progress(n_steps, n_steps)
     if hist is not None:
         hist["members"] = np.asarray(history.members, dtype=int)
-    return {**peaks, **collapse}, hist
+    return {**peaks, **collapse, **residuals(u[..., :2], collapse["collapsed"])}, hist
 
 
 def story_forces(story_k, centre, drift):

@@ -19,8 +19,9 @@ pelicun's units row (`Units,g,...,rad,...`) under the header, as pelicun's
 DemandModel.load_sample reads it (pelicun's own test data: tests/basic/data/model/
 test_DemandModel/load_sample/demand_sample_A.csv). Location 0 is the isolation slab (level 0
 of the archive: the lowest floor of an isolated building), story i joins levels i-1 and i;
-direction 1 in the planar model, 1 and 2 (x, y) in plan. The archive has no floor
-velocities, so no PFV.
+direction 1 in the planar model, 1 and 2 (x, y) in plan. No PFV: the archive's floor
+velocities are relative to the ground and resultants in plan, and whether FEMA P-58's PFV is
+that velocity or the total one, per direction, is not checked against the standard.
 
 Bad input (a missing file, no sweep archive, an unknown block or selection, no story heights)
 is one `error:` line and exit status 2; the output is written to a temporary file beside it and

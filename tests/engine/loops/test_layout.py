@@ -58,9 +58,11 @@ def test_the_scalar_peaks_are_the_results_declarations():
                   layout.TORSION_PEAK_COLUMNS):
         assert set(peaks._fields) <= declared
     assert layout.PLANAR_PEAK_COLUMNS._fields == (
-        "peak_isolator_disp", "max_indentation", "max_impact_force", "impact_energy")
+        "peak_isolator_disp", "max_indentation", "max_impact_force", "impact_energy",
+        "peak_isolator_force")
     assert set(layout.SQUARED) == {
         "peak_total_accel", "peak_interstory_drift", "peak_isolator_disp",
+        "peak_isolator_force", "peak_story_shear", "peak_floor_velocity",
         "peak_total_accel_xy", "peak_interstory_drift_xy", "peak_isolator_disp_xy",
         "peak_corner_disp"}
 

@@ -48,7 +48,12 @@ def _result() -> Result:
                   peak_isolator_disp=np.array([0.2, 0.3]),
                   max_indentation=np.array([0.01, 0.05]),
                   max_impact_force=np.array([900e3, 1.8e6]),
-                  n_impacts=np.array([1, 2]), impact_energy=np.zeros(2), dt=1e-3)
+                  n_impacts=np.array([1, 2]), impact_energy=np.zeros(2),
+                  peak_isolator_force=np.array([2e6, 3e6]),
+                  peak_story_shear=np.array([[4e6, 2e6], [5e6, 1e6]]),
+                  peak_floor_velocity=np.array([[0.5, 0.6, 0.7], [0.8, 0.9, 1.0]]),
+                  residual_isolator_disp=np.array([0.01, 0.0]),
+                  residual_interstory_drift=np.zeros((2, 2)), dt=1e-3)
 
 
 def test_declarations_read_an_engine_result_or_a_dict_of_peaks():
