@@ -208,7 +208,8 @@ def _kernel(n_levels: int, story_code: int, isolator_code: int, banded: bool):
                     h_acc[hrow, step // every, i] = total
             for i in range(n_levels - 1):
                 pd[i] = max(pd[i], abs(drift[i]))
-                ps[i] = max(ps[i], abs(chain[i + 1] + gravity[i] * drift[i]))
+                if nonlinear:
+                    ps[i] = max(ps[i], abs(chain[i + 1] + gravity[i] * drift[i]))
             p_iso = max(p_iso, abs(u0))
             p_fiso = max(p_fiso, abs(chain[0]))
             p_indent = max(p_indent, delta)

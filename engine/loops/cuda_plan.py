@@ -283,9 +283,10 @@ def _kernel(n_levels: int, circular: bool, story_code: int, isolator_code: int):
                 pd[i, 0] = max(pd[i, 0], square_x)
                 pd[i, 1] = max(pd[i, 1], square_y)
                 pd2[i] = max(pd2[i], square_x + square_y)
-                shear_x = c[i + 1, 0] + gravity[i] * dr[i, 0]
-                shear_y = c[i + 1, 1] + gravity[i] * dr[i, 1]
-                ps2[i] = max(ps2[i], shear_x * shear_x + shear_y * shear_y)
+                if uniaxial or stories_yield or anisotropic:
+                    shear_x = c[i + 1, 0] + gravity[i] * dr[i, 0]
+                    shear_y = c[i + 1, 1] + gravity[i] * dr[i, 1]
+                    ps2[i] = max(ps2[i], shear_x * shear_x + shear_y * shear_y)
             p_fiso2 = max(p_fiso2, c[0, 0] * c[0, 0] + c[0, 1] * c[0, 1])
             square_x, square_y = u[0, 0] * u[0, 0], u[0, 1] * u[0, 1]
             p_iso2 = max(p_iso2, square_x + square_y)

@@ -123,6 +123,20 @@ def contact_state(*shape) -> np.ndarray:
     return state
 
 
+def linear_story_shear(peaks: dict, arrays, isotropic: bool = True) -> dict:
+    """peak_story_shear of the members whose stories are linear (and, in plan, alike along x and
+    y: `isotropic`): k times peak_interstory_drift, k the law's stiffness (story_k, P-Delta's
+    share given back). The same number as the largest |k drift| over the steps (a product by
+    k > 0 is monotone in binary floating point), which the loops then need not keep step by
+    step; the other members' shears as the loops kept them."""
+    if isotropic:
+        linear = np.asarray(arrays.story_linear, dtype=bool)[:, None]
+        k = np.asarray(arrays.story_k, float) + np.asarray(arrays.story_gravity, float)
+        peaks["peak_story_shear"] = np.where(linear, k * peaks["peak_interstory_drift"],
+                                             peaks["peak_story_shear"])
+    return peaks
+
+
 def finish_peaks(peaks: dict, scalar: np.ndarray, layout, state: np.ndarray,
                  rooted: bool = False) -> dict:
     """The run's peaks by name: `peaks` (the arrays a kernel filled by name) with the scalar

@@ -49,6 +49,7 @@ from .layout import (
     PLANAR_STORY,
     finish_peaks,
     isolator_rows,
+    linear_story_shear,
     packed,
 )
 from .numba_support import (
@@ -245,8 +246,8 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
                 h_acc[hrow, step // every, i] = total
         for i in range(n_levels - 1):
             pd[i] = max(pd[i], abs(drift[i]))
-            # The story law's shear: P-Delta's share, taken from the chain above, given back.
-            ps[i] = max(ps[i], abs(chain[i + 1] + gravity[i] * drift[i]))
+            if nonlinear:  # the law's shear, P-Delta's share given back (linear: at the end)
+                ps[i] = max(ps[i], abs(chain[i + 1] + gravity[i] * drift[i]))
         p_iso = max(p_iso, abs(u0))
         p_fiso = max(p_fiso, abs(chain[0]))
         p_indent = max(p_indent, delta)
@@ -374,7 +375,7 @@ def planar_run(ag, dt, arrays, contact, history, scale) -> dict:
             "hist": (hist_row, every, h_u, h_acc, h_f, h_d, h_fi),
             "groups": law_groups(arrays.story_code, arrays.isolator_code),
             "levels": (0,) * n_levels,  # its length, part of its type, specialises the kernel
-            "peaks": peaks, "inverse": inverse, "n_out": n_out}
+            "peaks": peaks, "inverse": inverse, "n_out": n_out, "arrays": arrays}
 
 
 def planar_outcome(run: dict, dt: float, history) -> tuple[dict, dict | None]:
@@ -382,6 +383,7 @@ def planar_outcome(run: dict, dt: float, history) -> tuple[dict, dict | None]:
     state = run["memory"][3]
     result = finish_peaks(run["peaks"], run["kept"][4], PLANAR_PEAK_COLUMNS, state)
     result.update(residuals(run["memory"][0], result["collapsed"]))
+    linear_story_shear(result, run["arrays"])
     if history is None:
         return result, None
     _, every, h_u, h_acc, h_f, h_d, h_fi = run["hist"]

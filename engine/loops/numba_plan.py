@@ -60,6 +60,7 @@ from .layout import (
     contact_state,
     finish_peaks,
     isolator_rows,
+    linear_story_shear,
     packed,
 )
 from .numba_support import (
@@ -172,8 +173,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     iso_state = carray(stack_doubles(ISOLATOR_SLOTS_XY), (ISOLATOR_STATE_XY,))
     for j in range(ISOLATOR_STATE_XY):
         iso_state[j] = isolator_state[b, j]
-    # per wall direction: impact velocity, previous indentation, in contact (1.0 or 0.0),
-    # and the clear gap
+    # per wall direction: impact velocity, previous indentation, in contact (1.0), clear gap
     v_imp = carray(stack_doubles(levels), (2,))
     delta_prev = carray(stack_doubles(levels), (2,))
     inside = carray(stack_doubles(levels), (2,))
@@ -259,8 +259,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
                                   mul2((m[i], m[i]), acc)))
         store_pair(r, n_st, sub2(sub2((0.0, 0.0), load_pair(c, n_st)),
                                  mul2((m[n_st], m[n_st]), acc)))  # the free roof
-        # Both directions through their operators (ot: transposed, by column, x and y side by
-        # side), in the order of the planar kernel's sums.
+        # Both directions through their transposed operators, in the planar kernel's order.
         for i in range(n_levels):
             store_pair(nx, i, mul2(load_pair(ot[0], i), load_pair(r, 0)))
         for j in range(1, n_levels):
@@ -350,10 +349,10 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
             square = mul2(load_pair(dr, i), load_pair(dr, i))
             store_pair(pd, i, max2(load_pair(pd, i), square))
             pd2[i] = max(pd2[i], square[0] + square[1])
-            # The story law's shear: P-Delta's share, taken from the chain above, given back.
-            shear = add2(load_pair(c, i + 1), mul2((gravity[i], gravity[i]), load_pair(dr, i)))
-            square = mul2(shear, shear)
-            ps2[i] = max(ps2[i], square[0] + square[1])
+            if uniaxial or stories_yield or anisotropic:  # the law's shear (else at the end)
+                shear = add2(load_pair(c, i + 1), mul2((gravity[i], gravity[i]), load_pair(dr, i)))
+                square = mul2(shear, shear)
+                ps2[i] = max(ps2[i], square[0] + square[1])
         square = mul2(load_pair(c, 0), load_pair(c, 0))
         p_fiso2 = max(p_fiso2, square[0] + square[1])
         square = mul2(load_pair(u, 0), load_pair(u, 0))
@@ -469,13 +468,15 @@ def plan_run(ag, dt, arrays, contacts, moat: str, scale, angle, history=None, ar
     return {"model": model, "memory": memory, "kept": kept, "written": written,
             "groups": law_groups(arrays.story_code, arrays.isolator_code), "levels": levels,
             "pairs": pairs, "circular": moat == "circular", "peaks": peaks, "scalar": scalar,
-            "hist": hist, "inverse": inverse, "n_steps": n_steps}
+            "hist": hist, "inverse": inverse, "n_steps": n_steps,
+            "stories": (arrays, arrays_y is None)}
 
 
 def plan_outcome(run: dict, history) -> tuple[dict, dict | None]:
     """(peaks, history) of a run in plan (plan_run) once its kernel ran."""
     state = run["memory"][4]
-    peaks = finish_peaks(run["peaks"], run["scalar"], PLAN_PEAK_COLUMNS, state, rooted=True)
+    peaks = linear_story_shear(finish_peaks(run["peaks"], run["scalar"], PLAN_PEAK_COLUMNS,
+                                            state, rooted=True), *run["stories"])
     peaks.update(residuals(run["memory"][0], peaks["collapsed"]))
     if history is None:
         return peaks, None

@@ -15,6 +15,7 @@ from ..impact.contact import fill_force_terms, law_blocks
 from ..results import MODE, empty_collapse, empty_peaks, residuals
 from ..scheme import implicit_force, onset_weight, step_operators
 from ..stories.registry import BY_CODE as STORY_LAWS_BY_CODE
+from .layout import linear_story_shear
 from .numpy_isolators import IsolatorBatch
 
 
@@ -177,6 +178,7 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
     if progress is not None:
         progress(n_steps, n_steps)
 
+    linear_story_shear(peaks, b)  # the linear stories' from their drifts
     return {**peaks, **collapse, **residuals(u, collapsed)}, hist
 
 

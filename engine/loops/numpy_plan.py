@@ -41,6 +41,7 @@ from ..results import (
 )
 from ..scheme import implicit_force, onset_weight, step_operators
 from ..stories.registry import BY_CODE as STORY_LAWS_BY_CODE
+from .layout import linear_story_shear
 from .numpy_isolators import IsolatorBatch
 from .numpy_loop import collapse_modes
 
@@ -250,6 +251,7 @@ def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, an
         progress(n_steps, n_steps)
     if hist is not None:
         hist["members"] = np.asarray(history.members, dtype=int)
+    linear_story_shear(peaks, b, isotropic=b_y is None)  # linear stories': from their drifts
     return {**peaks, **collapse, **residuals(u, collapse["collapsed"])}, hist
 
 

@@ -30,11 +30,16 @@ def _inertia(building: Building, total_accel: np.ndarray) -> np.ndarray:
     return np.flip(np.cumsum(np.flip(m * total_accel, axis=1), axis=1), axis=1)
 
 
-@pytest.mark.parametrize("isolator", [Isolator.bilinear(), FRICTION], ids=["bilinear", "fp"])
-def test_the_springs_carry_the_floors_inertia_in_a_plane(isolator):
+# Linear stories' peak shear is k times their peak drift, the others' kept step by step
+# (engine.loops.layout.linear_story_shear): both ways are checked, yielding stories included.
+@pytest.mark.parametrize(("isolator", "yield_force"), [(Isolator.bilinear(), None),
+                                                       (FRICTION, None), (FRICTION, 4e6)],
+                         ids=["bilinear", "fp", "fp-yielding-stories"])
+def test_the_springs_carry_the_floors_inertia_in_a_plane(isolator, yield_force):
     """Undamped, without a wall: at every step the isolators' force is minus the floors'
     inertia above them, and each story's shear minus that of the floors above it."""
-    building = Building(isolator=isolator, **UNDAMPED)
+    building = Building(isolator=isolator, story_yield_force=yield_force and (yield_force,) * 4,
+                        **UNDAMPED)
     res = engine.simulate(AG, DT, Contact.none(1), building, dt=DT, history=History([0]))
     inertia = _inertia(building, res.history["total_accel"][0])
     scale = np.abs(inertia).max()
@@ -47,8 +52,10 @@ def test_the_springs_carry_the_floors_inertia_in_a_plane(isolator):
     assert res.peak_isolator_force[0] > 0.05 * building.g * building.total_mass  # it slid
 
 
-def test_the_springs_carry_the_floors_inertia_in_plan():
-    building = Building(**UNDAMPED)
+@pytest.mark.parametrize("building", [Building(**UNDAMPED),
+                                      Building(story_stiffness_y=(5e8, 5e8, 4e8, 3e8),
+                                               **UNDAMPED)], ids=["alike", "stiffer-along-x"])
+def test_the_springs_carry_the_floors_inertia_in_plan(building):
     res = engine.simulate(AG_XY, DT, Contact.none(1), building, dt=DT, moat="rectangular",
                           angle=[30.0], history=History([0]))
     inertia = _inertia(building, res.history["total_accel"][0])  # (T, L, 2)
