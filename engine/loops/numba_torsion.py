@@ -97,7 +97,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     h_fi) (run_torsion builds them). The state's 3L degrees of freedom sit on the stack as Q pairs
     (Q = len(padded) / 2, the last lane of an odd 3L unused, its operator rows 0): op (B, 6L, Q, 2)
     the transposed step operator, respond (B, 3, Q, 2) its first three columns transposed; the P
-    contact points' state and this step's values too, on POINT_SLOTS- sized stack arrays (len(slots)
+    contact points' state and this step's values too, on POINT_SLOTS-sized stack arrays (len(slots)
     of them: the kernel compiles once per number of levels and multiple of POINT_SLOTS, P =
     len(point_wall) at run time, and per isolator law: the bearings' law, numba_support.law_tag). A
     member that has collapsed stops."""

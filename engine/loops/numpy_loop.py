@@ -151,9 +151,9 @@ def _time_loop(ag, dt, b: BuildingArrays, gap, blocks, hist_members, hist_every,
         np.maximum(peak_accel, np.abs(total_accel), out=peak_accel)
         np.maximum(peak_drift, np.abs(drift), out=peak_drift)
         np.maximum(peak_velocity, np.abs(v_next), out=peak_velocity)
-        # The story law's shear: P-Delta's share, taken from the chain above, given back.
-        np.maximum(peak_shear, np.abs(chain[:, 1:n_levels] + b.story_gravity * drift),
-                   out=peak_shear)
+        if nonlinear:  # the law's shear, P-Delta's share given back (linear: at the end)
+            np.maximum(peak_shear, np.abs(chain[:, 1:n_levels] + b.story_gravity * drift),
+                       out=peak_shear)
         np.maximum(peak_iso, np.abs(u0), out=peak_iso)
         np.maximum(peak_fiso, np.abs(chain[:, 0]), out=peak_fiso)
         np.maximum(max_indent, delta, out=max_indent)

@@ -131,6 +131,8 @@ def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, an
     state = np.repeat(b.story_state[:, :, None, :], n_dir, axis=2)
     uniaxial = [(m, STORY_LAWS_BY_CODE[b.story_code[m]].force)
                 for m in np.flatnonzero(b.story_uniaxial)]
+    # Linear stories alike along x and y: their shears from their drifts at the end.
+    keep_shear = b_y is not None or not bool(np.all(b.story_linear))
 
     peaks = {q.name: np.zeros((size, *q.trailing_shape(n_levels, len(WALLS[moat]))),
                               dtype=q.dtype) for q in (*PEAKS, *PLAN_PEAKS)}
@@ -230,9 +232,9 @@ def run_plan(ag, dt, b: BuildingArrays, contacts, moat: str, progress, scale, an
         raise_peak(peaks, "peak_isolator_disp", u0)
         raise_peak(peaks, "peak_floor_velocity", v_next, directions=False)
         raise_peak(peaks, "peak_isolator_force", chain[:, 0], directions=False)
-        # The story law's shear: P-Delta's share, taken from the chain above, given back.
-        raise_peak(peaks, "peak_story_shear", chain[:, 1:n_levels]
-                   + b.story_gravity[:, :, None] * drift, directions=False)
+        if keep_shear:  # the law's shear, P-Delta's share given back (linear: at the end)
+            raise_peak(peaks, "peak_story_shear", chain[:, 1:n_levels]
+                       + b.story_gravity[:, :, None] * drift, directions=False)
 
         # Advance: the isolator law's state after this step, at its velocity; the stories'
         # slip elements see this step's increments.
