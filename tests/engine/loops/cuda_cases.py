@@ -7,6 +7,7 @@ import numpy as np
 
 import engine
 from engine import Building, Contact, Isolator, Stories
+from engine.results import RESIDUALS
 
 T = np.arange(151) * 0.01  # s: 1.5 s of record, 1500 steps of DT
 DT = 1e-3  # s: within every member's stability limit (the simulator costs ~40 us a step)
@@ -54,19 +55,41 @@ def mixed_batch():
 
 
 def assert_same(device, cpu, rtol: float = 1e-12) -> None:
-    """The device's result is the CPU kernel's: peaks to rtol, collapse flags, modes and
-    times (the step) equal, histories to rtol."""
+    """The device's result is the CPU kernel's: collapse flags, modes and times (the step)
+    equal; peaks to rtol; the RESIDUALS to rtol of the displacements they are differences of
+    (the member's peak isolator displacement plus its stories' peak drifts), and histories to
+    rtol of the member's largest value of each: the device fuses multiplications and
+    additions, so a value near zero carries the round-off of the magnitudes it came from (a
+    GPU showed 2.4e-17 m on a residual drift of 4.1e-6 m, 1.3e-8 N on a force of 4.8e3 N in a
+    history peaking near 1e6 N)."""
     assert device.collapsed.tolist() == cpu.collapsed.tolist()
     assert device.collapse_mode.tolist() == cpu.collapse_mode.tolist()
     np.testing.assert_array_equal(device.collapse_time, cpu.collapse_time)
+    residual = {quantity.name for quantity in RESIDUALS}
+    scale = cpu.peak_isolator_disp + cpu.peak_interstory_drift.sum(axis=1)
     for name, value in vars(cpu).items():
         if isinstance(value, np.ndarray) and name != "collapse_time":
-            np.testing.assert_allclose(getattr(device, name), value, rtol=rtol, atol=1e-300,
-                                       err_msg=name)
+            atol = rtol * scale.reshape((-1,) + (1,) * (value.ndim - 1)) if name in residual \
+                else 1e-300
+            assert_close(getattr(device, name), value, rtol, atol, name)
     if cpu.history is not None:
         for name, value in cpu.history.items():
-            np.testing.assert_allclose(device.history[name], value, rtol=rtol, atol=1e-9,
-                                       err_msg=name)
+            largest = np.abs(value).reshape(len(value), -1).max(axis=1) if value.ndim > 1 \
+                else np.abs(value).max()
+            atol = rtol * np.reshape(largest, (-1,) + (1,) * (value.ndim - 1))
+            assert_close(device.history[name], value, rtol, atol, name)
+
+
+def assert_close(actual, desired, rtol: float, atol, name: str) -> None:
+    """|actual - desired| <= atol + rtol |desired| everywhere (NaN where both are), atol an
+    array broadcast against them (numpy's assert_allclose takes a number only)."""
+    assert np.shape(actual) == np.shape(desired), name
+    close = np.isclose(actual, desired, rtol=rtol, atol=atol, equal_nan=True)
+    if not close.all():
+        first = tuple(int(i) for i in np.argwhere(~close)[0])
+        raise AssertionError(f"{name}: {close.size - close.sum()} of {close.size} differ; first "
+                             f"at {first}: {float(actual[first])!r} against "
+                             f"{float(desired[first])!r}")
 
 
 def both(*args, **kwargs):
