@@ -64,6 +64,31 @@ def test_collapse_enters_by_its_probability():
     assert np.isnan(out["repair_cost"][1]).all() and np.isnan(out["collapse_probability"][1])
 
 
+def test_a_group_assessed_among_others_is_the_group_assessed_alone(monkeypatch):
+    """The groups share pelicun's assessments (BATCH at a time, here 2 so that the three
+    groups span two batches), each drawing what it would draw alone: the second group's
+    irreparable realizations (its demands' residual drift against the capacities) are the
+    same realizations, and its mean repair cost agrees within the consequences' sampling
+    error (pelicun draws those for the components and damage states the batch reaches)."""
+    loss = pytest.importorskip("pipeline.assess.loss")
+    pytest.importorskip("pelicun")
+    monkeypatch.setattr(loss, "BATCH", 2)
+    rows = loss.read_inventory()
+    rng = np.random.default_rng(1)
+    groups = [loss.Group(rng.lognormal(math.log(a * G), 0.3, (12, 3, 2)),
+                         rng.lognormal(math.log(d), 0.4, (12, 2, 2)), -2.0)
+              for a, d in ((0.2, 0.002), (0.5, 0.012), (0.9, 0.02))]
+    kw = {"stories": 2, "floor_area": 500.0, "yield_drift": 0.005, "samples": 400, "seed": 2}
+    together = loss.losses(groups, rows, **kw)
+    alone = loss.losses(groups[1:2], rows, **kw)
+    np.testing.assert_array_equal(together["irreparable"][1], alone["irreparable"][0])
+    cost, ref = together["repair_cost"][1], alone["repair_cost"][0]
+    error = math.hypot(cost.std(), ref.std()) / math.sqrt(cost.size)
+    assert abs(cost.mean() - ref.mean()) < 4 * error
+    # the demands differ enough to reach the irreparable drift in some groups only
+    assert not together["irreparable"][0].any() and 0 < together["irreparable"][1].mean() < 1
+
+
 def test_the_mixture_of_collapse_and_repair():
     loss = pytest.importorskip("pipeline.assess.loss")
     given = np.array([[1.0, 2.0, 3.0, 4.0]])
