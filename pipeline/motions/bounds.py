@@ -1,6 +1,18 @@
 """The isolation design basis: the code's T_M, D_M and D_TM at upper-bound, nominal and
 lower-bound isolator properties (ASCE 7-22 section 17.2.8.4), from the isolators' own
-hysteresis, the model's isolation dashpot shown beside and never counted.
+hysteresis, and the building a code-based study runs: damping counted once.
+
+Damping counted once (DAMPING_TEXT): the code's effective damping beta_M is the isolators'
+hysteresis or friction, what a prototype test measures (ASCE 7-22 17.8), plus the dampers the
+building declares. So the building a study runs has what its design counts: no isolation
+dashpot (zeta_iso 0) unless the building declares one (an explicit zeta_iso > 0 under
+damping="paper": a viscous damper at the isolation level), which the design then counts in
+beta_M (pipeline.motions.target.isolation_design(dashpot=True)). The paper's isolation
+dashpot (the bilinear law's default zeta_iso 0.05 on k1, 13% of critical at T_M) belongs to the
+paper's recipes; here it is shown beside (`with_dashpot`: D_M had it been counted), never run.
+The superstructure keeps its own damping, stiffness-proportional on the stories (damping=
+"paper": 2 zeta_sup k / omega_1 of the fixed-base superstructure), which acts on the stories'
+deformation only.
 
     PropertyFactors     lambda_max, lambda_min on the isolators' characteristic strength Q_d
                         and post-yield stiffness K_d (user-set; defaults UNVERIFIED, see
@@ -137,17 +149,20 @@ def bounded_building(building, bound: str, factors: PropertyFactors | None = Non
 @dataclass(frozen=True)
 class DesignBasis:
     """The code's isolation design at each bound. bound: the one a study runs (BOUND_NAMES);
-    factors: PropertyFactors; buildings: bound -> engine.Building; designs: bound ->
-    pipeline.motions.target.IsolationDesign from the isolators' hysteresis (plus the
-    supplemental damping given); with_dashpot: the same with the model's isolation dashpot
-    counted (shown beside, never used), None when the building has no isolation dashpot
-    (damping="modal")."""
+    factors: PropertyFactors; buildings: bound -> the engine.Building run (damping counted
+    once: its isolation dashpot the declared damper's, else none); designs: bound ->
+    pipeline.motions.target.IsolationDesign from the isolators' hysteresis plus the declared
+    damper and the supplemental damping given; with_dashpot: the design had the paper's
+    isolation dashpot been counted (shown beside, never run), None where the building declares
+    its damper or has no isolation dashpot (damping="modal"); damper: the declared isolation
+    damper's zeta_iso (0: none)."""
 
     bound: str
     factors: PropertyFactors
     buildings: dict
     designs: dict
     with_dashpot: dict | None
+    damper: float = 0.0
 
     @property
     def building(self):
@@ -198,7 +213,7 @@ class DesignBasis:
                  "isolator_bound": self.bound, "isolator_bound_text": BOUND_TEXT[self.bound],
                  "property_factors": self.factors.describe(),
                  "property_factors_source": FACTORS_SOURCE,
-                 "design_damping": DAMPING_TEXT}
+                 "design_damping": DAMPING_TEXT, "isolation_damper_zeta": self.damper}
         for bound in BOUND_NAMES:
             d = self.designs[bound]
             attrs.update({f"T_M_{bound}": d.t_m, f"D_M_{bound}": d.d_m,
@@ -217,19 +232,25 @@ class DesignBasis:
                     f"cm")
 
         others = "; ".join(f"{b}: {at(b)}" for b in BOUND_NAMES if b != self.bound)
-        dashpot = "no isolation dashpot" if self.with_dashpot is None else (
-            f"with the model's isolation dashpot counted (not used): D_M "
+        source = "the isolators' hysteresis" + (
+            f" and the declared isolation damper (zeta_iso {self.damper:g}, run and counted)"
+            if self.damper else " (no isolation dashpot run)")
+        dashpot = "" if self.with_dashpot is None else (
+            f"; had the paper's isolation dashpot been counted (it is not run): D_M "
             f"{self.with_dashpot[self.bound].d_m * 100:.3g} cm, D_TM "
             f"{self.with_dashpot[self.bound].d_tm * 100:.3g} cm")
-        return (f"{self.bound} bound ({self.factors.describe()}): {at(self.bound)} from the "
-                f"isolators' hysteresis; {others}; {dashpot}")
+        return (f"{self.bound} bound ({self.factors.describe()}): {at(self.bound)} from "
+                f"{source}; {others}{dashpot}")
 
 
 DAMPING_TEXT = (
-    "beta_M from the isolators' hysteresis (energy per cycle at D_M, ASCE 7-22 section 17.5.3) "
-    "plus any supplemental damping declared; the model's isolation dashpot (a numerical "
-    "damping a prototype test does not measure) is not counted: the *_with_dashpot attributes "
-    "show it counted")
+    "damping counted once: beta_M from the isolators' hysteresis (energy per cycle at D_M, ASCE "
+    "7-22 section 17.5.3) plus the isolation damper the building declares (an explicit "
+    "zeta_iso, run and counted; isolation_damper_zeta) and any supplemental damping; the "
+    "building run has no other isolation dashpot (zeta_iso 0); the paper's isolation dashpot "
+    "(the bilinear law's default zeta_iso, a damping no prototype test measures) is neither run "
+    "nor counted: the *_with_dashpot attributes show the design had it been counted; the "
+    "superstructure's damping is stiffness-proportional on the stories")
 """What the design's effective damping counts (the archives' design_damping)."""
 _FIELD = {"T_M": "t_m", "D_M": "d_m", "D_TM": "d_tm", "beta_M": "beta_m"}
 
@@ -240,24 +261,47 @@ def design_basis(s_m1: float, building=None, bound: str = DEFAULT_BOUND,
                  supplemental_damping: float = 0.0) -> DesignBasis:
     """The design basis of `building` (engine.Building, default the paper's) at S_M1 = s_m1 g:
     pipeline.motions.target.isolation_design at each of BOUND_NAMES (bounded_building with
-    factors, default PropertyFactors()), from the isolators' hysteresis plus
-    supplemental_damping (a ratio of critical, for dampers the building has: none in the
-    building files today), and with the model's isolation dashpot counted beside when the
-    building has one (damping="paper"). bound: the one the study runs."""
+    factors, default PropertyFactors()) of the building run (`run_building`: damping counted
+    once), from the isolators' hysteresis plus the declared isolation damper plus
+    supplemental_damping (a ratio of critical, for other dampers: none in the building files
+    today); the paper's isolation dashpot counted beside where the building has it by default.
+    bound: the one the study runs. ValueError for damping="modal" with a declared zeta_iso."""
     import engine
 
     if bound not in BOUND_NAMES:
         raise ValueError(f"the bound must be one of {BOUND_NAMES}, got {bound!r}")
     building = engine.Building() if building is None else building
     factors = PropertyFactors() if factors is None else factors
-    buildings = {b: bounded_building(building, b, factors) for b in BOUND_NAMES}
+    run, damper = run_building(building)
+    buildings = {b: bounded_building(run, b, factors) for b in BOUND_NAMES}
     designs = {b: isolation_design(s_m1, buildings[b], torsion_factor=torsion_factor,
-                                   supplemental_damping=supplemental_damping)
+                                   supplemental_damping=supplemental_damping,
+                                   dashpot=damper > 0)
                for b in BOUND_NAMES}
     with_dashpot = None
-    if building.damping == "paper":
-        with_dashpot = {b: isolation_design(s_m1, buildings[b], torsion_factor=torsion_factor,
+    if building.damping == "paper" and not damper and building.isolation_zeta > 0:
+        with_dashpot = {b: isolation_design(s_m1, bounded_building(building, b, factors),
+                                            torsion_factor=torsion_factor,
                                             supplemental_damping=supplemental_damping,
                                             dashpot=True)
                         for b in BOUND_NAMES}
-    return DesignBasis(bound, factors, buildings, designs, with_dashpot)
+    return DesignBasis(bound, factors, buildings, designs, with_dashpot, damper)
+
+
+def run_building(building):
+    """(the engine.Building a code-based study runs, the declared isolation damper's zeta_iso):
+    the building itself where it declares zeta_iso > 0 (damping="paper": a viscous damper at
+    the isolation level, which the design counts), else the building with zeta_iso 0 (the
+    isolators' hysteresis alone: the isolator law's default dashpot is the paper's, not the
+    design's). ValueError for damping="modal" with a declared zeta_iso > 0: a modal ratio is no
+    damper the code's B_M can count."""
+    import dataclasses
+
+    declared = building.zeta_iso is not None and building.zeta_iso > 0
+    if declared and building.damping != "paper":
+        raise ValueError(f"zeta_iso {building.zeta_iso:g} under damping='modal' is a modal "
+                         "damping ratio, not a damper the code's B_M can count: declare the "
+                         "isolation damper under damping='paper', or leave zeta_iso unset")
+    if declared:
+        return building, float(building.zeta_iso)
+    return dataclasses.replace(building, zeta_iso=0.0), 0.0

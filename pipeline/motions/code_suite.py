@@ -21,8 +21,9 @@ Pairs that share an earthquake are weighted 1 / (their number) in every statisti
 (pipeline.motions.weights.event_weights): no event dominates, every pair still runs.
 
 The building's code quantities are its design basis (pipeline.motions.bounds): T_M, D_M, D_TM
-from the isolators' hysteresis (the model's isolation dashpot shown beside, not counted) at
-upper-bound, nominal and lower-bound isolator properties; a suite is made for one bound (the
+from the isolators' hysteresis (plus a declared isolation damper; the paper's isolation
+dashpot shown beside, neither run nor counted: damping counted once) at upper-bound, nominal
+and lower-bound isolator properties; a suite is made for one bound (the
 lower by default: displacements, gaps, contact), whose building the study runs
 (CodeSuite.building) and whose D_M, D_TM set its gaps; the ASCE 7 rule's period range runs from
 0.75 T_M (upper bound) to 1.25 T_M (lower bound) whatever the bound run.
@@ -110,9 +111,10 @@ def code_suite(pairs, names, building, rule: str = DEFAULT_RULE, s_ms: float = S
         target = asce7_target(s_ms, s_m1, t_long, level="MCE_R")
     else:
         (s_ms, s_m1), t_long = site_specific_parameters(target), float("nan")
-    # D_M and T_M from the isolators' hysteresis at each bound (ASCE 7-22 17.2.8.4, 17.5.3):
-    # the model's isolation dashpot is numerical damping no prototype test measures, shown
-    # beside (basis.with_dashpot), never counted.
+    # D_M and T_M from the isolators' hysteresis at each bound (ASCE 7-22 17.2.8.4, 17.5.3),
+    # and the building run with the damping the design counts, once (bounds.run_building):
+    # the paper's isolation dashpot, a damping no prototype test measures, is shown beside
+    # (basis.with_dashpot), never run.
     basis = design_basis(s_m1, building, bound, factors)
     chosen, kept, scaled = scaling.factors(pairs, target, basis, basis.building, dt)
     pairs = [pairs[i] for i in chosen]
@@ -123,13 +125,14 @@ def code_suite(pairs, names, building, rule: str = DEFAULT_RULE, s_ms: float = S
 
 
 def describe(suite: CodeSuite) -> str:
-    """One line: the rule, the site, the bound run, T_M, D_M (and with the model's dashpot
-    counted, beside) and the factors' spread."""
+    """One line: the rule, the site, the bound run, T_M, D_M (and, beside, had the paper's
+    isolation dashpot been counted) and the factors' spread."""
     f = suite.factors
     site = suite.site
     basis = suite.basis
     dashpot = "" if basis.with_dashpot is None else \
-        f" ({basis.with_dashpot[basis.bound].d_m * 100:.3g} cm with the model's dashpot counted)"
+        f" ({basis.with_dashpot[basis.bound].d_m * 100:.3g} cm had the paper's isolation " \
+        "dashpot been counted; it is not run)"
     at = f"T_L {site['t_long']:g} s" if np.isfinite(site["t_long"]) else suite.target.source
     return (f"{len(suite.pairs)} pairs scaled to the MCE_R by {suite.rule} (S_MS "
             f"{site['s_ms']:.3g} g, S_M1 {site['s_m1']:.3g} g, {at}); "

