@@ -117,3 +117,22 @@ def drawn(ax) -> list[tuple[str, np.ndarray, np.ndarray]]:
     lines such as axhline included: their x is in axes coordinates)."""
     return [(line.get_label(), np.asarray(line.get_xdata(), float),
              np.asarray(line.get_ydata(), float)) for line in ax.get_lines()]
+
+
+def assert_on_variables_page(ds, archive: str) -> None:
+    """docs/variables.md lists, under `archive` (a study's archive file name), exactly the
+    variables of `ds` that the sweep's part of the page does not, each with ds's units
+    (tools/variables_page.py; run it with --write --studies when a study's variables change)."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("variables_page",
+                                                  PROJECT / "tools" / "variables_page.py")
+    page = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(page)
+    text = (PROJECT / "docs" / "variables.md").read_text()
+    listed = page.listed_by_archive(text).get(archive)
+    fix = "run python tools/variables_page.py --write --studies"
+    assert listed is not None, f"docs/variables.md lists no {archive}: {fix}"
+    own = {name: units.strip("`") for name, units, _, _ in
+           page.own_variables(ds, page.sweep_names(text))}
+    assert own == listed, f"{archive}'s variables differ from docs/variables.md's: {fix}"

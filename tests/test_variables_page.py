@@ -15,8 +15,22 @@ spec.loader.exec_module(variables_page)
 
 
 def test_the_page_is_what_the_declarations_write():
-    assert (PROJECT / "docs" / "variables.md").read_text() == variables_page.page(), \
+    """The sweep's part is what the declarations write; the studies' part follows it (each
+    study's test checks its archive against it: tests/helpers.assert_on_variables_page)."""
+    text = (PROJECT / "docs" / "variables.md").read_text()
+    studies = variables_page.studies_part(text)
+    assert studies.startswith(variables_page.STUDIES_MARK), "the page lists no study"
+    assert text == variables_page.page() + "\n" + studies, \
         "docs/variables.md: run python tools/variables_page.py --write"
+
+
+def test_every_study_archive_is_listed():
+    """Each archive a study writes has its section (the studies' tests check their content)."""
+    listed = variables_page.listed_by_archive((PROJECT / "docs" / "variables.md").read_text())
+    for name in ("collapse", "damping_calibration", "design", "fragility", "impact_validation",
+                 "loss", "plan", "practical_example", "suite", "torsion"):
+        assert f"{name}.nc" in listed, name
+    assert listed["loss.nc"]["expected_annual_loss"] == "USD_2011 yr-1"
 
 
 def test_the_page_names_every_variable_of_a_sweep_with_its_unit():

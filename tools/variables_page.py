@@ -9,21 +9,34 @@ writes them: the engine's results (engine.results: PEAKS, RESIDUALS, COLLAPSE, P
 TORSION_PEAKS and the histories), the blocks' prefixes, the derived variables and the validity flags
 (pipeline.assess.sweep_variables, pipeline.assess.validity), and the swept parameters'
 coordinates (the laws' declarations). tests/test_variables_page.py checks that the page is
-this text, so that it cannot drift from the code. The studies' own archives add variables of
-their own, which each study's section of docs/studies.md describes.
+this text, so that it cannot drift from the code.
+
+    python tools/variables_page.py --write --studies   also run every study
+
+The studies' own archives add variables of their own, labelled where each study computes them
+(pipeline.archive.labelled_dataset refuses a variable without units and long name): with
+--studies every recipe of studies/ runs in its --quick form (a few minutes) and the page's last
+part lists, per archive, each variable the sweep's part does not, with the units, dims and long
+name that archive gives it. Without --studies that part is kept as the page has it; the studies'
+tests (tests/helpers.assert_on_variables_page) check each archive they build against it.
 """
 from __future__ import annotations
 
 import argparse
+import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 PAGE = ROOT / "docs" / "variables.md"
+STUDIES_MARK = "## The studies' archives"
+"""The heading of the page's last part: the studies' own variables, harvested (--studies)."""
+SWEEP_PREFIXES = ("baseline_", "unconstrained_")
 
 
-def _table(rows) -> list[str]:
-    return ["| name | units | dims beyond record and the swept parameters | meaning |",
+def _table(rows, dims: str = "dims beyond record and the swept parameters") -> list[str]:
+    return [f"| name | units | {dims} | meaning |",
             "|---|---|---|---|", *(f"| `{n}` | {u} | {d} | {m} |" for n, u, d, m in rows)]
 
 
@@ -54,6 +67,7 @@ def page() -> str:
     from pipeline.archive import parameter_meta
     from pipeline.assess.sweep_variables import AMPLIFICATION, STORY_DUCTILITY
     from pipeline.assess.validity import FLAGS
+    from pipeline.execute.zarr_store import RESUME_RECORD
     from pipeline.members import EXCITATION_PARAMS, ISOLATOR_PARAMS, PARAMS
 
     lines = [
@@ -66,8 +80,8 @@ def page() -> str:
         "archive (`pipeline.histories`, `--history`) hold, each variable with the unit and long "
         "name the archive gives it ([archives](archives.md) says how they are laid out). Every "
         "peak is over the whole run (up to its collapse, where it collapsed). The studies' own "
-        "archives add variables of their own, described in their sections of "
-        "[beyond the paper](studies.md).",
+        "archives add variables of their own: [the last part](#the-studies-archives) lists "
+        "them, and each study's section of [beyond the paper](studies.md) reads them.",
         "",
         "## Peaks (every sweep)",
         "",
@@ -125,15 +139,110 @@ def page() -> str:
               "Against `time` (s), per `configuration`, besides the peaks above:", "",
               *_table(_quantities(HISTORIES)), "", "In plan (`engine.simulate`'s history):", "",
               *_table(_quantities(PLAN_HISTORIES)), "", "A building that twists:", "",
-              *_table(_quantities(TORSION_HISTORIES)), ""]
+              *_table(_quantities(TORSION_HISTORIES)), "",
+              "## Zarr stores (`out` ending in `.zarr`)", "",
+              "Besides the variables above, the resume record, one element per batch:", "",
+              *_table([(name, f"`{units}`", "batch", text)
+                       for name, (_, units, text) in RESUME_RECORD.items()], "dims"), ""]
+    return "\n".join(lines)
+
+
+def studies_part(text: str) -> str:
+    """The page's last part (from STUDIES_MARK on) in `text`; "" when it has none."""
+    at = text.find("\n" + STUDIES_MARK + "\n")
+    return "" if at < 0 else text[at + 1:]
+
+
+def listed_by_archive(text: str) -> dict[str, dict[str, str]]:
+    """archive file name -> {variable: units} of the studies' part of a page's `text`."""
+    import re
+
+    listed, current = {}, None
+    for line in studies_part(text).splitlines():
+        heading = re.match(r"^### `([^`]+)`", line)
+        if heading:
+            current = listed.setdefault(heading.group(1), {})
+        row = re.match(r"^\| `(\w+)` \| `?([^`|]*)`? \|", line)
+        if row and current is not None:
+            current[row.group(1)] = row.group(2).strip()
+    return listed
+
+
+def sweep_names(text: str) -> set[str]:
+    """The variables and coordinates the sweep's part of a page's `text` lists."""
+    import re
+
+    return set(re.findall(r"^\| `(\w+)` \|", text[:len(text) - len(studies_part(text))],
+                          re.M))
+
+
+def own_variables(ds, known: set[str]) -> list[tuple[str, str, str, str]]:
+    """(name, units, dims, long name) of `ds`'s variables and labelled coordinates that the
+    sweep's part (`known`) does not list, a block's prefix aside."""
+    rows = []
+    for name, var in {**ds.coords, **ds.data_vars}.items():
+        own = str(name)
+        for prefix in SWEEP_PREFIXES:
+            own = own.removeprefix(prefix)
+        if own in known or "long_name" not in var.attrs:
+            continue
+        units = var.attrs.get("units")
+        rows.append((str(name), f"`{units}`" if units is not None else "text",
+                     ", ".join(map(str, var.dims)) or "-",
+                     " ".join(str(var.attrs["long_name"]).split()).replace("|", "\\|")))
+    return sorted(rows)
+
+
+def recipes() -> list[str]:
+    """The studies run by --studies: every recipe of studies/ (the loss study after the
+    collapse study, whose archive it reads)."""
+    sys.path.insert(0, str(ROOT))
+    from studies.cli import recipe_names
+
+    return sorted(recipe_names(), key=lambda n: n == "loss")
+
+
+def harvest(known: set[str]) -> str:
+    """Run every recipe in its --quick form in a temporary folder and list each archive's own
+    variables (the page's last part)."""
+    import xarray as xr
+
+    lines = [STUDIES_MARK, "",
+             "<!-- written by `python tools/variables_page.py --write --studies`, from every "
+             "study's --quick archive; the studies' tests check their archives against it -->",
+             "", "Each study's archive holds, besides the sweep's variables above (where it "
+             "runs a sweep), the variables below: their units, dims and long names as the "
+             "archive gives them (those of a --quick run: a full run's are the same).", ""]
+    with tempfile.TemporaryDirectory() as folder:
+        out = Path(folder)
+        for name in recipes():
+            extra = ["--collapse", str(out / "collapse" / "quick" / "collapse.nc")] \
+                if name == "loss" else []
+            print(f"running studies.{name} --quick", file=sys.stderr, flush=True)
+            subprocess.run([sys.executable, "-m", f"studies.{name}", "--quick", "--quiet",
+                            "--out", str(out / name), *extra], cwd=ROOT, check=True,
+                           stdout=subprocess.DEVNULL)
+            for path in sorted((out / name).rglob("*.nc")):
+                with xr.open_dataset(path) as ds:
+                    rows = own_variables(ds, known)
+                lines += [f"### `{path.name}` (`python -m studies.{name}`)", ""]
+                lines += [*_table(rows, "dims"), ""] if rows \
+                    else ["Only the sweep's variables.", ""]
     return "\n".join(lines)
 
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--write", action="store_true", help="write docs/variables.md")
+    parser.add_argument("--studies", action="store_true",
+                        help="run every study in its --quick form (minutes) and list their "
+                        "archives' own variables; without it the page keeps that part as it is")
     args = parser.parse_args(argv)
     text = page()
+    if args.studies:
+        text += "\n" + harvest(sweep_names(text))
+    elif PAGE.exists() and studies_part(PAGE.read_text()):
+        text += "\n" + studies_part(PAGE.read_text())
     if args.write:
         PAGE.write_text(text)
         print(f"wrote {PAGE.relative_to(ROOT)}")

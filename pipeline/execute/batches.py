@@ -12,6 +12,36 @@ import engine
 from ..grid import buildings_for, contact_for
 from .run import run_model
 
+KEEP_SECONDS = 5.0
+"""s: the most compute a part of a batch takes before its work is kept, here, on a dask worker
+or in a Zarr store, whatever the batch size: each part is sized from the last one's pace
+(`part_size`), the first from FIRST_PART members. A member's peaks do not depend on the members
+run beside it, so the parts give the batch's numbers."""
+FIRST_PART = 256
+"""Members of the first part a run (or a Zarr store's batch) measures its pace on."""
+
+
+def part_size(pace: float | None, samples: int) -> int:
+    """Members of the next part: about KEEP_SECONDS of compute at `pace` (s per member and
+    record sample, the last part's; None before any: FIRST_PART) under a record of `samples`
+    samples; at least 1."""
+    if pace is None:
+        return FIRST_PART
+    return max(1, int(KEEP_SECONDS / max(pace * samples, 1e-12)))
+
+
+def reporter(report: tuple[str, str]):
+    """progress(step, n_steps) on a dask worker: sends [tag, step / n_steps] to the client's
+    event topic, report = (topic, tag)."""
+    from distributed import get_worker
+
+    worker, (topic, tag) = get_worker(), report
+
+    def progress(step, n_steps):
+        worker.log_event(topic, [tag, step / n_steps])
+
+    return progress
+
 
 @dataclass(frozen=True)
 class Batch:
@@ -50,13 +80,7 @@ def simulate_batch(accel: np.ndarray, accel_dt: float, members: np.ndarray,
     (topic, tag) sends [tag, step / n_steps] to the client's event topic instead.
     """
     if report is not None:
-        from distributed import get_worker
-
-        worker, (topic, tag) = get_worker(), report
-
-        def progress(step, n_steps):
-            worker.log_event(topic, [tag, step / n_steps])
-
+        progress = reporter(report)
     model = run_model(moat, building)
     plan = {} if not model.in_plan else {
         "moat": engine.Moat(moat, mu_wall=members["mu_wall"],

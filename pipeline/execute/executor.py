@@ -15,7 +15,8 @@ the executor only runs batches. The interface (`Store`):
     store.accept(batch, output)  on the client, as each batch finishes, with what the
                            function returned
     store.part(batch, start, stop)  optional: the batch's members start:stop as a batch of
-                           their own, kept on its own (a store without it keeps whole batches)
+                           their own, kept on its own (a store without it keeps whole batches,
+                           or keeps their parts itself)
 
 Batches of the longest records run first (a long record's batch starting last would leave
 workers idle). In this process the compiled kernel spreads each batch over every core with
@@ -39,7 +40,7 @@ import numpy as np
 from ..errors import Interrupted
 from ..progress import Progress
 from ..writing import sigint_held
-from .batches import Batch, record_batch_sizes
+from .batches import Batch, part_size, record_batch_sizes
 from .dask_client import client, silence_dask
 
 # A batch that raises is run again this many times before its error reaches the user: it is a
@@ -48,14 +49,6 @@ from .dask_client import client, silence_dask
 # runs on another worker, until it has been on distributed.scheduler.allowed-failures + 1 dead
 # ones (3 + 1 by default), when it fails with KilledWorker.
 RETRIES = 2
-
-KEEP_SECONDS = 5.0
-"""s: the most compute a part of a batch run in this process takes before its work is kept
-(where the store can keep a part: `store.part`), whatever the batch size: each part is sized
-from the last one's pace, the run's first from FIRST_PART members. A member's peaks do not
-depend on the members run beside it, so the parts give the batch's numbers."""
-FIRST_PART = 256
-"""Members of the first part a run measures its pace on (at most the batch)."""
 
 DEVICE_RESOURCES = {"GPU": 1}
 """What a batch on the device takes of a dask worker (dask's worker resources): one GPU, so
@@ -111,76 +104,105 @@ def _run_here(store: Store, batches: list[Batch], progress: Progress,
         samples_ = len(store.records[whole.record].accel)
         for batch in _parts(store, whole, samples_, pace, device):
             function, args = store.task(batch)
-            started = time.perf_counter()
             # The kernel returns to Python every ~1% of the steps to report progress, which is
             # also where Ctrl-C takes effect: always pass the callback.
-            output = function(store.records[batch.record].accel, *args,
-                              progress=lambda step, steps, b=batch:
-                              progress.running(b.key, b.size * step / steps))
-            pace["last"] = (time.perf_counter() - started) / (batch.size * samples_)
+            output, seconds = timed(function, store.records[batch.record].accel, *args,
+                                    progress=lambda step, steps, b=batch:
+                                    progress.running(b.key, b.size * step / steps))
+            pace["last"] = seconds / (batch.size * samples_)
             with sigint_held():  # a batch kept is a batch counted: Interrupted says so
                 store.accept(batch, output)
                 progress.advance(batch.size, batch.key)
 
 
+def timed(function, accel, *args, **keywords) -> tuple:
+    """(function(accel, *args, **keywords), the seconds it took): a batch's task, timed where
+    it runs (here or on a dask worker), so that the next parts are sized from its pace."""
+    started = time.perf_counter()
+    output = function(accel, *args, **keywords)
+    return output, time.perf_counter() - started
+
+
 def _parts(store: Store, batch: Batch, samples_: int, pace, device: bool):
-    """The batch in parts of about KEEP_SECONDS of compute each, sized as they come from the
-    last part's pace (pace["last"]: s per member and sample, None before any); the batch whole
-    where the store keeps whole batches only, or on the device (one launch holds a batch)."""
+    """The batch in parts of about batches.KEEP_SECONDS of compute each, sized as they come
+    from the last part's pace (pace["last"]: s per member and sample, None before any); the
+    batch whole where the store keeps whole batches only (a Zarr store keeps the parts of a
+    batch itself: zarr_store.write_batch), or on the device (one launch holds a batch)."""
     if device or not hasattr(store, "part"):
         yield batch
         return
     start = 0
     while start < batch.size:
-        known = pace["last"]
-        size = FIRST_PART if known is None else int(KEEP_SECONDS / max(known * samples_, 1e-12))
-        stop = min(batch.size, start + max(size, 1))
+        stop = min(batch.size, start + part_size(pace["last"], samples_))
         yield batch if (start, stop) == (0, batch.size) else store.part(batch, start, stop)
         start = stop
 
 
 def _run_on_dask(store: Store, batches: list[Batch], workers: int, scheduler,
                  progress: Progress, device: bool = False) -> None:
-    """Submit every batch; accept each as it completes, here in the client process (device:
-    each batch takes a worker's GPU, DEVICE_RESOURCES)."""
+    """Run the batches on dask, in parts of about KEEP_SECONDS of compute as in this process
+    (`_parts`, where the store keeps parts), each accepted here in the client as it completes:
+    twice as many parts in flight as the workers have threads, the next one sized from the
+    last one's pace as each ends (device: whole batches, each taking a worker's GPU,
+    DEVICE_RESOURCES)."""
     from distributed import as_completed
 
     needs = {"resources": DEVICE_RESOURCES} if device else {}
     records = store.records
     run = uuid.uuid4().hex  # in every key and the topic: runs sharing a scheduler never mix
     with client(workers, scheduler) as dask:
-        sizes = {b.key: b.size for b in batches}
+        sizes = {}  # part key -> members, for the progress events
         topic = f"bumpers-progress-{run}"
 
         def on_event(event):  # (timestamp, [batch key, fraction done])
             key, fraction = event[1]
-            progress.running(key, sizes[key] * fraction)
+            if key in sizes:
+                progress.running(key, sizes[key] * fraction)
 
         dask.subscribe_topic(topic, on_event)
         accel, futures = {}, {}
-        left = Counter(b.record for b in batches)  # batches of each record not yet accepted
+        left = Counter()  # members of each record not yet accepted
+        for batch in batches:
+            left[batch.record] += batch.size
+        pace = {"last": None}
+        parts = (part for whole in batches  # in this order: the longest records first
+                 for part in _parts(store, whole, len(records[whole.record].accel), pace,
+                                    device))
+
+        def submit(done) -> None:
+            part = next(parts, None)
+            if part is None:
+                return
+            function, args = store.task(part)
+            sizes[part.key] = part.size
+            future = dask.submit(timed, function, accel[part.record], *args,
+                                 report=(topic, part.key), retries=RETRIES,
+                                 key=f"bumpers-batch-{run}-{part.key}", **needs)
+            futures[future] = part
+            done.add(future)
+
         try:
             for r in sorted(left):
                 accel[r] = dask.submit(samples, np.asarray(records[r].accel),
                                        key=f"bumpers-record-{run}-{r}")
-            for batch in batches:  # in this order: dask runs the first submitted first
-                function, args = store.task(batch)
-                future = dask.submit(function, accel[batch.record], *args,
-                                     report=(topic, batch.key), retries=RETRIES,
-                                     key=f"bumpers-batch-{run}-{batch.key}", **needs)
-                futures[future] = batch
-            for future in as_completed(list(futures), loop=dask.loop):
-                batch = futures.pop(future)
-                output = future.result()
+            done = as_completed([], loop=dask.loop)
+            for _ in range(max(2, 2 * sum(dask.nthreads().values()))):
+                submit(done)
+            for future in done:
+                part = futures.pop(future)
+                output, seconds = future.result()
+                pace["last"] = seconds / (part.size * len(records[part.record].accel))
                 with sigint_held():
-                    store.accept(batch, output)
-                    progress.advance(batch.size, batch.key)
+                    store.accept(part, output)
+                    progress.advance(part.size, part.key)
                 # Forgotten by the scheduler once accepted: a result held by a worker that dies
-                # later is not computed again, nor a record all of whose batches are in.
+                # later is not computed again, nor a record all of whose parts are in.
                 future.release()
-                left[batch.record] -= 1
-                if not left[batch.record]:
-                    accel.pop(batch.record).release()
+                sizes.pop(part.key, None)
+                left[part.record] -= part.size
+                if not left[part.record]:
+                    accel.pop(part.record).release()
+                submit(done)
         except KeyboardInterrupt:
             # Stop quietly: cancel what is queued; shutting down then makes dask log closed
             # comms and cancelled tasks, which say nothing to the user.

@@ -6,16 +6,18 @@ the same sweep (pipeline.archive's builders), the data still lazy. Each batch of
 then exactly one chunk region of its block's variables: records are chunked by 1, the swept
 dimensions in C order by 1 up to one dimension cut in blocks, so that a chunk holds a
 contiguous range of the block's members. Whoever runs the batch (this process, or a dask
-worker) writes its peaks into that region and sets its own element of `batch_done` (one chunk
-per batch: no two writers share a chunk). The results never pass through the client, which
-holds only the member table and the batch list.
+worker) writes its peaks into that region, a part of about batches.KEEP_SECONDS of compute
+at a time, counts them in its element of `batch_members_done` and, the region full, sets its
+element of `batch_done` (one chunk per batch: no two writers share a chunk). The results never
+pass through the client, which holds only the member table and the batch list.
 
-`batch_done` is the resume record: a rerun with the same sweep skips the batches marked
-done; the store's `sweep_key` attribute (pipeline.execute.keys: engine, records, dt, building,
-members) must match, so a store of another sweep is refused, not mixed. When every batch is
-done the client adds the derived variables (amplification ratios, story ductility; chunk by
-chunk, through dask) and sets the
-attribute `complete = 1`; a store without it is unfinished. It opens with
+`batch_done` and `batch_members_done` are the resume record (RESUME_RECORD): a rerun with the
+same sweep skips the batches marked done and runs only the members not yet written of the
+others; the store's `sweep_key` attribute (pipeline.execute.keys: engine, records, dt,
+building, members) must match, so a store of another sweep is refused, not mixed. When every
+batch is done the client adds the derived variables (amplification ratios, story ductility;
+chunk by chunk, through dask) and sets the attribute `complete = 1`; a store without it is
+unfinished. It opens with
 `xr.open_zarr(path)`.
 """
 from __future__ import annotations
@@ -33,6 +35,14 @@ from .keys import region_key, sweep_key
 
 TARGET_CHUNK = 4096  # members per chunk (= per batch) at most
 ZARR_FORMAT = 2
+RESUME_RECORD = {
+    "batch_done": (np.int8, "1", "1 once the batch's chunk region is written (the resume "
+                   "record)"),
+    "batch_members_done": (np.int32, "1", "members of the batch's region written so far (a "
+                           "batch runs in parts, each kept as it ends: a run resumed goes on "
+                           "from here)")}
+"""What a Zarr store adds to the archive's variables, along `batch` (one element per chunk
+region): name -> (dtype, units, long name)."""
 
 
 @dataclass(frozen=True)
@@ -102,10 +112,10 @@ def write_template(path: Path, grid, run, key, n_batches: int, target: int) -> N
     # results is ever held here.
     ds = build_dataset(grid, run, None, chunks=chunks)
     encoding = {name: {"chunks": var.data.chunksize} for name, var in ds.data_vars.items()}
-    ds["batch_done"] = xr.Variable("batch", da.zeros(n_batches, dtype=np.int8, chunks=1),
-                                   {"units": "1", "long_name": "1 once the batch's chunk "
-                                    "region is written (the resume record)"})
-    encoding["batch_done"] = {"chunks": (1,)}
+    for name, (dtype, units, long_name) in RESUME_RECORD.items():
+        ds[name] = xr.Variable("batch", da.zeros(n_batches, dtype=dtype, chunks=1),
+                               {"units": units, "long_name": long_name})
+        encoding[name] = {"chunks": (1,)}
     ds.attrs.update(sweep_key=key, configuration_key=key, complete=0,
                     members_per_chunk=target)
     # Zarr format 2: its string and attribute encodings are read by every Zarr library.
@@ -113,25 +123,62 @@ def write_template(path: Path, grid, run, key, n_batches: int, target: int) -> N
                zarr_format=ZARR_FORMAT)
     # The template's fill values are the data until a batch writes its region: write the
     # (all-zero) batch_done explicitly so that it reads as 0, not as missing.
-    zarr.open_group(str(path), mode="r+")["batch_done"][:] = 0
+    group = zarr.open_group(str(path), mode="r+")
+    for name in RESUME_RECORD:
+        group[name][:] = 0
 
 
 def write_batch(accel, accel_dt, members, building, dt, path: str, place: Region,
                 how: dict | None = None, progress=None, report=None) -> int:
-    """A worker's task: simulate one batch (batches.simulate_batch, with its keywords `how`:
-    moat, factor, bumper_positions, backend) and write its peaks into its chunk region `place`
-    of the store at `path`, then mark it done; returns its size."""
+    """A worker's task: simulate the batch's `members` (batches.simulate_batch, with its
+    keywords `how`: moat, factor, bumper_positions, backend) and write their peaks into its
+    chunk region `place` of the store at `path`, then mark it done; returns how many members
+    it ran. `members` are the region's last ones (those not yet written, when a run resumes a
+    region begun): they run in parts of about batches.KEEP_SECONDS of compute each, sized from
+    the last part's pace, and each part is written and counted in `batch_members_done` as it
+    ends, so that a run stopped within a batch keeps its finished parts."""
+    import time
+
     import zarr
 
-    peaks = batches.simulate_batch(accel, accel_dt, members, building, dt, progress=progress,
-                                   report=report, **(how or {}))
     group = zarr.open_group(path, mode="r+")
+    size = place.stop - place.start
+    first = size - members.size  # the region's members written before this task
+    samples_ = len(accel)
+    if report is not None:
+        progress = batches.reporter(report)
+    start, pace = 0, None
+    while start < members.size:
+        stop = min(members.size, start + batches.part_size(pace, samples_))
+        began = time.perf_counter()
+        peaks = batches.simulate_batch(
+            accel, accel_dt, members[start:stop], building, dt,
+            progress=None if progress is None else
+            (lambda step, steps, a=start, n=stop - start:
+             progress(a * steps + n * step, members.size * steps)), **(how or {}))
+        pace = (time.perf_counter() - began) / ((stop - start) * samples_)
+        _write_rows(group, place, first + start, first + stop, peaks)
+        start = stop
+        if "batch_members_done" in group:  # a store written before it keeps whole batches
+            group["batch_members_done"][place.index] = first + start
+    group["batch_done"][place.index] = 1
+    return members.size
+
+
+def _write_rows(group, place: Region, a: int, b: int, peaks: dict) -> None:
+    """Write peaks of the region's members a:b (in the region's C order) into its variables:
+    the region at once when a:b is all of it, else read, filled in and written back (the task
+    running a region is the only writer of its chunk)."""
+    size = place.stop - place.start
     for name, values in peaks.items():
         target = group[place.prefix + name]
         shape = tuple(s.stop - s.start for s in place.region) + values.shape[1:]
-        target[place.region] = values.reshape(shape)
-    group["batch_done"][place.index] = 1
-    return members.size
+        if (a, b) == (0, size):
+            target[place.region] = values.reshape(shape)
+            continue
+        block = np.array(target[place.region]).reshape((size,) + values.shape[1:])
+        block[a:b] = values
+        target[place.region] = block.reshape(shape)
 
 
 class ZarrStore:
@@ -175,16 +222,25 @@ class ZarrStore:
                                  told.format("--force", "--out"))
             target = int(group.attrs["members_per_chunk"])  # the store's chunks, not batch_size
         self.regions = regions_for(grid, len(run.records), target)
+        # Members written of each region (a store written before batch_members_done: whole
+        # regions only, done or not).
+        self.written = np.zeros(len(self.regions), dtype=np.int64)
         if resuming:
             self.done = group["batch_done"][:].astype(bool)
+            if "batch_members_done" in group:
+                self.written[:] = group["batch_members_done"][:]
         else:
             self.done = np.zeros(len(self.regions), dtype=bool)
             write_template(out, grid, run, self.key, len(self.regions), target)
 
     def pending(self, sizes: list[int]) -> list[batches.Batch]:
-        """The regions not marked done (their size is the store's chunk, whatever `sizes`)."""
-        return [batches.Batch(r.record, slice(r.offset + r.start, r.offset + r.stop),
-                              r.stop - r.start, region_key(self.key, r.index), r)
+        """The regions not marked done, each of its members not yet written (a region is the
+        store's chunk, whatever `sizes`; write_batch keeps its parts)."""
+        return [batches.Batch(r.record,
+                              slice(r.offset + r.start + int(self.written[r.index]),
+                                    r.offset + r.stop),
+                              r.stop - r.start - int(self.written[r.index]),
+                              region_key(self.key, r.index), r)
                 for r in self.regions if not self.done[r.index]]
 
     def task(self, batch: batches.Batch) -> tuple:

@@ -19,7 +19,12 @@ from scipy.stats import norm
 from engine.results import COLLAPSE_MODES
 from pipeline.assess import collapse as pc
 from studies import collapse
-from tests.helpers import assert_collapse_modes, assert_udunits, run_recipe
+from tests.helpers import (
+    assert_collapse_modes,
+    assert_on_variables_page,
+    assert_udunits,
+    run_recipe,
+)
 
 
 @pytest.fixture(scope="module")
@@ -42,6 +47,7 @@ def quick(quick_path):
 def test_the_archive_recomputes_from_its_pairs(quick):
     ds = quick
     assert_udunits(ds)
+    assert_on_variables_page(ds, "collapse.nc")
     assert ds.attrs["scaling_rule"] == "p695" and ds.attrs["isolator_bound"] == "lower"
     assert "imk" in ds.attrs["story_law"] and ds.attrs["p_delta"] == 1
     weights = ds.record_weight.values
@@ -137,6 +143,7 @@ def loss_quick(quick_path, tmp_path_factory):
 def test_the_loss_archive_holds_the_decision(loss_quick):
     ds = loss_quick
     assert_udunits(ds)
+    assert_on_variables_page(ds, "loss.nc")
     for name in ("repair_cost", "repair_time", "repair_cost_quantile", "repair_time_quantile",
                  "expected_annual_loss", "annual_rate_contact", "annual_rate_crushed",
                  "annual_rate_collapse", "collapse_probability", "median_repair_cost_mce",

@@ -15,7 +15,12 @@ from studies import design
 from studies.common.recipe import verdicts
 from studies.design import archive as design_archive
 from studies.design import search, space
-from tests.helpers import assert_collapse_modes, assert_udunits, run_recipe
+from tests.helpers import (
+    assert_collapse_modes,
+    assert_on_variables_page,
+    assert_udunits,
+    run_recipe,
+)
 
 """Loose bounds for the tables below: the bumpers may protrude 10 cm, c/t up to 0.4."""
 
@@ -38,6 +43,7 @@ def test_archive(archive):
     assert ds.sizes["record"] == len(space.QUICK_PAIRS) and ds.sizes["level"] == 3
     assert set(np.unique(ds.stage.values)) == {0, 1}
     assert_udunits(ds)
+    assert_on_variables_page(ds, "design.nc")
     # the statistics are the per-pair values', weighted per earthquake
     w = ds.record_weight.values
     for name, q in (("p16", 0.16), ("median", 0.5), ("p84", 0.84)):

@@ -14,7 +14,12 @@ from pipeline.assess.validity import RUBBER_STRESS_LIMIT
 from pipeline.checks import resolve_pairs
 from pipeline.motions.code_suite import code_suite
 from studies import fragility
-from tests.helpers import assert_collapse_modes, assert_udunits, run_recipe
+from tests.helpers import (
+    assert_collapse_modes,
+    assert_on_variables_page,
+    assert_udunits,
+    run_recipe,
+)
 
 
 @pytest.fixture(scope="module")
@@ -36,6 +41,7 @@ def test_archive(quick):
     assert ds.attrs["D_M_lower"] > ds.attrs["D_M_nominal"] > ds.attrs["D_M_upper"]
     assert ds.attrs["D_M_with_dashpot"] < ds.attrs["D_M"]
     assert_udunits(ds)
+    assert_on_variables_page(ds, "fragility.nc")
     # one verdict per floor acceleration threshold, each naming its threshold
     verdicts = json.loads(ds.attrs["paper_verdicts"])
     accel = [e for e in json.loads(ds.attrs["thresholds"]) if e.startswith("floor_accel_")]

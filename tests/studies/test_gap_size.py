@@ -7,7 +7,13 @@ from engine.units import CM
 from studies import gap_size
 from studies.common.plot import plt, record_label
 from studies.common.recipe import verdicts
-from tests.helpers import assert_figure_files, assert_udunits, drawn, recipe_outputs
+from tests.helpers import (
+    assert_figure_files,
+    assert_on_variables_page,
+    assert_udunits,
+    drawn,
+    recipe_outputs,
+)
 
 
 @pytest.fixture(scope="module")
@@ -33,6 +39,7 @@ def test_archive_is_labelled_and_complete(quick_run):
         assert "paper 5.1" in ds.attrs["paper_check"]
         assert [v["conclusion"] for v in verdicts(ds)] == ["5.1", "5.1"]
         assert_udunits(ds)
+        assert_on_variables_page(ds, "gap_size.nc")
         assert ds.attrs["recipe"] == "gap_size" and ds.attrs["quick"] == 1
 
 

@@ -9,7 +9,7 @@ import pytest
 import engine
 from pipeline.records import load_pair, pair_accel
 from studies import plan
-from tests.helpers import assert_udunits, run_recipe
+from tests.helpers import assert_on_variables_page, assert_udunits, run_recipe
 
 CONCLUSIONS = ["4, 5.1", "5.1", "5.1", "5.1", "6", "6"]
 
@@ -33,6 +33,7 @@ def test_archive(quick):
     assert ds.orbit.dims == ("orbit_record", "time", "direction")
     assert ds.attrs["moat"] == "rectangular" and ds.attrs["quick"] == 1
     assert_udunits(ds)
+    assert_on_variables_page(ds, "plan.nc")
     assert all(var.attrs.get("long_name") for var in ds.variables.values())
     # One free run serves every gap: the same numbers at each fraction.
     free = ds.peak_isolator_disp.sel(barrier="none")

@@ -7,7 +7,13 @@ import xarray as xr
 from engine.units import CM, KN, G
 from studies import practical_example
 from studies.common.plot import plt, record_label
-from tests.helpers import assert_figure_files, assert_udunits, drawn, recipe_outputs
+from tests.helpers import (
+    assert_figure_files,
+    assert_on_variables_page,
+    assert_udunits,
+    drawn,
+    recipe_outputs,
+)
 
 PEAKS = ("peak_total_accel", "peak_interstory_drift", "peak_isolator_disp", "max_indentation",
          "max_impact_force", "n_impacts")
@@ -69,6 +75,7 @@ def test_archive_is_labelled_and_complete(quick_run):
 
         assert "kobe" in ds.attrs["paper_check"] and "pacoima" in ds.attrs["paper_check"]
         assert_udunits(ds)
+        assert_on_variables_page(ds, "practical_example.nc")
         assert "15 cm" in ds.attrs["gap_rule"] and "24 cm" in ds.attrs["gap_rule"]
         assert ds.attrs["recipe"] == "practical_example" and ds.attrs["quick"] == 1
         assert ds.attrs["record_kobe_source"] and ds.attrs["record_pacoima_source"]

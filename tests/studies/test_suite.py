@@ -15,7 +15,12 @@ from pipeline.assess.outcomes import TOLERANCE, judged, weighted_quantiles
 from pipeline.assess.validity import ACCEL_LIMIT, FLAGS, Limits
 from studies import suite
 from studies.common.recipe import verdicts
-from tests.helpers import assert_collapse_modes, assert_udunits, run_recipe
+from tests.helpers import (
+    assert_collapse_modes,
+    assert_on_variables_page,
+    assert_udunits,
+    run_recipe,
+)
 
 PAIRS = ["RSN960", "RSN725", "RSN848", "RSN68"]  # short pairs, with contact on the quick grid
 
@@ -33,6 +38,7 @@ def test_archive_dims_units_scaling_and_flags(archive):
     assert ds.amplification.dims == ("response", "record", "level", "gap_fraction",
                                      "n_bumpers", "wall_k")
     assert_udunits(ds)
+    assert_on_variables_page(ds, "suite.nc")
     # the scaling: each pair's MCE_R factor and weight, the target and the suite's spectrum
     assert ds.attrs["scaling_rule"] == "asce7"
     for name in ("scale_factor", "record_weight"):

@@ -12,7 +12,13 @@ from engine.units import CM, G
 from studies import n_bumpers, restitution, strain, thickness, wall_stiffness
 from studies.common.plot import floor_labels, plt, record_label, story_labels
 from studies.common.recipe import verdicts
-from tests.helpers import SHARED_RECORDS, assert_figure_files, assert_udunits, drawn
+from tests.helpers import (
+    SHARED_RECORDS,
+    assert_figure_files,
+    assert_on_variables_page,
+    assert_udunits,
+    drawn,
+)
 
 RECORDS_DIR = ["--records-dir", str(SHARED_RECORDS)] if SHARED_RECORDS.is_dir() else []
 QUICK_GAPS = [0.15, 0.25, 0.35, 0.45]  # m
@@ -65,6 +71,7 @@ def test_archive(run):
             assert f"{v['claim']} (paper {section}); here: " in ds.attrs["paper_check"]
             assert v["numbers"]
         assert_udunits(ds)
+        assert_on_variables_page(ds, f"{name}.nc")
         assert ds.attrs["recipe"] == name and ds.attrs["quick"] == 1
         assert ds.attrs["values_chosen"] == module.recipe.chosen
         if name == "restitution":

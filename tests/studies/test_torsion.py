@@ -9,7 +9,7 @@ import engine
 from pipeline.motions.torsion import total_maximum_displacement
 from studies import torsion
 from studies.torsion.verdicts import pad_share
-from tests.helpers import assert_udunits, run_recipe
+from tests.helpers import assert_on_variables_page, assert_udunits, run_recipe
 
 
 @pytest.fixture(scope="module")
@@ -26,6 +26,7 @@ def test_archive(quick):
     assert list(ds.mass_offset_ratio.values) == [0.0, 0.1] and ds.sizes["angle"] == 3
     assert json.loads(ds.attrs["pad_positions_m"]) == [[-5.0, 5.0], [-7.5, 7.5]]
     assert_udunits(ds)
+    assert_on_variables_page(ds, "torsion.nc")
     assert len(json.loads(ds.attrs["paper_verdicts"])) == 4
 
 

@@ -8,7 +8,7 @@ import xarray as xr
 from engine.units import KN, MM
 from studies import damping_calibration, impact_validation
 from studies.common.plot import plt
-from tests.helpers import assert_figure_files, assert_udunits, drawn
+from tests.helpers import assert_figure_files, assert_on_variables_page, assert_udunits, drawn
 
 # --- the recipes ----------------------------------------------------------------------------
 
@@ -37,6 +37,7 @@ def test_archive_is_labelled_and_complete(quick_runs, name):
                 assert not ds[var].isnull().any(), var
         assert ds.attrs["paper_check"].strip()
         assert_udunits(ds)
+        assert_on_variables_page(ds, f"{name}.nc")
         assert ds.attrs["recipe"] == name and ds.attrs["quick"] == 1
 
 

@@ -15,7 +15,7 @@ import xarray as xr
 import zarr
 
 import pipeline
-from pipeline.errors import SweepError, said
+from pipeline.errors import Interrupted, SweepError, said
 from pipeline.execute.zarr_store import block_chunks
 
 PROJECT = Path(__file__).resolve().parents[3]
@@ -37,7 +37,7 @@ def reference(record):
 
 
 def _assert_same(ds, reference):
-    assert set(ds.data_vars) - {"batch_done"} == set(reference.data_vars)
+    assert set(ds.data_vars) - {"batch_done", "batch_members_done"} == set(reference.data_vars)
     for name in reference.data_vars:
         np.testing.assert_array_equal(ds[name].values, reference[name].values, err_msg=name)
         assert ds[name].attrs["units"] == reference[name].attrs["units"]
@@ -104,6 +104,39 @@ def test_resume_after_the_client_is_killed(record, reference, tmp_path):
     direct = pipeline.sweep([record], dt=2e-4, **GRID)
     _assert_same(resumed, direct)
     assert resumed.attrs["complete"] == 1
+
+
+def test_a_batch_is_kept_a_part_at_a_time(record, reference, tmp_path, monkeypatch,
+                                          count_simulated):
+    """Issue 40: a Zarr store keeps a batch's work a part at a time (about KEEP_SECONDS of
+    compute each), whatever the batch size. With the parts shrunk to the least (2 members,
+    then 1), a run in one batch per block stopped in its third part (written, not yet
+    counted) has kept the first two's 3 members in batch_members_done (no batch done);
+    resumed, it runs only the other members and gives the NetCDF archive's numbers."""
+    from pipeline.execute import batches, zarr_store
+
+    monkeypatch.setattr(batches, "FIRST_PART", 2)
+    monkeypatch.setattr(batches, "KEEP_SECONDS", 1e-12)
+    real, written = zarr_store._write_rows, []
+
+    def dying(*args):
+        real(*args)
+        written.append(1)
+        if len(written) == 3:
+            raise KeyboardInterrupt
+
+    monkeypatch.setattr(zarr_store, "_write_rows", dying)
+    store = tmp_path / "parts.zarr"
+    with pytest.raises(Interrupted):
+        pipeline.sweep([record], out=store, batch_size=100, **GRID)
+    group = zarr.open_group(str(store), mode="r")
+    assert group["batch_members_done"][:].tolist() == [3, 0, 0]
+    assert group["batch_done"][:].tolist() == [0, 0, 0] and count_simulated == [2, 1, 1]
+    monkeypatch.setattr(zarr_store, "_write_rows", real)
+    count_simulated.clear()
+    resumed = pipeline.sweep([record], out=store, batch_size=100, **GRID)
+    assert sum(count_simulated) == 24 - 3 + 3 + 1 and max(count_simulated) <= 2
+    _assert_same(resumed, reference)
 
 
 def test_command_line_writes_a_store(tmp_path):
