@@ -1,6 +1,27 @@
-"""The pipeline's errors: bad input, an unfit cluster, a run interrupted. A leaf: it imports
-nothing, so that every module can raise them (the checks that raise them: checks.py)."""
+"""The pipeline's errors: bad input, an unfit cluster, a run interrupted, a command's reader
+gone. A leaf: it imports nothing of the project, so that every module can raise them (the checks
+that raise them: checks.py)."""
 from __future__ import annotations
+
+import os
+import sys
+
+CLOSED_PIPE_STATUS = 141
+"""A command's exit status when its output's reader has gone (`bumpers | head`): a shell's for
+a command a closed pipe ended, 128 + SIGPIPE (13)."""
+
+
+def closed_pipe() -> int:
+    """What a command does on BrokenPipeError (its output's reader gone, as `| head` does once
+    it has its lines): say nothing more, point standard output at os.devnull so that Python's
+    flush at exit cannot fail on it again (the Python documentation's recipe, signal module:
+    'Note on SIGPIPE'), and return CLOSED_PIPE_STATUS."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (AttributeError, OSError, ValueError):  # an output with no descriptor: nothing held
+        pass
+    return CLOSED_PIPE_STATUS
 
 
 class SweepError(ValueError):

@@ -164,8 +164,17 @@ def version() -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """`bumpers [NAME [ARGS...]]`: list the commands, or run one and return its status."""
-    argv = sys.argv[1:] if argv is None else list(argv)
+    """`bumpers [NAME [ARGS...]]`: list the commands, or run one and return its status (a
+    closed output, `bumpers | head`, ends it quietly: pipeline.errors.closed_pipe)."""
+    from pipeline.errors import closed_pipe
+
+    try:
+        return _main(sys.argv[1:] if argv is None else list(argv))
+    except BrokenPipeError:
+        return closed_pipe()
+
+
+def _main(argv: list[str]) -> int:
     if not argv or argv[0] in ("-h", "--help"):
         print(listing(commands()))
         return 0

@@ -90,6 +90,11 @@ def compute(args):
         rows = p58.read_inventory(args.inventory)
     except ValueError as e:
         raise SweepError(f"--inventory: {e}") from None
+    unknown = p58.unknown_components(rows)
+    if unknown:  # before any compute: pelicun would refuse them after the simulations
+        raise SweepError(f"--inventory: {', '.join(unknown)}: not in FEMA P-58's fragility "
+                         "database (pelicun's); give FEMA P-58 component IDs, as "
+                         "pipeline/data/office_inventory.csv does")
     fragility = collapse_archive(args)
     pairs, names = chosen_pairs(args, collapse.QUICK_PAIRS)
     suite = scaled_suite(args, pairs, names)
@@ -165,9 +170,15 @@ def collapse_archive(args):
 
     if args.collapse:
         try:
-            return xr.load_dataset(args.collapse)
+            archive = xr.load_dataset(args.collapse)
         except (OSError, ValueError) as e:
             raise SweepError(f"--collapse: cannot read {args.collapse} ({e})") from None
+        if archive.attrs.get("recipe") != "collapse":  # a sweep's, another study's
+            made = archive.attrs.get("recipe") or "not a study's"
+            raise SweepError(f"--collapse: {args.collapse} is not a collapse study's archive "
+                             f"({made}); give the collapse.nc that python -m studies.collapse "
+                             "writes, or leave --collapse out to run it now")
+        return archive
     if not args.quiet:
         print("the collapse fragilities first (studies.collapse)", flush=True)
     return collapse.compute(args)

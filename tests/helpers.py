@@ -136,3 +136,27 @@ def assert_on_variables_page(ds, archive: str) -> None:
     own = {name: units.strip("`") for name, units, _, _ in
            page.own_variables(ds, page.sweep_names(text))}
     assert own == listed, f"{archive}'s variables differ from docs/variables.md's: {fix}"
+
+
+HANG_SECONDS = 600.0
+"""s: how long a test waits for an event (a process started, a part kept, a worker gone)
+before it calls the wait hung: a guard against a hang, never a speed check (about a hundred
+times those waits on the 2-core development machine, so that a loaded machine does not turn a
+test red)."""
+
+
+def wait_until(ready, what: str, check=None, pause: float = 0.05) -> None:
+    """Poll ready() every `pause` s until it is true; check(), when given, runs at each poll
+    and asserts what must hold meanwhile (the awaited process still running); pytest.fail
+    naming `what` after HANG_SECONDS."""
+    import time
+
+    import pytest
+
+    started = time.monotonic()
+    while not ready():
+        if check is not None:
+            check()
+        if time.monotonic() - started > HANG_SECONDS:
+            pytest.fail(f"{what}: still waiting after {HANG_SECONDS:g} s (hung)")
+        time.sleep(pause)

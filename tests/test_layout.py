@@ -9,6 +9,7 @@ table of exceptions, TESTED_IN, and every test file mirrors a module or is in th
 import ast
 import functools
 import importlib.util
+import re
 import sys
 from collections import defaultdict
 from pathlib import Path
@@ -459,3 +460,20 @@ def test_the_parameter_count_counts_what_it_says():
     counts = [parameter_count(n) for n in ast.walk(tree)
               if isinstance(n, (ast.FunctionDef, ast.Lambda))]
     assert sorted(counts) == [1, 2, 5]
+
+
+CLOCKS = re.compile(r"\b(?:time\.)?(?:monotonic|perf_counter|process_time|time)\(\)")
+"""A reading of a clock (time.monotonic(), perf_counter(), process_time(), time.time())."""
+
+
+def test_no_test_asserts_a_wall_clock_time():
+    """Issue 40: tests that asserted how long something took failed on a loaded machine. No
+    assert reads a clock: speed belongs in benchmarks/, and a wait for an event goes through
+    tests/helpers.wait_until (a hang guard, HANG_SECONDS)."""
+    found = [f"{path.relative_to(PROJECT)}:{n}"
+             for path in sorted(TESTS.rglob("*.py"))
+             for n, line in enumerate(path.read_text().splitlines(), 1)
+             if line.lstrip().startswith("assert") and CLOCKS.search(line)]
+    assert not found, f"asserts on a clock: {found}"
+    seen = CLOCKS.search("assert " + "time.monotonic() < deadline")  # the rule sees one
+    assert seen

@@ -152,3 +152,36 @@ def test_every_page_is_linked_from_the_front_page():
     text = README.read_text()
     for page in PAGES[1:]:
         assert f"]({where(page)})" in text, f"README.md does not link {where(page)}"
+
+
+def sweep_commands() -> list[tuple[str, str]]:
+    """(page, command) of every sweep the pages give to run (`python -m studies.sweep ...` or
+    `bumpers sweep ...`, in a bash block or in `code`, a span broken over lines too), the
+    command named alone and help requests left out."""
+    found = []
+    for page in PAGES:
+        prose = re.sub(r"```.*?```", "", page.read_text(), flags=re.S)  # the blocks: above
+        spans = [" ".join(span.split()) for span in re.findall(r"`([^`]+)`", prose)]
+        for line in shell_lines(page) + spans:
+            for command in re.findall(r"((?:python -m studies\.sweep|bumpers sweep)\b[^;&|]*)",
+                                      line):
+                words = command.split()
+                if len(words) > 3 - command.startswith("bumpers") and "--help" not in words \
+                        and "-h" not in words:
+                    found.append((where(page), " ".join(words)))
+    return found
+
+
+def test_every_documented_sweep_writes_an_output_of_its_own():
+    """Issue 40: three documented sweeps wrote the same default output, so that run in the
+    order the docs give, the second was refused (an archive of another sweep). Each names its
+    --out, and two different sweeps never the same one."""
+    commands = sweep_commands()
+    assert len(commands) >= 3
+    outputs = {}
+    for page, command in commands:
+        out = re.search(r"--out (\S+)", command)
+        assert out, f"{page}: `{command}` names no --out"
+        outputs.setdefault(out.group(1), set()).add(command)
+    shared = {out: sorted(c) for out, c in outputs.items() if len(c) > 1}
+    assert not shared, f"sweeps writing the same output: {shared}"

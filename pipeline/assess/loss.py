@@ -23,6 +23,7 @@ consequence data), repair times in worker-days.
 from __future__ import annotations
 
 import csv
+import functools
 import math
 import warnings
 from contextlib import contextmanager
@@ -207,16 +208,29 @@ def losses(groups, rows, *, stories: int, floor_area: float, yield_drift: float,
     return out
 
 
-def database(components: tuple[str, ...]):
-    """(fragilities, repair consequences): FEMA P-58's rows of these components (pelicun's
-    default database), the cost and time consequences only."""
+@functools.cache
+def _default_data():
+    """pelicun's FEMA P-58 fragility and repair consequence tables (read once a process: the
+    inventory is checked before the simulations and its rows taken after them)."""
     from pelicun.assessment import Assessment
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         a = Assessment(options(0))
-        fragility = a.get_default_data("FEMA P-58", "fragility")
-        repair = a.get_default_data("FEMA P-58", "consequence_repair")
+        return (a.get_default_data("FEMA P-58", "fragility"),
+                a.get_default_data("FEMA P-58", "consequence_repair"))
+
+
+def unknown_components(rows) -> list[str]:
+    """The component IDs of inventory rows (read_inventory) that FEMA P-58's fragility
+    database (pelicun's) does not hold, sorted."""
+    return sorted({r["component"] for r in rows} - set(_default_data()[0].index))
+
+
+def database(components: tuple[str, ...]):
+    """(fragilities, repair consequences): FEMA P-58's rows of these components (pelicun's
+    default database), the cost and time consequences only."""
+    fragility, repair = _default_data()
     missing = sorted(set(components) - set(fragility.index))
     if missing:
         raise ValueError(f"inventory: not in FEMA P-58's fragility database: "

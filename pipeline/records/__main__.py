@@ -2,7 +2,12 @@
 
 import sys
 
+from ..errors import closed_pipe
 from .cli import main
 
 if __name__ == "__main__":
-    sys.exit(main())
+    try:
+        status = main()
+    except BrokenPipeError:  # `python -m pipeline.records | head`
+        status = closed_pipe()
+    sys.exit(status)

@@ -5,13 +5,15 @@ against what recorded earthquakes have produced (the bounds below, each a stated
 its source). A PGA outside them, or a weak one (under :data:`ORDINARY_PGA_G`, 0.01 g) that the
 same numbers in another unit make an ordinary record, is refused with the unit that brings it
 in: ``a PGA of 488 g is implausible (outside [0.0001, 5] g): the values look like cm/s^2
-(0.497 g)``, then how to give that unit. The checks apply where records are loaded for a run
-(:func:`pipeline.records.load_record` with ``check=True``, which ``pipeline.sweep`` and the
-commands use for AT2 and text files, and :meth:`Record.from_array`); a record or pair given
-scaled (``kobe*1.5``) has its PGA checked after the factor (:func:`check_scaled`, always: the
-refusal names the factors that run); ``Record(...)`` itself and
-the readers ``read_at2``/``read_text`` take any finite samples, so a laboratory or synthetic
-motion can still be built and simulated.
+(0.497 g)``, then how to give that unit (where two units fit, the one making a strong
+motion: :data:`STRONG_PGA_G`); a PGA that is one sample far above the rest of the record is
+refused as a spike, a bad sample, not a unit (:data:`SPIKE_RATIO`). The checks apply where
+records are loaded for a run (:func:`pipeline.records.load_record` with ``check=True``, which
+``pipeline.sweep`` and the commands use for AT2 and text files, and
+:meth:`Record.from_array`); a record or pair given scaled (``kobe*1.5``) has its PGA checked
+after the factor (:func:`check_scaled`, always: the refusal names the factors that run);
+``Record(...)`` itself and the readers ``read_at2``/``read_text`` take any finite samples, so
+a laboratory or synthetic motion can still be built and simulated.
 
 PGV: the trapezoidal integral of the acceleration minus its mean (a constant-offset baseline
 correction, nothing else), so that a record with an uncorrected offset is not refused for a
@@ -56,7 +58,23 @@ under 1 s holds no earthquake (a step given in ms as s, or a fragment)."""
 SLIP_UNITS = ("g", "cm/s^2", "m/s^2")
 """The units a slip is looked for among (g vs cm/s^2: 981; g vs m/s^2: 9.81; m/s^2 vs cm/s^2:
 100), and mm/s^2 when it is the unit given; in this order, the order in which records are most
-often distributed (PEER: g; K-NET, COSMOS: cm/s^2), the first named as the fix."""
+often distributed (PEER: g; K-NET, COSMOS: cm/s^2), where two units fit as well."""
+
+STRONG_PGA_G = 0.05
+"""PGA, g, from which a record is a strong motion, as records run for pounding are (a stated
+choice). Where the values are plausible in more than one unit (a record of 1.2 g in m/s^2
+under a 'UNITS OF G' header reads as 0.012 g in cm/s^2 or 1.2 g in m/s^2), a unit that makes
+it a strong motion is named as the fix before one that makes it a weak one, so that the
+advice followed runs the record intended."""
+
+SPIKE_RATIO = 5.0
+"""A PGA more than this many times the record's largest acceleration outside 0.1 s of it is a
+spike, one bad sample (or a few), not a unit: the refusal says so instead of naming a unit
+that would scale the whole record. Real records' ratio is 1.1-1.3 (Kobe KJM 000, Sylmar
+Converter 142, Pacoima Dam 164, measured); a stated choice well above it."""
+SPIKE_WINDOW = 0.1
+"""s: the half-width of the window around the peak left out when the record's next largest
+acceleration is looked for (a strong pulse's neighbouring cycles are not a spike)."""
 
 
 def record_peaks(accel_si: np.ndarray, dt: float) -> tuple[float, float, float]:
@@ -90,7 +108,22 @@ def _candidates(raw_pga: float, raw_pgv: float, units: str, ordinary: bool) -> l
         band = (ORDINARY_PGA_G, ORDINARY_MAX_PGA_G) if ordinary else PGA_BOUNDS_G
         if _inside(pga_g, band) and _inside(pgv, PGV_BOUNDS):
             found.append((other, pga_g))
-    return found
+    # the likeliest first: a strong motion before a weak one, then SLIP_UNITS' order (stable)
+    return sorted(found, key=lambda c: c[1] < STRONG_PGA_G)
+
+
+def spike(accel_si: np.ndarray, dt: float) -> tuple[float, float] | None:
+    """(time s, ratio) of a spike in samples (m/s^2, step dt s): a peak SPIKE_RATIO times or
+    more the largest acceleration outside SPIKE_WINDOW of it; None when there is none."""
+    a = np.abs(np.asarray(accel_si, dtype=np.float64))
+    if a.size < 3:
+        return None
+    k, w = int(np.argmax(a)), max(1, int(round(SPIKE_WINDOW / dt)))
+    rest = np.concatenate([a[:max(0, k - w)], a[k + w + 1:]])
+    if rest.size == 0 or not np.isfinite(a[k]):
+        return None
+    ratio = a[k] / rest.max() if rest.max() > 0 else np.inf
+    return (k * dt, float(ratio)) if ratio >= SPIKE_RATIO else None
 
 
 def check_plausible(accel_si: np.ndarray, dt: float, units: str, where: str,
@@ -114,9 +147,16 @@ def check_plausible(accel_si: np.ndarray, dt: float, units: str, where: str,
     pga_g = pga / G
 
     def slip(what: str, ordinary: bool) -> None:
+        text = f"{where}: {what}"
+        lone = None if ordinary else spike(accel_si, dt)
+        if lone is not None:  # one bad sample: a unit would scale the whole record wrongly
+            t, ratio = lone
+            raise RecordError(f"{text}: it is a spike, one sample at t = {t:.4g} s, {ratio:.3g} "
+                              f"times the record's largest acceleration {SPIKE_WINDOW:g} s and "
+                              "more away from it: a bad sample, not a unit; remove it from the "
+                              "file (or give the record without it)")
         found = _candidates(raw_pga, raw_pgv, units, True) \
             or ([] if ordinary else _candidates(raw_pga, raw_pgv, units, False))
-        text = f"{where}: {what}"
         if found:
             looks = " or ".join(f"{u} ({p:.3g} g)" for u, p in found)
             text += f": the values look like {looks}; {fix_units(found[0][0])}"

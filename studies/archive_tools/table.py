@@ -17,7 +17,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from engine.results import COLLAPSE, PEAKS, PLAN_PEAKS
+from engine.results import COLLAPSE, PEAKS, PLAN_PEAKS, RESIDUALS
 from pipeline.assess.sweep_variables import AMPLIFICATION, STORY_DUCTILITY
 from pipeline.assess.validity import FLAGS
 
@@ -25,10 +25,11 @@ TRAILING = ("floor", "story", "wall", "direction")
 """The axes of a run's own results: one column each in a table, never a run."""
 BLOCKS = {"": "bumpers", "baseline_": "baseline", "unconstrained_": "unconstrained"}
 """Variable prefix -> the block's name in a table's `block` column."""
-QUANTITIES = tuple(q.name for q in (*PEAKS, *PLAN_PEAKS, *COLLAPSE, STORY_DUCTILITY)) + \
-    tuple(FLAGS)
-"""What each block of a sweep's archive may hold, by name: its results and their validity
-flags (a run outside the model's range is marked in every table, never passed on unmarked)."""
+QUANTITIES = tuple(q.name for q in (*PEAKS, *PLAN_PEAKS, *RESIDUALS, *COLLAPSE,
+                                    STORY_DUCTILITY)) + tuple(FLAGS)
+"""What each block of a sweep's archive may hold, by name: its results (peaks, what stays at
+the end of the run, how it ended) and their validity flags (a run outside the model's range is
+marked in every table, never passed on unmarked)."""
 EXPECTED = ("a sweep archive of bumpers (pipeline.sweep or `bumpers sweep`: NetCDF .nc or "
             "Zarr .zarr) with peak_total_accel along (record, ..., floor)")
 

@@ -167,6 +167,16 @@ class Recipe:
         return p
 
     def main(self, argv=None) -> int:
+        """Run the recipe on argv: its status (2 and one line on bad input; a closed output,
+        `| head`, ends it quietly: pipeline.errors.closed_pipe)."""
+        from pipeline.errors import closed_pipe
+
+        try:
+            return self._main(argv)
+        except BrokenPipeError:
+            return closed_pipe()
+
+    def _main(self, argv) -> int:
         args = self.parser().parse_args(argv)
         from engine import EngineError
         from pipeline.errors import SweepError, said

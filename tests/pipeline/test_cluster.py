@@ -22,6 +22,7 @@ import pipeline
 from pipeline.errors import ClusterError
 from pipeline.histories import segment
 from pipeline.records import load_record
+from tests.helpers import wait_until
 from tests.pipeline.small_sweep import no_compute
 
 PROJECT = Path(__file__).resolve().parents[2]
@@ -53,14 +54,15 @@ def _scheduler(tmp_path, *options: str, scheme: str = "tcp", port: int | None = 
     return proc, address
 
 
-def _wait_for_port(port: int, proc: subprocess.Popen, timeout: float = 60) -> None:
-    deadline = time.monotonic() + timeout
-    while True:
+def _wait_for_port(port: int, proc: subprocess.Popen) -> None:
+    def listening():
         with socket.socket() as s:
-            if s.connect_ex(("127.0.0.1", port)) == 0:
-                return
-        assert proc.poll() is None and time.monotonic() < deadline, "scheduler did not start"
-        time.sleep(0.05)
+            return s.connect_ex(("127.0.0.1", port)) == 0
+
+    def running():
+        assert proc.poll() is None, "scheduler did not start"
+
+    wait_until(listening, "the scheduler's port", check=running)
 
 
 def _cli(command: str) -> list[str]:
@@ -204,10 +206,8 @@ def test_workers_killed_mid_run(cluster, record, tmp_path, monkeypatch):
                     xarray.testing.assert_identical(saved[name], here[name])
             # The dead worker out of the scheduler's list first: asked to reach it, the
             # scheduler would retry its address for dask's connect timeout (30 s).
-            deadline = time.monotonic() + 30
-            while gone in watcher.ncores():
-                assert time.monotonic() < deadline, "the scheduler kept a dead worker"
-                time.sleep(0.01)
+            wait_until(lambda gone=gone: gone not in watcher.ncores(),
+                       "the dead worker's removal", pause=0.01)
             workers[workers.index(victim)] = _worker(tmp_path, address, nanny=False)
             watcher.wait_for_workers(2, timeout=60)
     assert counted and all(running <= total and done <= total

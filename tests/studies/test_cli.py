@@ -121,3 +121,18 @@ def test_the_installed_console_script_runs_a_command():
     unknown = subprocess.run([script, "nope"], capture_output=True, text=True, timeout=60)
     assert unknown.returncode == 2
     assert unknown.stderr.count("\n") == 1 and unknown.stdout == ""
+
+
+@pytest.mark.parametrize("argv", [[], ["--help"], ["records"], ["records", "--paper-only"]])
+def test_a_reader_that_goes_ends_the_command_quietly(argv):
+    """Issue 40: `bumpers | head`, `bumpers --help | head` and `bumpers records | head` ended
+    in a BrokenPipeError traceback. With its output closed before it writes (the reader gone),
+    a command now ends without a word on stderr, with a shell's status for it (141)."""
+    from pipeline.errors import CLOSED_PIPE_STATUS
+
+    process = subprocess.Popen([sys.executable, "-m", "studies.cli", *argv],
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                               cwd=Path(cli.__file__).resolve().parents[1])
+    process.stdout.close()  # before the command starts writing: it imports first
+    err = process.stderr.read().decode()
+    assert process.wait(timeout=120) == CLOSED_PIPE_STATUS and err == ""

@@ -197,6 +197,43 @@ def test_the_loss_study_refuses_a_missing_collapse_archive_in_one_line(tmp_path,
     assert "--collapse: cannot read" in err and len(err.strip().splitlines()) == 1
 
 
+def test_the_loss_study_refuses_an_archive_not_of_the_collapse_study(tmp_path, capsys):
+    """Issue 40: `loss --collapse` given a sweep's archive ended in a traceback after compute.
+    It is refused in one line naming what the file is, before compute, nothing written."""
+    pytest.importorskip("pelicun")
+    import pipeline
+    from studies import loss
+    from tests.pipeline.small_sweep import RECORDS, SMALL
+
+    sweep = tmp_path / "sweep.nc"
+    pipeline.sweep(RECORDS[:1], **SMALL, quiet=True, out=sweep)
+    out = tmp_path / "out"
+    assert loss.main(["--quick", "--collapse", str(sweep), "--out", str(out)]) == 2
+    (line,) = capsys.readouterr().err.strip().splitlines()
+    assert "is not a collapse study's archive" in line and "studies.collapse" in line
+    assert not out.exists()
+
+
+def test_the_loss_study_refuses_components_fema_p58_lacks_before_compute(tmp_path, capsys):
+    """Issue 40: an inventory naming a component FEMA P-58 does not hold ended in a traceback
+    after the simulations. It is refused in one line before any compute, naming it, nothing
+    written; the IDs of the default inventory (the advice's example) are all known."""
+    pytest.importorskip("pelicun")
+    from pipeline.assess import loss as p58
+    from studies import loss
+
+    rows = p58.INVENTORY.read_text().splitlines()
+    first = rows[1].split(",")[0]
+    bad = tmp_path / "inventory.csv"
+    bad.write_text("\n".join([rows[0], rows[1].replace(first, "Z.99.99.999", 1), *rows[2:]]))
+    out = tmp_path / "out"
+    assert loss.main(["--quick", "--inventory", str(bad), "--out", str(out)]) == 2
+    (line,) = capsys.readouterr().err.strip().splitlines()
+    assert "--inventory: Z.99.99.999: not in FEMA P-58's fragility database" in line
+    assert not out.exists()
+    assert p58.unknown_components(p58.read_inventory()) == []
+
+
 @pytest.mark.parametrize("option, value, named", [("--sm1-g", "0.6", "S_M1_g = 0.9"),
                                                    ("--bound", "upper", "isolator_bound"),
                                                    ("--building", "zeta_sup=0.03",

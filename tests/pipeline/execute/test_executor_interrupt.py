@@ -13,10 +13,11 @@ import os
 import signal
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import pytest
+
+from tests.helpers import wait_until
 
 PROJECT = Path(__file__).resolve().parents[3]
 # Three short pairs, the quick grid (3 levels x (no wall + 3 gaps x (bare wall, 4 and 32
@@ -64,11 +65,11 @@ def _stopped(parts: Path, sig: int, already: int = 0) -> tuple[int, str]:
     proc = subprocess.Popen([*COMMAND, "--out", str(parts), "--quiet"], cwd=PROJECT,
                             env=_env(), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             text=True, preexec_fn=_interruptible)
-    deadline = time.monotonic() + 300
-    while len(list(work.glob("*.npz"))) <= already:  # until a pair of its own is kept
+    def running():
         assert proc.poll() is None, proc.communicate()
-        assert time.monotonic() < deadline
-        time.sleep(0.05)
+
+    wait_until(lambda: len(list(work.glob("*.npz"))) > already,  # a pair of its own kept
+               "a pair kept", check=running)
     proc.send_signal(sig)
     _, err = proc.communicate(timeout=60)  # a guard against a hang, not a speed check
     return proc.returncode, err

@@ -6,7 +6,6 @@ import signal
 import subprocess
 import sys
 import textwrap
-import time
 from pathlib import Path
 
 import numpy as np
@@ -17,6 +16,7 @@ import zarr
 import pipeline
 from pipeline.errors import Interrupted, SweepError, said
 from pipeline.execute.zarr_store import block_chunks
+from tests.helpers import wait_until
 
 PROJECT = Path(__file__).resolve().parents[3]
 GRID = dict(gap=[0.10, 0.15, 0.20], n_bumpers=[4, 8, 16, 32], strain=[0.7, 0.8],
@@ -84,16 +84,16 @@ def test_resume_after_the_client_is_killed(record, reference, tmp_path):
                        **{GRID!r})
     """))
     proc = subprocess.Popen([sys.executable, str(script)], cwd=PROJECT)
-    deadline = time.monotonic() + 120
-    done = 0
-    while done < 3:
-        assert proc.poll() is None, "finished before it could be killed"
-        assert time.monotonic() < deadline
-        time.sleep(0.05)
+    def three_done():
         try:
-            done = int(zarr.open_group(str(store), mode="r")["batch_done"][:].sum())
+            return int(zarr.open_group(str(store), mode="r")["batch_done"][:].sum()) >= 3
         except Exception:  # noqa: BLE001 - the template is still being written
-            done = 0
+            return False
+
+    def running():
+        assert proc.poll() is None, "finished before it could be killed"
+
+    wait_until(three_done, "three batches done", check=running)
     proc.send_signal(signal.SIGKILL)
     proc.wait(timeout=10)
     group = zarr.open_group(str(store), mode="r")

@@ -126,6 +126,56 @@ def test_at2_in_cm_s2_without_a_units_line_is_refused(tmp_path):
         load_record(path, check=True)
 
 
+def _at2(path: Path, values: np.ndarray, units: str = "G", dt: float = 0.01) -> Path:
+    """An AT2 file of `values` under a header whose units line says `units`."""
+    rows = "\n".join(" ".join(f"{v: .7E}" for v in values[i:i + 5])
+                     for i in range(0, values.size, 5))
+    path.write_text("PEER NGA STRONG MOTION DATABASE RECORD\nSynthetic, 1/1/2000, Test, 0\n"
+                    f"ACCELERATION TIME SERIES IN UNITS OF {units}\n"
+                    f"NPTS= {values.size}, DT= {dt:.4f} SEC,\n{rows}\n")
+    return path
+
+
+@pytest.mark.parametrize("pga_g", [0.6, 1.2, 1.8])
+def test_at2_in_m_s2_under_a_g_header_is_refused_and_the_advice_runs_it(tmp_path, capsys,
+                                                                          pga_g):
+    """Issue 40: values in m/s^2 under 'UNITS OF G' were refused with the advice 'CM/S/S',
+    which then ran the record at 0.012 g. The advice is now the unit whose PGA is nearest a
+    strong motion's (plausible.STRONG_PGA_G): m/s^2. On the command line: exit 2, one line,
+    nothing written; the header corrected as told, the record runs at its PGA."""
+    values = pulse(pga_g * G)  # m/s^2, the header saying g
+    bad = _at2(tmp_path / "MSS.AT2", values)
+    with pytest.raises(RecordError) as err:
+        read_at2(bad, check=True)
+    assert "correct the file's header to say 'UNITS OF M/S/S'" in str(err.value)
+    assert f"m/s^2 ({pga_g:.3g} g)" in str(err.value).split(" or ")[0]
+    out = tmp_path / "out"
+    argv = ["--gap-cm", "30", "--quiet"]
+    assert sweep_cli.main(["--records", str(bad), *argv, "--out", str(out / "a.nc")]) == 2
+    (line,) = capsys.readouterr().err.strip().splitlines()
+    assert "'UNITS OF M/S/S'" in line and not out.exists()
+    fixed = _at2(tmp_path / "FIXED.AT2", values, units="M/S/S")  # the advice followed
+    assert read_at2(fixed, check=True).pga_g == pytest.approx(pga_g, rel=1e-6)
+    assert sweep_cli.main(["--records", str(fixed), *argv, "--out", str(out / "b.nc")]) == 0
+
+
+def test_a_spike_is_refused_as_a_bad_sample_not_a_unit(tmp_path):
+    """Issue 40: one sample of 50 g in a record of 0.5 g was refused with the advice that the
+    values were in cm/s^2 (0.051 g), which would have run the whole record 981 times too
+    weak. It is now named a spike, at its time; the sample removed, the record runs."""
+    values = pulse(0.5)
+    values[400] = 50.0  # t = 4 s
+    bad = _at2(tmp_path / "SPIKE.AT2", values)
+    with pytest.raises(RecordError) as err:
+        read_at2(bad, check=True)
+    text = str(err.value)
+    assert "it is a spike, one sample at t = 4 s" in text and "remove it" in text
+    assert "look like" not in text and "UNITS OF" not in text
+    values[400] = 0.5 * values[399] + 0.5 * values[401]  # the advice followed
+    assert read_at2(_at2(tmp_path / "MENDED.AT2", values), check=True).pga_g == \
+        pytest.approx(0.5, rel=1e-6)
+
+
 @needs_shared
 @pytest.mark.parametrize("src", SHARED_AT2, ids=lambda p: p.name)
 def test_real_records_pass(src):

@@ -58,6 +58,10 @@ def test_csv_holds_the_archive_values(archive, tmp_path, suffix, capsys):
     # the validity flags travel with the peaks: every block's, and some run is flagged here
     assert {"invalid_floor_accel", "invalid_bumper_stress"} <= set(table.columns)
     assert table["invalid_bumper_stress"].sum() > 0
+    # and every result the engine declares (issue 40: the residuals were left out)
+    for name in ("peak_isolator_force", "peak_story_shear", "peak_floor_velocity",
+                 "residual_isolator_disp", "residual_interstory_drift"):
+        assert any(c.startswith(name) for c in table.columns), name
 
 
 def test_csv_of_one_block_at_one_value(archive, tmp_path):
