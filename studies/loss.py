@@ -230,10 +230,14 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
     limits = Limits(story_shear=code_story_capacity(suite.basis.force_design, building),
                     wall_force=None)
     flat = {k: v for k, v in peaks.items() if not k.endswith("_xy")}
-    flagged = any_flag(flags_of(flat, building, limits, n_bumpers=bumpers, area=AREA,
-                                thickness=THICKNESS))
-    fell = peaks["collapsed"].astype(bool)
-    usable = ~fell & ~flagged  # (R, L, barrier, gap)
+    flags = flags_of(flat, building, limits, n_bumpers=bumpers, area=AREA, thickness=THICKNESS)
+    flagged, fell = any_flag(flags), peaks["collapsed"].astype(bool)
+    # Every run that did not collapse enters the demand model, as computed (dropping those
+    # outside the model's range took the hardest impacts out). Past its floor acceleration,
+    # 5 g, a value is uncertain but past every acceleration-sensitive component's range (the
+    # default inventory's highest damage states: medians up to 4.1 g; a test checks it).
+    entered = ~fell  # (R, L, barrier, gap)
+    past_limit = entered & flags["invalid_floor_accel"]  # a fall is no acceleration
     height = np.asarray(building.story_height, float)
     ratio = peaks["peak_interstory_drift_xy"] / height[:, None]
     acmr = fragility.acmr.transpose("barrier", "gap_fraction").values
@@ -242,7 +246,7 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
     for i, level in enumerate(levels):
         for b in range(n_b):
             for g in range(n_g):
-                keep = usable[:, i, b, g]
+                keep = entered[:, i, b, g]
                 deviate = float(np.log(level / acmr[b, g]) / beta[b, g])
                 groups.append(p58.Group(peaks["peak_total_accel_xy"][keep, i, b, g],
                                         ratio[keep, i, b, g], deviate)
@@ -307,16 +311,19 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
                                         "weighted share of runs with contact"),
         "crushed_probability": variable(dims, crushed, "1", "P(bumpers crushed | stripe) "
                                         "(NaN: no bumpers)"),
-        "runs_used": variable(dims, usable.sum(axis=0).astype(np.int32), "1", "runs in the "
-                              "demand model: neither collapsed nor outside the model's range"),
+        "runs_used": variable(dims, entered.sum(axis=0).astype(np.int32), "1", "runs in the "
+                              "demand model: every run that did not collapse"),
+        "runs_past_accel_limit": variable(dims, past_limit.sum(axis=0).astype(np.int32), "1",
+                                          "runs_used with a floor acceleration past what the "
+                                          "model represents (validity_limits), as computed"),
         "runs_collapsed": variable(dims, fell.sum(axis=0).astype(np.int32), "1",
                                    "runs that collapsed (replaced by the collapse fragility)"),
         "runs_collapsed_by_mode": variable(
             ("mode",) + dims, mode_counts(peaks["collapse_mode"], axis=0).astype(np.int32), "1",
             "runs_collapsed by how they collapsed (collapse_mode)"),
-        "runs_outside_range": variable(dims, (flagged & ~fell).sum(axis=0).astype(np.int32),
-                                       "1", "runs outside the model's range (left out of the "
-                                       "demand model; validity_limits says which)"),
+        "runs_outside_range": variable(dims, (flagged & entered).sum(axis=0).astype(np.int32),
+                                       "1", "runs_used outside the model's range in any way "
+                                       "(validity_limits says which), as computed"),
         "collapsed": variable(rdims, fell.astype(np.int8), "1", "1 where the run collapsed"),
         "collapse_mode": collapse_mode_variable(rdims, peaks["collapse_mode"]),
         "expected_annual_loss": variable(conf, eal, "USD_2011 yr-1", "expected annual loss, "
@@ -368,8 +375,9 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
         "method": "FEMA P-58 (2018) intensity-based assessments at the stripes by pelicun "
                   "(pipeline.assess.loss), the expected annual loss and mean annual "
                   "frequencies over the hazard curve (pipeline.assess.hazard; FEMA P-58-1 "
-                  "chapter 8); the demand model fitted to the usable runs unweighted "
-                  "(pelicun takes no weights)",
+                  "chapter 8); the demand model fitted to every run that did not collapse, "
+                  "unweighted (pelicun takes no weights), those outside the model's range "
+                  "with the demands computed (runs_outside_range)",
         "hazard": curve.source, "floor_area": args.floor_area, "floor_area_units": "m2",
         "inventory": args.inventory or "pipeline/data/office_inventory.csv (default)",
         "components": json.dumps({r["component"]: r["description"] for r in rows}),
@@ -386,8 +394,7 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
 
 
 def decision_table(ds) -> str:
-    """The decision table as text: gap x barrier -> P(collapse | MCE_R), median repair cost
-    at the MCE_R, expected annual loss, annual rate of pounding."""
+    """The decision table: gap x barrier -> P(collapse | MCE_R), median cost, EAL, pounding."""
     lines = [f"{'gap':>8} {'barrier':>11} {'P(coll|MCE_R)':>14} {'median cost MCE_R':>18} "
              f"{'EAL':>10} {'pounding /yr':>13}"]
     for g, gap in enumerate(ds.gap.values):
@@ -404,15 +411,14 @@ def decision_table(ds) -> str:
 
 
 def _why(ds, at) -> str:
-    """What the decision table's row at `at` says beside its numbers: the runs left out, and
-    why its EAL is not computed (NaN) where it is not."""
+    """Beside a row's numbers: its runs outside the model's range, why an EAL is missing."""
     said = []
     outside = int(ds.runs_outside_range[at].sum())
     if outside:
-        said.append(f"{outside} runs outside the model's range left out")
+        said.append(f"{outside} runs outside the model's range, in as computed")
     if np.isnan(float(ds.expected_annual_loss[at])):
         few = ds.level.values[ds.runs_used[at].values < p58.MIN_RUNS]
-        said.append(f"EAL not computed: fewer than {p58.MIN_RUNS} runs in the demand model at "
+        said.append(f"EAL not computed: fewer than {p58.MIN_RUNS} runs standing at "
                     + ", ".join(f"{level:g}" for level in few) + " x MCE_R" if few.size else
                     "EAL not computed: a stripe's repair cost is not a number")
     return f"  ({'; '.join(said)})" if said else ""

@@ -151,9 +151,11 @@ def test_the_loss_archive_holds_the_decision(loss_quick):
         assert name in ds, name
     assert ds.repair_cost.dims == ("level", "barrier", "gap_fraction")
     assert ds.attrs["pelicun_version"]
-    # every run is counted once: used, collapsed or outside the model's range
-    runs = ds.runs_used + ds.runs_collapsed + ds.runs_outside_range
-    assert (runs == ds.record.size).all()
+    # every run is counted once, used or collapsed (issue 38: those outside the model's range
+    # are used, as computed; they were left out)
+    assert (ds.runs_used + ds.runs_collapsed == ds.record.size).all()
+    assert (ds.runs_past_accel_limit <= ds.runs_outside_range).all()
+    assert (ds.runs_outside_range <= ds.runs_used).all()
     # how each run collapsed, counted by mode (pipeline.assess.collapse_modes)
     assert ds.collapse_mode.dims == ds.collapsed.dims
     assert_collapse_modes(ds.collapse_mode, ds.collapsed.values)
@@ -258,10 +260,10 @@ def test_the_loss_study_refuses_a_collapse_archive_of_another_basis(quick_path, 
 
 
 def test_the_decision_table_says_why_an_eal_is_not_computed(loss_quick):
-    """Issue 40: `loss --quick` printed `nan k$` rows with no word on why. Every row whose
-    expected annual loss is NaN names the stripes with too few runs in the demand model
-    (fewer than pelicun's minimum: the run outside the model's range left out), and no
-    other row says so."""
+    """Issue 40: `loss --quick` printed `nan k$` rows with no word on why; issue 38: every run
+    that did not collapse enters the demand model (those outside the model's range too, with
+    the demands computed), so that an EAL is missing only where a stripe has fewer standing
+    runs than pelicun's fit needs. Such a row names those stripes, and no other row says so."""
     from pipeline.assess import loss as p58
     from studies import loss
 
@@ -270,9 +272,28 @@ def test_the_decision_table_says_why_an_eal_is_not_computed(loss_quick):
     used = loss_quick.runs_used.transpose("gap_fraction", "barrier", "level").values
     assert len(rows) == eal.size
     levels = loss_quick.level.values
-    assert np.isnan(eal).any()  # the quick run has such rows
     for row, value, runs in zip(rows, eal, used.reshape(eal.size, -1), strict=True):
+        assert np.isnan(value) == bool((runs < p58.MIN_RUNS).any()), row
         assert ("EAL not computed: fewer than" in row) == bool(np.isnan(value)), row
         if np.isnan(value):
             named = ", ".join(f"{level:g}" for level in levels[runs < p58.MIN_RUNS])
-            assert f"demand model at {named} x MCE_R" in row
+            assert f"runs standing at {named} x MCE_R" in row
+
+
+def test_past_the_models_floor_acceleration_every_sensitive_component_is_at_its_worst():
+    """Issue 38: runs past the floor acceleration the model represents (ACCEL_LIMIT, 5 g)
+    enter the loss study's demands as computed, which holds because every acceleration-
+    sensitive component of the default inventory has the median of its highest damage state
+    below it (FEMA P-58's data through pelicun: 4.1 g at most, the water piping's)."""
+    pytest.importorskip("pelicun")
+    from engine.units import G
+    from pipeline.assess import loss as p58
+    from pipeline.assess.validity import ACCEL_LIMIT
+
+    fragility, _ = p58._default_data()
+    rows = fragility.loc[[r["component"] for r in p58.read_inventory()]]
+    sensitive = rows[rows[("Demand", "Type")].str.contains("Acceleration")]
+    states = [c for c in sensitive.columns if c[0].startswith("LS") and c[1] == "Theta_0"]
+    highest = sensitive[states].apply(lambda r: r.dropna().astype(float).iloc[-1], axis=1)
+    assert len(sensitive) >= 5 and (sensitive[("Demand", "Unit")] == "g").all()
+    assert highest.max() == pytest.approx(4.1) and highest.max() < ACCEL_LIMIT / G
