@@ -1,21 +1,16 @@
 """Beyond the paper: the designer's decision between a wider moat and bumpers, on repair cost,
-collapse and annual rates (FEMA P-58's assessment of the code-designed isolated building, by
-pelicun: pip install -e ".[loss]").
+collapse and annual rates (FEMA P-58 by pelicun: pip install -e ".[loss]").
 
-The building, pairs, scaling, gaps and barriers of studies.collapse (whose archive gives each
-configuration's collapse fragility: --collapse, or it runs first). Every pair at stripes from a
-service level to 1.5 x MCE_R (LEVELS) without wall, against the bare wall and with 4 to 32
-bumpers a wall at each gap, in plan: per floor and direction the peak floor accelerations and
-interstory drift ratios. Per stripe and configuration (pipeline.assess.loss, FEMA P-58-1
-chapters 5 to 7): a joint lognormal fitted to the runs that neither collapsed nor left the
-model's range, SAMPLES realizations, the residual drift estimated from the peak drift, damage
-to a default office inventory (pipeline/data/office_inventory.csv, --inventory for the
-building's own) of --floor-area per floor, collapse from the collapse fragility, repair cost
-and time. With a hazard curve (--hazard, a table of annual rate against Sa(T_M); default a
-documented power law, pipeline.assess.hazard): the expected annual loss and the mean annual
-frequencies of contact, crushed bumpers and collapse (FEMA P-58-1 chapter 8). The decision
-table: gap x barrier -> P(collapse | MCE_R), the median repair cost at the MCE_R, the expected
-annual loss and the annual rate of pounding.
+The building, pairs, scaling, gaps and barriers of studies.collapse (its archive gives each
+configuration's collapse fragility: --collapse, or it runs first); every pair at stripes up to
+1.5 x MCE_R (LEVELS) without wall, against the bare wall and with 4 to 32 bumpers a wall, in
+plan. Per stripe and configuration (pipeline.assess.loss, FEMA P-58-1 chapters 5 to 7): a
+joint lognormal of the peak floor accelerations and drift ratios fitted to every run that did
+not collapse, SAMPLES realizations, damage to an office inventory (--inventory) of
+--floor-area per floor, collapse from its fragility, repair cost (by component group) and
+time; over a hazard curve (--hazard; default a documented power law) the expected annual loss
+and the annual rates of contact, crushed bumpers and collapse (chapter 8). The decision table:
+gap x barrier -> P(collapse | MCE_R), median repair cost at the MCE_R, EAL, pounding per year.
 """
 from __future__ import annotations
 
@@ -292,6 +287,10 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
         "repair_cost": variable(dims, mean_cost, "USD_2011", "mean repair cost, USD_2011 "
                                 "(FEMA P-58 by pelicun; a collapse or an irreparable "
                                 "residual drift costs the replacement)"),
+        "repair_cost_by_group": variable(
+            ("component_group",) + dims, np.moveaxis(out["repair_cost_by_group"].reshape(
+                *shape, -1, len(p58.COMPONENT_GROUPS)).mean(axis=-2), -1, 0), "USD_2011",
+            "mean repair cost given no collapse, USD_2011, by component group (summing it)"),
         "repair_cost_quantile": variable(("quantile",) + dims, cost_q,
                                          "USD_2011", "repair cost quantiles over the "
                                          "realizations, USD_2011"),
@@ -367,6 +366,8 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
                                  "seismic gap / D_M"),
         "gap": variable("gap_fraction", gaps, "m", "seismic gap"),
         "quantile": variable("quantile", q, "1", "quantile over the realizations"),
+        "component_group": variable("component_group", list(p58.COMPONENT_GROUPS), "1",
+                                    "FEMA P-58 components by their demand, or the replacement"),
         **collapse_mode_coords(),
         **more_coords,
     }
@@ -407,6 +408,12 @@ def decision_table(ds) -> str:
                 f"{float(ds.median_repair_cost_mce[at]) / 1e6:14.2f} M$ "
                 f"{float(ds.expected_annual_loss[at]) / 1e3:7.1f} k$ "
                 f"{float(ds.annual_rate_contact[at]):13.2e}" + _why(ds, at))
+    if "repair_cost_by_group" in ds:  # what pounding damages: the acceleration-sensitive
+        mce = ds.repair_cost_by_group.sel(level=1.0, method="nearest")
+        share = 100 * mce / mce.sum("component_group")
+        lines.append("the mean repair cost at the MCE_R given no collapse (repair_cost_by_group): "
+                     + ", ".join(f"{g} {float(share[i].min()):.0f}-{float(share[i].max()):.0f}%"
+                                 for i, g in enumerate(p58.COMPONENT_GROUPS)))
     return "\n".join(lines)
 
 
@@ -428,22 +435,15 @@ def plot(ds):
     """(a) the median repair cost at the MCE_R against the gap, one curve per barrier; (b) the
     expected annual loss; (c) the annual rate of pounding."""
     fig, axes = plt.subplots(1, 3, figsize=(12, 3.8), constrained_layout=True)
-    gaps = ds.gap.values / CM
-    markers = "osD^vP"
-    for k, barrier in enumerate(ds.barrier.values):
-        style = dict(marker=markers[k % len(markers)], markerfacecolor="none")
-        sel = ds.sel(barrier=barrier)
-        line, = axes[0].plot(gaps, sel.median_repair_cost_mce.values / 1e6, label=str(barrier),
-                             **style)
-        axes[1].plot(gaps, sel.expected_annual_loss.values / 1e3, color=line.get_color(),
-                     **style)
-        axes[2].plot(gaps, 1e4 * sel.annual_rate_contact.values, color=line.get_color(),
-                     **style)
-    axes[0].set_ylabel("median repair cost at MCE_R (M$ 2011)")
-    axes[1].set_ylabel("expected annual loss (k$ 2011 / yr)")
-    axes[2].set_ylabel("annual rate of pounding (x 10^-4 / yr)")
-    for ax in axes:
+    panels = ((ds.median_repair_cost_mce, 1e-6, "median repair cost at MCE_R (M$ 2011)"),
+              (ds.expected_annual_loss, 1e-3, "expected annual loss (k$ 2011 / yr)"),
+              (ds.annual_rate_contact, 1e4, "annual rate of pounding (x 10^-4 / yr)"))
+    for ax, (values, scale, label) in zip(axes, panels, strict=True):
+        for k, barrier in enumerate(ds.barrier.values):  # the same colours in every panel
+            ax.plot(ds.gap.values / CM, scale * values.sel(barrier=barrier).values,
+                    marker="osD^vP"[k % 6], markerfacecolor="none", label=str(barrier))
         ax.set_xlabel("seismic gap (cm)")
+        ax.set_ylabel(label)
     axes[0].legend(fontsize=8, ncol=2)
     letter_panels(axes)
     store_caption(ds, caption(ds))

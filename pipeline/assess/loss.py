@@ -173,8 +173,9 @@ def losses(groups, rows, *, stories: int, floor_area: float, yield_drift: float,
     estimate; replacement cost (USD 2011) and time (worker-days) default to COST_PER_M2 and
     TIME_PER_M2 of the total floor area. Returns repair_cost (USD 2011) and repair_time
     (worker-days, the parallel repair time) (G, samples) given no collapse, irreparable (G,
-    samples) bool, collapse_probability (G,) (Phi of the group's deviate), replacement_cost
-    and replacement_time; NaN (False) for the groups without a model. The collapse enters
+    samples) bool, repair_cost_by_group (G, samples, COMPONENT_GROUPS) summing repair_cost,
+    collapse_probability (G,) (Phi of the group's deviate), replacement_cost and
+    replacement_time; NaN (False) for the groups without a model. The collapse enters
     exactly, not sampled (FEMA P-58-1 Eq. 7-1: P(C) times the replacement plus (1 - P(C))
     times the loss given no collapse): `mixture` gives its statistics. progress: None, or
     called with no argument as each group is done (BATCH groups at a time: pelicun's cost is
@@ -187,6 +188,8 @@ def losses(groups, rows, *, stories: int, floor_area: float, yield_drift: float,
     time = TIME_PER_M2 * area if replacement_time is None else replacement_time
     out = {"repair_cost": np.full((len(groups), samples), np.nan),
            "repair_time": np.full((len(groups), samples), np.nan),
+           "repair_cost_by_group": np.full((len(groups), samples, len(COMPONENT_GROUPS)),
+                                           np.nan),
            "irreparable": np.zeros((len(groups), samples), bool),
            "collapse_probability": np.full(len(groups), np.nan),
            "replacement_cost": cost, "replacement_time": time}
@@ -273,7 +276,8 @@ def _assess(groups, a, yield_drift, samples, seed) -> dict:
     damage and loss calculation over them all, its draws (component quantities, capacities,
     consequences) made for one group's `samples` realizations and repeated for each
     (`common_draws`): every group draws the same numbers, as if assessed alone. Returns
-    repair_cost, repair_time and irreparable (len(groups), samples), given no collapse."""
+    repair_cost, repair_time and irreparable (len(groups), samples), given no collapse, and
+    repair_cost_by_group (len(groups), samples, COMPONENT_GROUPS), which sums repair_cost."""
     import pandas as pd
     from pelicun.model import DemandModel
 
@@ -304,13 +308,34 @@ def _assess(groups, a, yield_drift, samples, seed) -> dict:
                     model.sample = model.sample.astype("float64")
             total, _ = a.loss.aggregate_losses(future=True)
         damage = a.damage.ds_model.sample
+        by_loss = a.loss.ds_model.sample.xs("Cost", axis=1, level="dv").T \
+            .groupby(level="loss").sum().T  # realizations x components (and "replacement")
     # the damaged quantity of the placeholder in its damage state 1 (0: undamaged)
     part = damage.xs("irreparable", axis=1, level="cmp")
     hit = part.loc[:, part.columns.get_level_values("ds") != "0"].to_numpy(float)
     shape = (len(groups), samples)
+    kinds = [component_group(c) for c in by_loss.columns]
+    parts = np.stack([by_loss.loc[:, [k == g for k in kinds]].to_numpy(float).sum(axis=1)
+                      for g in range(len(COMPONENT_GROUPS))], axis=-1)
     return {"repair_cost": total[("repair_cost", "")].to_numpy(float).reshape(shape),
             "repair_time": total[("repair_time", "parallel")].to_numpy(float).reshape(shape),
-            "irreparable": (np.nan_to_num(hit).sum(axis=1) > 0).reshape(shape)}
+            "irreparable": (np.nan_to_num(hit).sum(axis=1) > 0).reshape(shape),
+            "repair_cost_by_group": parts.reshape(*shape, -1)}
+
+
+COMPONENT_GROUPS = ("acceleration-sensitive", "drift-sensitive", "irreparable (replaced)")
+"""What a realization's repair cost given no collapse sums (pelicun's: the components' costs,
+and the replacement where the residual drift makes the building irreparable): the components
+whose FEMA P-58 fragility reads a floor acceleration, the others (story drift), and the
+replacement."""
+
+
+def component_group(loss: str) -> int:
+    """The COMPONENT_GROUPS index of one of pelicun's loss columns: a component by its
+    fragility's demand type in FEMA P-58's database, or the replacement."""
+    if loss == "replacement":
+        return 2
+    return 0 if "Acceleration" in str(_default_data()[0].loc[loss, ("Demand", "Type")]) else 1
 
 
 @contextmanager

@@ -135,3 +135,27 @@ def test_losses_do_not_depend_on_pythons_hash_seed():
     # this process's hash seed is random (pytest's, or a fixed one other than 1)
     assert sys.flags.hash_randomization or os.environ.get("PYTHONHASHSEED") != "1"
     assert here.getvalue() == there
+
+
+def test_the_repair_cost_by_component_group_sums_it():
+    """Issue 38: the repair cost split by component group (COMPONENT_GROUPS: acceleration-
+    sensitive components, drift-sensitive ones, the replacement of an irreparable building)
+    sums, realization by realization, to pelicun's repair cost given no collapse; light
+    shaking with small drifts damages the acceleration-sensitive components and no more; a
+    component is grouped by its FEMA P-58 fragility's demand."""
+    loss = pytest.importorskip("pipeline.assess.loss")
+    pytest.importorskip("pelicun")
+    assert loss.component_group("C.30.34.001") == 0    # pendant lights: floor acceleration
+    assert loss.component_group("B.10.35.021") == 1    # a moment connection: story drift
+    assert loss.component_group("replacement") == 2
+    rng = np.random.default_rng(0)
+    strong = loss.Group(rng.lognormal(math.log(0.8 * G), 0.3, (10, 3, 2)),
+                        rng.lognormal(math.log(0.012), 0.4, (10, 2, 2)), -3.0)
+    light = loss.Group(rng.lognormal(math.log(0.5 * G), 0.1, (10, 3, 2)),
+                       np.full((10, 2, 2), 1e-4) * rng.lognormal(0.0, 0.1, (10, 1, 1)), -3.0)
+    out = loss.losses([strong, light], loss.read_inventory(), stories=2, floor_area=500.0,
+                      yield_drift=0.01, samples=300, seed=1)
+    parts = out["repair_cost_by_group"]
+    np.testing.assert_allclose(parts.sum(axis=-1), out["repair_cost"], rtol=1e-12)
+    assert (parts[0] > 0).any(axis=0).all()  # strong shaking: every group somewhere
+    assert parts[1, :, 0].mean() > 0 and np.all(parts[1, :, 1:] == 0)
