@@ -6,9 +6,10 @@ cost. The damage and loss calculation is pelicun's; this module turns the simula
 into its demand samples and its results into arrays.
 
 Method (FEMA P-58-1 chapters 5 to 7, the intensity-based assessment): at each intensity and
-configuration the runs that did not collapse (and are inside the model's range) give the
-demands; pelicun fits a joint lognormal distribution to them (FEMA P-58-1 section 5.3, Yang
-et al. 2009) and draws `samples` realizations. The building collapses with the collapse
+configuration the runs that did not collapse give the demands (studies.loss enters every
+one, those outside the model's range as computed); pelicun fits a joint lognormal
+distribution to them (FEMA P-58-1 section 5.3, Yang et al. 2009) and draws `samples`
+realizations. The building collapses with the collapse
 fragility's probability at that intensity and is then replaced (the collapse enters exactly,
 by its probability: `mixture`); a realization is irreparable where its residual drift exceeds
 the irreparable-drift fragility (replaced too), or else is repaired, component by component,
@@ -55,7 +56,7 @@ loss study's 120 groups: 100 s one at a time, 24 s in batches; each group's dema
 still fitted alone); more would hold more of its tables (several columns per component,
 location, direction and damage state, for every realization) in memory."""
 MIN_RUNS = 3
-"""Fewer usable runs than this at an intensity and configuration: no demand model is fitted
+"""Fewer runs standing than this at an intensity and configuration: no demand model is fitted
 (the losses are NaN there and the count says why)."""
 def pelicun():
     """The pelicun module, or a one-line error saying how to install it."""
@@ -145,7 +146,7 @@ def raw_demands(pfa, pid):
 
 @dataclass(frozen=True)
 class Group:
-    """One intensity and configuration: its usable runs' peaks pfa (R, N+1, 2) m/s^2 and
+    """One intensity and configuration: its runs' peaks pfa (R, N+1, 2) m/s^2 and
     pid (R, N, 2), and the collapse fragility's standard deviate there, ln(level / median) /
     beta (P(collapse) = Phi(deviate))."""
 
