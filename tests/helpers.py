@@ -119,16 +119,22 @@ def drawn(ax) -> list[tuple[str, np.ndarray, np.ndarray]]:
              np.asarray(line.get_ydata(), float)) for line in ax.get_lines()]
 
 
-def assert_on_variables_page(ds, archive: str) -> None:
-    """docs/variables.md lists, under `archive` (a study's archive file name), exactly the
-    variables of `ds` that the sweep's part of the page does not, each with ds's units
-    (tools/variables_page.py; run it with --write --studies when a study's variables change)."""
+def variables_page():
+    """tools/variables_page.py as a module (tools/ is no package)."""
     import importlib.util
 
     spec = importlib.util.spec_from_file_location("variables_page",
                                                   PROJECT / "tools" / "variables_page.py")
     page = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(page)
+    return page
+
+
+def assert_on_variables_page(ds, archive: str) -> None:
+    """docs/variables.md lists, under `archive` (a study's archive file name), exactly the
+    variables of `ds` that the sweep's part of the page does not, each with ds's units
+    (tools/variables_page.py; run it with --write --studies when a study's variables change)."""
+    page = variables_page()
     text = (PROJECT / "docs" / "variables.md").read_text()
     listed = page.listed_by_archive(text).get(archive)
     fix = "run python tools/variables_page.py --write --studies"

@@ -475,5 +475,5 @@ def test_no_test_asserts_a_wall_clock_time():
              for n, line in enumerate(path.read_text().splitlines(), 1)
              if line.lstrip().startswith("assert") and CLOCKS.search(line)]
     assert not found, f"asserts on a clock: {found}"
-    seen = CLOCKS.search("assert " + "time.monotonic() < deadline")  # the rule sees one
-    assert seen
+    # The rule sees such a line (the example split so that this file holds no such assert).
+    assert CLOCKS.search("assert time.monotonic" + "() < deadline")

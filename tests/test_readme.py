@@ -166,8 +166,8 @@ def sweep_commands() -> list[tuple[str, str]]:
             for command in re.findall(r"((?:python -m studies\.sweep|bumpers sweep)\b[^;&|]*)",
                                       line):
                 words = command.split()
-                if len(words) > 3 - command.startswith("bumpers") and "--help" not in words \
-                        and "-h" not in words:
+                arguments = words[2 if words[0] == "bumpers" else 3:]  # the command's own
+                if arguments and not {"--help", "-h"} & set(arguments):
                     found.append((where(page), " ".join(words)))
     return found
 

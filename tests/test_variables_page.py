@@ -1,17 +1,13 @@
 """tools/variables_page.py and docs/variables.md: the page is what the declarations write, and
 it names every variable a sweep's archive holds, with the archive's own unit."""
-import importlib.util
 import re
-from pathlib import Path
 
 import pipeline
+from tests.helpers import PROJECT
+from tests.helpers import variables_page as load_page
 from tests.pipeline.small_sweep import RECORDS, SMALL
 
-PROJECT = Path(__file__).resolve().parents[1]
-spec = importlib.util.spec_from_file_location("variables_page",
-                                              PROJECT / "tools" / "variables_page.py")
-variables_page = importlib.util.module_from_spec(spec)
-spec.loader.exec_module(variables_page)
+variables_page = load_page()
 
 
 def test_the_page_is_what_the_declarations_write():
