@@ -33,16 +33,18 @@ DEFAULT_STEPS_PER_CONTACT = 4000
 
 
 def stable_dt(contact: Contact, building: Building | Sequence[Building] = Building(),
-              indentation_bound: float = INDENTATION_BOUND) -> np.ndarray:
+              indentation_bound: float = INDENTATION_BOUND,
+              moat: Moat | None = None) -> np.ndarray:
     """(B,) central-difference stability limit (s) at the stiffest state each member can reach
     (scheme.stability_limit): isolator at k1, the contact's largest tangent stiffness. For
-    buildings that twist, their torsional limit with `contact` as every wall and the slab's
-    corners as its points (bumpers stand within the sides: their limit is no lower)."""
+    buildings that twist, their torsional limit with `contact` as every wall and its points
+    where `moat` puts them (its bumper_positions; the slab's corners without a moat)."""
     size = len(contact)
     if _twisting(building):
         twist = torsion_arrays(_members(building), size)
-        tangent = contact.max_tangent_stiffness(indentation_bound)
-        return torsion.stability_limit(twist, contact_points(twist.plan), [tangent, tangent])
+        positions = None if moat is None else moat.bumper_positions
+        return torsion.stability_limit(twist, contact_points(twist.plan, positions),
+                                       (contact, contact), indentation_bound)
     return stability_limit(building_arrays(building, size), contact, indentation_bound)
 
 
@@ -167,8 +169,7 @@ def _simulate_plan(model, accel, accel_dt, contact, building, dt, run, walls) ->
     if model is TWISTING:
         twist = torsion_arrays(_members(building), size)
         points = contact_points(twist.plan, moat.bumper_positions)
-        limit = torsion.stability_limit(twist, points, [c.max_tangent_stiffness(
-            INDENTATION_BOUND) for c in contacts])  # bumpers' points: a limit of their own
+        limit = torsion.stability_limit(twist, points, contacts, INDENTATION_BOUND)
     else:
         limit = np.min([stability_limit(a, c) for c in contacts for a in directions], axis=0)
     worst = int(np.argmin(limit))

@@ -33,8 +33,11 @@ and the ground's (a_x, a_y) loads it by -M (a_x, a_y, 0): a torque where e != 0.
   shared equally by its points: each carries Contact.part(1 / the number of points), the
   law's force times that share (tests/engine/test_torsion.py checks every law), so that a
   bumper wall of n_bumpers pads at n_bumpers positions gives each position one pad. A
-  bumper-lined wall is reached through its bumpers only (the bare wall behind them through
-  their crushed state, k_w).
+  bumper-lined wall is reached through its bumpers only: past a pad's crushing the slab bears
+  on the wall at that point, which meets the wall's own stiffness k_w, not a share of it
+  (issue 38: shared, the wall behind a crushed pad was the softer the more pads it carried).
+  So a slab that does not turn is the plan run until its pads crush; with all of a wall's n
+  pads crushed at once it meets n k_w where the plan run meets k_w.
 """
 from __future__ import annotations
 
@@ -285,16 +288,17 @@ def point_laws(contacts, points: ContactPoints) -> list:
     return out
 
 
-def stability_limit(t: TorsionArrays, points: ContactPoints, tangents) -> np.ndarray:
+def stability_limit(t: TorsionArrays, points: ContactPoints, contacts,
+                    indentation_bound: float) -> np.ndarray:
     """(B,) central-difference stability limit (s): 2 / omega_max of M^-1 K, the isolators at
-    their initial stiffness and every contact point at its share of its wall's largest
-    tangent stiffness, tangents (x walls (B,), y walls (B,)) N/m."""
+    their initial stiffness and every contact point at the largest tangent stiffness of its
+    part of its wall's law (point_laws: a crushed pad's point at the wall's own k_w), contacts
+    (x walls, y walls) and indentation_bound (m) as Contact.max_tangent_stiffness takes them."""
     k = t.stiffness.copy()
-    g = points.direction
-    for axis in (0, 1):
-        on = points.axis == axis
-        k_pt = tangents[axis][:, None] * points.share[on][None, :]
-        k[:, :3, :3] += np.einsum("bp,bpi,bpj->bij", k_pt, g[:, on], g[:, on])
+    for columns, contact, flat in point_laws(contacts, points):
+        k_pt = flat.max_tangent_stiffness(indentation_bound).reshape(len(contact), columns.size)
+        g = points.direction[:, columns]
+        k[:, :3, :3] += np.einsum("bp,bpi,bpj->bij", k_pt, g, g)
     lower = np.linalg.cholesky(t.mass)
     inverse = np.linalg.inv(lower)
     omega2 = np.linalg.eigvalsh(inverse @ k @ np.swapaxes(inverse, 1, 2))[:, -1]

@@ -21,10 +21,11 @@ LAW_ARGUMENTS = ("k", "n", "m_eff", "delta_u", "k_w", "dashpot", "damping_ratio"
                  "c_imp_coef", "c_imp_exponent")
 """The Contact fields the laws' rows draw on (each law's ROW names those it reads)."""
 
-SHARED_ARGUMENTS = ("k", "m_eff", "k_w", "dashpot")
+SHARED_ARGUMENTS = ("k", "m_eff", "dashpot")
 """The Contact fields scaled by the part of a wall a contact point carries (Contact.part):
-every law's force is proportional to them jointly (tests/engine/test_torsion.py checks each
-registered law)."""
+every law's force short of crushing is proportional to them jointly (tests/engine/test_torsion.py
+checks each registered law). Not k_w: past a pad's crushing the slab bears on the wall itself
+at that point, and meets the wall's own stiffness there however many pads the wall carries."""
 
 # Contact fields a law leaves unset, and their neutral values.
 _UNSET = {"delta_u": np.inf, "k_w": 0.0, "dashpot": 0.0, "damping_ratio": 0.0, "chi": 0.0,
@@ -74,8 +75,10 @@ class Contact:
 
     def part(self, share) -> Contact:
         """This wall carried by a part of it, share (B,) or a number in (0, 1]: its law with
-        SHARED_ARGUMENTS times share, so that its force at any indentation and rate is
-        share times the wall's (one of a wall's contact points, engine/torsion.py)."""
+        SHARED_ARGUMENTS times share (one of a wall's contact points, engine/torsion.py), so
+        that its force at any indentation short of delta_u, and at any rate, is share times
+        the wall's; past delta_u the crushed pad's point adds the wall's own k_w (delta -
+        delta_u), unshared."""
         return dataclasses.replace(self, **{name: getattr(self, name) * share
                                             for name in SHARED_ARGUMENTS})
 

@@ -174,17 +174,22 @@ def dataset(swept, code, suite, thetas, eccs, positions, gaps, fractions, args):
         along = "point" if "point" in name else "wall"
         data[name] = variable((*dims_wall, along), stack, q.units, q.long_name)
     pads = data["max_point_force"].values[..., 1, :]  # (record, ecc, angle, gap, point)
-    data["pad_stress"] = variable((*dims_wall[:-1], "point"), bumper_stress(pads, 1, AREA),
-                                  "Pa", "mean contact stress on each pad at its largest force")
+    pad_crushed = crushed(data["max_point_indentation"].values[..., 1, :], DELTA_U)
+    # a crushed pad's largest force is the slab bearing on the wall behind it, not a stress
+    # in its rubber: its stress is left out (NaN), its crushing flagged on its own
+    stress = np.where(pad_crushed, np.nan, bumper_stress(pads, 1, AREA))
+    data["pad_stress"] = variable((*dims_wall[:-1], "point"), stress, "Pa",
+                                  "mean contact stress in each pad's rubber at its largest "
+                                  "force (NaN where the pad is crushed: the slab bears on the "
+                                  "wall behind it)")
     data["pad_crushed"] = variable(
-        (*dims_wall[:-1], "point"),
-        crushed(data["max_point_indentation"].values[..., 1, :], DELTA_U).astype(np.int8), "1",
+        (*dims_wall[:-1], "point"), pad_crushed.astype(np.int8), "1",
         "1 where the pad is crushed beyond delta_u (its rubber's ultimate strain)")
     data["invalid_pad_stress"] = variable(
-        dims_wall[:-1], bumper_stress_exceeds(bumper_stress(pads, 1, AREA)).any(axis=-1)
-        .astype(np.int8), "1", "1 where a pad's stress passes the rubber tests' largest, "
-        f"{RUBBER_STRESS_LIMIT / 1e6:.3g} MPa (pipeline.assess.validity): outside the law's "
-        "range, counted apart in every summary")
+        dims_wall[:-1], bumper_stress_exceeds(np.nan_to_num(stress)).any(axis=-1)
+        .astype(np.int8), "1", "1 where an uncrushed pad's stress passes the rubber tests' "
+        f"largest, {RUBBER_STRESS_LIMIT / 1e6:.3g} MPa (pipeline.assess.validity): outside "
+        "the law's range, flagged and counted in every summary, kept in its statistics")
     first = swept
     coords = {
         "mass_offset_ratio": variable("mass_offset_ratio", eccs, "1", "the mass centre's offset "

@@ -26,9 +26,9 @@ def code_ratio(ds) -> np.ndarray:
 
 def pad_share(ds, barrier: str = "bumpers") -> np.ndarray:
     """(record, mass_offset_ratio, angle, gap): the worst point's peak force over its wall's peak
-    total, on the wall whose total is the largest (NaN without contact, and where a pad is
-    past the rubber's range: `invalid`): 1 / points when the wall's points share its force
-    equally, 1 when one takes it all."""
+    total, on the wall whose total is the largest (NaN without contact): 1 / points when the
+    wall's points share its force equally, 1 when one takes it all. A run with a pad past the
+    rubber's range (`invalid`) keeps its share: flagged and counted beside, never dropped."""
     sel = ds.sel(barrier=barrier)
     walls = sel.max_impact_force_wall.values  # (..., wall)
     points = sel.max_point_force.values  # (..., point)
@@ -37,13 +37,12 @@ def pad_share(ds, barrier: str = "bumpers") -> np.ndarray:
     on = wall_of[None, None, None, None, :] == worst_wall[..., None]
     largest = np.where(on, points, 0.0).max(axis=-1)
     total = np.take_along_axis(walls, worst_wall[..., None], axis=-1)[..., 0]
-    share = np.where(total > 0, largest / np.where(total > 0, total, 1.0), np.nan)
-    return np.where(invalid(ds, barrier), np.nan, share)  # outside the law's range: apart
+    return np.where(total > 0, largest / np.where(total > 0, total, 1.0), np.nan)
 
 
 def invalid(ds, barrier: str) -> np.ndarray:
-    """(record, mass_offset_ratio, angle, gap) bool: a pad past the rubber's tested stress
-    (invalid_pad_stress; never for the bare wall)."""
+    """(record, mass_offset_ratio, angle, gap) bool: an uncrushed pad past the rubber's tested
+    stress (invalid_pad_stress; never for the bare wall)."""
     flags = ds.invalid_pad_stress.values.astype(bool)
     return flags if barrier == "bumpers" else np.zeros(flags.shape, bool)
 
@@ -117,10 +116,11 @@ def check(ds) -> list[Verdict]:
             f"worst {what} carries more than its equal share 1/{n} of the wall's peak, on "
             "most pairs and angles with contact",
             f"the worst point's share of its wall's peak (median, 84th) "
-            f"{_by_gap(stats)}; {held.text('runs')}; {int(apart.sum())} runs with a pad past "
-            "the rubber's tested stress, apart", held.verdict,
+            f"{_by_gap(stats)}; {held.text('runs')}; of the runs with contact, "
+            f"{int((apart & contact).sum())} flagged (an uncrushed pad past the rubber's tested "
+            "stress), kept in the share", held.verdict,
             {"share": stats, "equal_share": equal, "invalid_runs": int(apart.sum()),
-             **held.numbers()}))
+             "invalid_runs_with_contact": int((apart & contact).sum()), **held.numbers()}))
     return out
 
 

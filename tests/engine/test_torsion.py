@@ -2,7 +2,9 @@
 invariants that tie the model to the run in plan and to mechanics, on both loops, to 1e-9.
 
 - a slab whose mass is centred, on a symmetric layout, does not turn: its run is the plan
-  run's, peak for peak, with every wall law, against bare walls (its corners) and bumpers;
+  run's, peak for peak, with every wall law, against bare walls (its corners) and bumpers
+  (crushed too: the plan run's wall then k_w times the wall's points, each point behind its
+  crushed pad meeting the wall's own k_w);
 - turning the pair by 180 degrees and the building with it (its eccentricity reversed)
   mirrors the response: the same peaks, each wall's force on the opposite wall;
 - without damping, on bearings that stay elastic, the slab's coupled torsional and
@@ -77,13 +79,18 @@ def test_a_slab_that_does_not_turn_is_the_plan_run(layout, backend):
     accel, dt = pair()
     contact = walls()
     angle = np.linspace(0.0, 75.0, len(contact))
-    plan = engine.simulate(accel, dt, contact, Building(), angle=angle, backend=backend)
     bearings = None if layout == "grid" else CORNER_BEARINGS
     bumpers = ((-8.0, 0.0, 8.0), (0.0,)) if layout == "bumpers" else None  # 3 + 3 + 1 + 1
+    points = (3, 1) if layout == "bumpers" else (2, 2)  # on each x wall, each y wall
+    # each point behind a crushed pad meets the wall's own k_w: all n at once, n k_w
+    x_walls, y_walls = (dataclasses.replace(contact, k_w=contact.k_w * n) for n in points)
+    plan = engine.simulate(accel, dt, x_walls, Building(), angle=angle, backend=backend,
+                           moat=Moat(contact_y=y_walls))
     twist = engine.simulate(accel, dt, contact, Building(torsion=Torsion(
         plan_size=PLAN, isolator_positions=bearings)), angle=angle,
         moat=Moat(bumper_positions=bumpers), backend=backend)
     assert (plan.n_impacts[1:] > 0).all()  # every wall law is hit
+    assert np.any(twist.max_point_indentation[3] > contact.delta_u[3])  # the pads crush
     assert_peaks_equal(plan_peaks(twist), plan_peaks(plan))
     assert np.all(twist.peak_rotation < 1e-15)  # rad: round-off only
     np.testing.assert_allclose(twist.peak_corner_disp, plan.peak_isolator_disp, rtol=RTOL)
@@ -156,8 +163,10 @@ def test_undamped_torsional_vibration_keeps_its_energy(backend):
 
 @pytest.mark.parametrize("law", list(LAW_MODULES.values()), ids=lambda m: m.NAME)
 def test_every_law_carries_its_share(law):
-    """Contact.part(s): the law's elastic force and dashpot times s, at any indentation,
-    rate and impact velocity (what lets a wall's points share its law)."""
+    """Contact.part(s): the law's elastic force and dashpot times s at any indentation short
+    of crushing, rate and impact velocity (what lets a wall's points share its law); past a
+    pad's crushing, s times the rubber's force at delta_u plus the wall's own k_w (delta -
+    delta_u), written out, and the same restitution factor (dashpot over elastic)."""
     example = {"linear": Contact.linear(0.1), "jankowski": Contact.jankowski(0.1, beta=2.75e9),
                "hertzdamp": Contact.hertzdamp(0.1, k=2.75e9), "bumper": Contact.bumper(0.1)}
     contact = example[law.NAME]
@@ -169,9 +178,50 @@ def test_every_law_carries_its_share(law):
         full = law.force_terms(delta, rate, v_imp, law_arguments(contact, law))
         part = contact.part(share)
         got = law.force_terms(delta, rate, v_imp, law_arguments(part, law))
+        short = delta < contact.delta_u[0]
         for f, g in zip(full, got, strict=True):
-            np.testing.assert_allclose(g, share * np.asarray(f), rtol=1e-12)
+            f, g = (np.broadcast_to(x, delta.shape) for x in (f, g))
+            np.testing.assert_allclose(g[short], share * f[short], rtol=1e-12)
+        if law.NAME == "bumper":
+            k, n, delta_u, k_w = (getattr(contact, name)[0]
+                                  for name in ("k", "n", "delta_u", "k_w"))
+            past = delta[~short]
+            np.testing.assert_allclose(got[0][~short], share * k * delta_u ** n
+                                       + k_w * (past - delta_u), rtol=1e-12)
+            np.testing.assert_allclose(got[1][~short] * full[0][~short],
+                                       full[1][~short] * got[0][~short], rtol=1e-12)
     assert np.any(full[1] > 0)
+    assert short.sum() == (20 if law.NAME == "bumper" else 22)  # the pads crushed twice
+
+
+def test_each_point_behind_a_crushed_pad_adds_the_walls_own_stiffness_to_the_limit():
+    """stable_dt of a building that twists, its pads where the moat puts them: 2 / omega_max
+    of M^-1 (K + sum over the points of k_p g g'), k_p the stiffer of the point's rubber
+    tangent at delta_u (its 1/n of the wall's k_imp) and the wall's own k_w, g the point's
+    direction (1, 0, -s) on an x wall, (0, 1, s) on a y wall, written out; simulate refuses a
+    step just above it."""
+    building = Building(torsion=Torsion(plan_size=PLAN))
+    contact = Contact.bumper([0.12], thickness=0.05, n_bumpers=3, k_w=5e9)
+    along_x, along_y = (-8.0, 0.0, 8.0), (0.0,)
+    t = torsion_arrays([building], 1)
+    k = t.stiffness[0].copy()
+    k_imp, n, delta_u, k_w = (float(getattr(contact, name)[0])
+                              for name in ("k", "n", "delta_u", "k_w"))
+    for positions, direction in ((along_x, lambda s: (1.0, 0.0, -s)),
+                                 (along_y, lambda s: (0.0, 1.0, s))):
+        k_p = max(k_imp / len(positions) * n * delta_u ** (n - 1), k_w)
+        for s in positions:  # the same on the opposite wall: -g, the same g g'
+            g = np.array(direction(s))
+            k[:3, :3] += 2 * k_p * np.outer(g, g)
+    lower = np.linalg.cholesky(t.mass[0])
+    inverse = np.linalg.inv(lower)
+    expected = 2 / np.sqrt(np.linalg.eigvalsh(inverse @ k @ inverse.T)[-1])
+    moat = Moat(bumper_positions=(along_x, along_y))
+    limit = engine.stable_dt(contact, building, moat=moat)[0]
+    assert limit == pytest.approx(expected, rel=1e-12)
+    accel, dt = pair()
+    with pytest.raises(engine.UnstableTimeStep, match=f"{limit:.4g} s"):
+        engine.simulate(accel, dt, contact, building, dt=1.01 * limit, moat=moat)
 
 
 def test_a_story_off_centre_is_its_springs_moved_there():

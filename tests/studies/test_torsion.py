@@ -84,3 +84,28 @@ def _fields(building):
     import dataclasses
 
     return {f.name: getattr(building, f.name) for f in dataclasses.fields(building)}
+
+
+def test_a_crushed_pads_stress_is_not_its_rubbers_and_flagged_runs_stay(quick):
+    """A crushed pad's largest force is the slab bearing on the wall: no rubber stress
+    (pad_stress NaN there), the flag read from the uncrushed pads alone; a flagged run keeps its
+    pad share (counted beside, never dropped: issue 38)."""
+    from pipeline.assess.validity import RUBBER_STRESS_LIMIT
+    from studies.common.paper import AREA
+    from studies.torsion.verdicts import check
+
+    ds = quick
+    crushed = ds.pad_crushed.values.astype(bool)
+    stress = ds.pad_stress.values
+    assert crushed.any() and (~crushed).any()
+    assert np.isnan(stress[crushed]).all() and np.isfinite(stress[~crushed]).all()
+    force = ds.max_point_force.sel(barrier="bumpers").values
+    np.testing.assert_array_equal(stress[~crushed], force[~crushed] / AREA)
+    np.testing.assert_array_equal(ds.invalid_pad_stress.values,
+                                  (np.nan_to_num(stress) > RUBBER_STRESS_LIMIT).any(axis=-1))
+    share = pad_share(ds, "bumpers")
+    walls = ds.max_impact_force_wall.sel(barrier="bumpers").values
+    np.testing.assert_array_equal(np.isfinite(share), walls.max(axis=-1) > 0)
+    verdict = next(v for v in check(ds) if "(bumpers)" in v.claim)
+    assert verdict.numbers["invalid_runs_with_contact"] == int(
+        (ds.invalid_pad_stress.values.astype(bool) & np.isfinite(share)).sum())
