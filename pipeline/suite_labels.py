@@ -22,6 +22,11 @@ def archive_variables(suite: CodeSuite) -> tuple[dict, dict, dict]:
     }
     coords = {"record_event": variable("record", np.array(suite.events), "1",
                                        "the pair's earthquake")}
+    if suite.orientations is not None:
+        coords["record_orientation"] = variable(
+            "record", np.array(suite.orientations), "1", "the pair's orientation: its first "
+            "component along x as recorded, or its components swapped (FEMA P695: each pair "
+            "of a three-dimensional model run twice)")
     attrs = {"scaling_rule": suite.rule, "scaling_rule_text": RULE_TEXT[suite.rule],
              "target": suite.target.source, "T_M": suite.design.t_m,
              "D_M": suite.design.d_m, "D_TM": suite.design.d_tm,

@@ -6,19 +6,21 @@ The FEMA P695 far-field pairs (--set for another) scaled by FEMA P695's own rule
 anchored at the site's S_MT at T_M: --rule p695), the building the code designs on its
 isolation system (pipeline.motions.superstructure: deteriorating stories, P-Delta, collapse at
 a story drift of 10% of its height; --stories) at the lower-bound isolator properties (the
-displacements, --bound), run in plan by an incremental dynamic analysis: every pair at every
-intensity level (LEVELS x MCE_R, one dimension of the sweep, one engine call per pair) without
-wall, against the bare wall and with 4, 8, 16 and 32 bumpers a wall at gaps from 0.8 D_M to
-1.5 D_TM. Each pair's collapse intensity is the first level at which it collapses (censored
-where none does); the assessment (pipeline.assess.collapse) gives per configuration S_CT (the
-median of a lognormal fitted by maximum likelihood, the standing pairs censored: Baker 2015),
-CMR, the spectral shape factor, ACMR, beta_TOT and P(collapse | MCE_R), checked against the 10%
-of ASCE 7 for Risk Category II, with 95% intervals from a paired bootstrap over the earthquakes,
-and every configuration's probability over the bare wall's at its gap with its interval.
-Peers: Kitayama & Constantinou (2018, Engineering Structures 164)
-found buildings designed to the minimum of ASCE 7 with a moat wall can have an unacceptable
-probability of collapse at the MCE_R; Masroor & Mosqueda (2015, Earthquake Spectra 31(4))
-found it sensitive to the gap.
+displacements, --bound), run in plan by an incremental dynamic analysis: every pair, in both
+orientations (its components swapped: FEMA P695's two runs of a pair in a three-dimensional
+model, the two sharing its weight), at every intensity level (LEVELS x MCE_R, one dimension of
+the sweep, one engine call per pair) without wall, against the bare wall and with 4, 8, 16 and
+32 bumpers a wall at gaps from 0.8 D_M to 1.5 D_TM. Each pair's collapse intensity is the first
+level at which it collapses, refined by REFINEMENTS bisections to 0.05 x MCE_R or better
+(censored where none does); the assessment (pipeline.assess.collapse) gives per configuration
+S_CT (the median of a lognormal fitted by maximum likelihood, the standing pairs censored:
+Baker 2015), CMR, the spectral shape factor, ACMR, beta_TOT and P(collapse | MCE_R), checked
+against the 10% of ASCE 7 for Risk Category II, with 95% intervals from a paired bootstrap over
+the earthquakes, and every configuration's probability over the bare wall's at its gap with its
+interval. Peers: Kitayama & Constantinou (2018, Engineering Structures 164) found buildings
+designed to the minimum of ASCE 7 with a moat wall can have an unacceptable probability of
+collapse at the MCE_R; Masroor & Mosqueda (2015, Earthquake Spectra 31(4)) found it sensitive
+to the gap.
 """
 from __future__ import annotations
 
@@ -30,6 +32,7 @@ from .common.collapse_ida import (
     QUICK_COUNTS,
     QUICK_LEVELS,
     QUICK_PAIRS,
+    REFINEMENTS,
     compute,
     options,
 )
@@ -145,7 +148,8 @@ recipe = Recipe(
             "P695 far-field pairs, an incremental dynamic analysis",
     compute=compute, plot=plot, check=check, records=(), options=options,
     chosen=(f"site S_MS 1.5 g, S_M1 0.9 g (SDC D_max), T_L 8 s; FEMA P695 scaling at T_M; "
-            f"levels {', '.join(map(str, LEVELS))} x MCE_R; gaps 0.8 and 1.0 D_M, D_TM and "
+            f"levels {', '.join(map(str, LEVELS))} x MCE_R, {REFINEMENTS} bisections; each pair "
+            f"in both orientations; gaps 0.8 and 1.0 D_M, D_TM and "
             f"1.5 D_TM; mu_T {MU_T:g}, ratings {' '.join(RATINGS)}; quick: {QUICK_PAIRS} "
             f"pairs, levels {', '.join(map(str, QUICK_LEVELS))}, gaps 0.8 D_M and D_TM, "
             f"{QUICK_COUNTS[0]} and {QUICK_COUNTS[1]} bumpers"))

@@ -24,7 +24,6 @@ from pipeline.assess import hazard as hazards
 from pipeline.assess import loss as p58
 
 from .common import collapse_ida as collapse
-from .common.options import chosen_pairs, scaled_suite
 from .common.paper import AREA, DELTA_U, THICKNESS
 from .common.plot import letter_panels, plt, store_caption
 from .common.recipe import Recipe, Verdict, provenance, run_options
@@ -91,8 +90,7 @@ def compute(args):
                          "database (pelicun's); give FEMA P-58 component IDs, as "
                          "pipeline/data/office_inventory.csv does")
     fragility = collapse_archive(args)
-    pairs, names = chosen_pairs(args, collapse.QUICK_PAIRS)
-    suite = scaled_suite(args, pairs, names)
+    suite = collapse.oriented_suite(args)  # the collapse study's records, both orientations
     s_mt = float(suite.target.at(suite.design.t_m))
     try:
         curve = hazards.from_table(args.hazard) if args.hazard else hazards.default(s_mt)
@@ -102,7 +100,7 @@ def compute(args):
     gaps = fragility.gap.values
     known = np.isclose(fragility.gap_fraction.values[:, None],
                        collapse.gap_fractions(suite.design)[None]).any(axis=1)
-    if not known.all() or list(fragility.record.values) != list(names):
+    if not known.all() or list(fragility.record.values) != list(suite.names):
         raise SweepError("--collapse: the archive's gaps or pairs are not this study's (run "
                          "it with the same site, bound, stories and pairs)")
     counts = [int(b.split()[0]) for b in fragility.barrier.values[2:]]

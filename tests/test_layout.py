@@ -301,8 +301,8 @@ TESTED_IN = {
         "the fits from outcomes, bootstrap and event weights, with the fits they feed",
         ("pipeline.assess.fragility_outcomes", "pipeline.motions.weights")),
     "tests/pipeline/motions/test_bounds.py": (
-        "the code suites at the design basis' bounds, their archive variables",
-        ("pipeline.motions.code_suite", "pipeline.suite_labels")),
+        "the code suites' archive variables at the design basis' bounds",
+        ("pipeline.suite_labels",)),
     "tests/pipeline/motions/test_rules.py": (
         "each rule module found by the registry and keeping the pairs its scaling keeps",
         ("pipeline.motions.rules.asce7", "pipeline.motions.rules.displacement",

@@ -57,7 +57,7 @@ class CodeSuite:
     pipeline.motions.code_scaling.ScaledPairs, or None for the displacement rule) and the rule.
     `building`: the engine.Building the study runs (at the bound's isolator properties; with
     superstructure, a pipeline.motions.superstructure.SuperstructureDesign, its stories those
-    the code designs: `with_superstructure`)."""
+    the code designs: `with_superstructure`); orientations: see the field."""
 
     pairs: list
     names: list
@@ -71,6 +71,9 @@ class CodeSuite:
     site: dict
     basis: object
     superstructure: object = None
+    orientations: tuple | None = None
+    """Each record's orientation (ORIENTATIONS) where the suite runs both (both_orientations);
+    None: each pair as recorded."""
 
     @property
     def building(self):
@@ -122,6 +125,34 @@ def code_suite(pairs, names, building, rule: str = DEFAULT_RULE, s_ms: float = S
     events = [str(p.event) for p in pairs]
     return CodeSuite(pairs, names, kept, event_weights(events), events, target, basis.design,
                      scaled, rule, {"s_ms": s_ms, "s_m1": s_m1, "t_long": t_long}, basis)
+
+
+ORIENTATIONS = ("as recorded", "components swapped")
+"""The two orientations of a pair in a study that runs both: its first component along x, then
+along y (FEMA P695 runs each pair of a three-dimensional model twice, its components swapped;
+the clause was not checked against the text at hand)."""
+SWAPPED = " swapped"
+"""What a swapped pair's name adds to its own (the archive's record coordinate)."""
+
+
+def both_orientations(suite: CodeSuite) -> CodeSuite:
+    """The suite with each pair run twice: as recorded, then its components swapped (x along
+    y: ORIENTATIONS), the second block's names ending in SWAPPED, each with its pair's MCE_R
+    factor; the weights again 1 / the records of an earthquake (event_weights), so that the
+    two orientations share their pair's weight and every earthquake still weighs the same."""
+    from pipeline.records.record_pair import RecordPair
+
+    from .weights import event_weights
+
+    swapped = [RecordPair(name=f"{name}{SWAPPED}", x=p.y, y=p.x)
+               for p, name in zip(suite.pairs, suite.names, strict=True)]
+    events = [*suite.events, *suite.events]
+    return dataclasses.replace(
+        suite, pairs=[*suite.pairs, *swapped],
+        names=[*suite.names, *(f"{n}{SWAPPED}" for n in suite.names)],
+        factors=np.concatenate([suite.factors, suite.factors]),
+        weights=event_weights(events), events=events,
+        orientations=tuple(o for o in ORIENTATIONS for _ in suite.pairs))
 
 
 def describe(suite: CodeSuite) -> str:

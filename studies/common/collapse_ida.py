@@ -30,10 +30,14 @@ COUNTS = (4, 8, 16, 32)
 """Bumpers of the paper's 5 cm on each wall (Fig. 19's counts)."""
 QUICK_COUNTS = (COUNTS[0], COUNTS[-1])
 QUICK_PAIRS = 3
-REFINEMENTS = 2
+REFINEMENTS = 4
 """Bisection rounds between each pair's last standing and first collapsing level: the
-collapse intensity known to a quarter of the grid's step (FEMA P695 leaves the IDA's
-resolution to the analyst)."""
+collapse intensity known to a sixteenth of the grid's step, 0.031 x MCE_R where the step is
+0.5 (FEMA P695 leaves the IDA's resolution to the analyst; the decision model asks for 0.05 x
+MCE_R or better near collapse: RESOLUTION)."""
+RESOLUTION = 0.05
+"""x MCE_R: the coarsest bracket of a collapse intensity the default IDA leaves (its grid's
+largest step, or half its first level, over 2^REFINEMENTS; a test holds it)."""
 BARRIER_NAMES = ("no wall", "bare wall") + tuple(f"{n} bumpers" for n in COUNTS)
 DRAWS = 1000
 """Resamplings of the earthquakes in the paired bootstrap of P(collapse | MCE_R)."""
@@ -79,8 +83,7 @@ def compute(args):
         args.refinements = 0 if args.quick else REFINEMENTS
     if not 0 <= args.refinements <= 10:
         raise SweepError(f"--refinements must be 0 to 10 bisections, got {args.refinements}")
-    pairs, names = chosen_pairs(args, QUICK_PAIRS)
-    suite = scaled_suite(args, pairs, names)
+    suite = oriented_suite(args)
     levels = np.array(QUICK_LEVELS if args.quick else LEVELS, dtype=float)
     counts = QUICK_COUNTS if args.quick else COUNTS
     fractions = gap_fractions(suite.design)
@@ -96,6 +99,24 @@ def compute(args):
     ds = dataset(suite, levels, fractions, gaps, counts, (mode, at_intensity), intensity, args,
                  free)
     return ds.assign_attrs({**provenance(swept), **ds.attrs})
+
+
+def oriented_suite(args):
+    """The pairs of --records or --set (QUICK_PAIRS of them with --quick) scaled to the MCE_R
+    (options.scaled_suite), each in both orientations (code_suite.both_orientations: FEMA
+    P695's two runs of a pair in a three-dimensional model), the collapse and loss studies'
+    records."""
+    from pipeline.motions.code_suite import both_orientations
+
+    pairs, names = chosen_pairs(args, QUICK_PAIRS)
+    return both_orientations(scaled_suite(args, pairs, names))
+
+
+def bracket(levels, rounds: int) -> float:
+    """x MCE_R: the widest bracket of a collapse intensity after `rounds` bisections on the
+    grid `levels`: its largest step (half the first level below the first) over 2^rounds."""
+    steps = np.diff(np.concatenate([[0.5 * levels[0]], levels]))
+    return float(steps.max()) / 2 ** rounds
 
 
 def run(suite, levels, gaps, counts, args):
@@ -287,9 +308,12 @@ def dataset(suite, levels, fractions, gaps, counts, modes, intensity, args, free
                   "the first collapsing level of its IDA refined by "
                   f"{args.refinements} bisections towards the level below; S_CT the median of "
                   "a lognormal fitted by maximum likelihood, the pairs standing at the highest "
-                  "level censored there (Baker 2015), pairs weighted per earthquake; intervals "
+                  "level censored there (Baker 2015), each pair in both orientations (its "
+                  "components swapped), its orientations sharing its weight, pairs weighted "
+                  "per earthquake; intervals "
                   f"from a paired bootstrap over the earthquakes ({DRAWS} draws)",
         "refinements": args.refinements,
+        "collapse_intensity_resolution": bracket(levels, args.refinements),
         **{f"peak_isolator_disp_over_d_m_q{round(100 * q)}": float(value)
            for q, value in zip(QUANTILES, weighted_quantiles(free, suite.weights, QUANTILES),
                                strict=True)}})

@@ -120,6 +120,44 @@ def test_refinement_bisects_between_the_last_standing_and_the_first_collapse(qui
     assert_collapse_modes(ds.collapse_intensity_mode, known)
 
 
+def test_each_pair_runs_in_both_orientations_sharing_its_weight(quick):
+    """FEMA P695's two runs of a pair in a three-dimensional model: each pair as recorded and
+    with its components swapped (its name + " swapped", the same MCE_R factor), its two
+    records sharing the pair's weight and earthquake. This building (isotropic isolators, the
+    same story law along x and y) in its square moat is symmetric under the exchange of x and
+    y: the swapped pair's run is the pair's, reflected, and every resultant peak is the same
+    bit for bit (a building that differs along y would tell its orientations apart)."""
+    from pipeline.motions.code_suite import ORIENTATIONS, SWAPPED
+
+    ds = quick
+    names = [str(n) for n in ds.record.values]
+    half = len(names) // 2
+    assert len(names) == 2 * collapse.QUICK_PAIRS
+    assert names[half:] == [n + SWAPPED for n in names[:half]]
+    assert list(ds.record_orientation.values) == [ORIENTATIONS[0]] * half \
+        + [ORIENTATIONS[1]] * half
+    np.testing.assert_array_equal(ds.scale_factor.values[:half], ds.scale_factor.values[half:])
+    np.testing.assert_array_equal(ds.record_event.values[:half], ds.record_event.values[half:])
+    weights = ds.record_weight.values
+    np.testing.assert_allclose(weights[:half], weights[half:], rtol=1e-12)
+    events = ds.record_event.values
+    per_event = [weights[events == e].sum() for e in np.unique(events)]
+    np.testing.assert_allclose(per_event, per_event[0], rtol=1e-12)  # each earthquake alike
+    free = ds.peak_isolator_disp_over_d_m.values
+    np.testing.assert_array_equal(free[half:], free[:half])
+    np.testing.assert_array_equal(ds.collapse_mode.values[half:], ds.collapse_mode.values[:half])
+
+
+def test_the_default_ida_knows_each_collapse_intensity_to_the_resolution():
+    """The decision model's 0.05 x MCE_R near collapse: the default grid's widest bracket (its
+    largest step, 0.5 x MCE_R) after the default bisections."""
+    from studies.common.collapse_ida import LEVELS, REFINEMENTS, RESOLUTION, bracket
+
+    assert bracket(np.array(LEVELS), REFINEMENTS) <= RESOLUTION
+    assert bracket(np.array(LEVELS), REFINEMENTS - 1) > RESOLUTION  # no round more than needed
+    assert bracket(np.array(LEVELS), 0) == 0.5
+
+
 def test_other_rules_and_a_ductility_below_one_are_refused(tmp_path, capsys):
     for argv, line in ((["--rule", "asce7"], "run it with --rule p695"),
                        (["--mu-t", "0.5"], "--mu-t must be >= 1"),
