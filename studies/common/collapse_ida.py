@@ -13,6 +13,7 @@ from pipeline.assess.collapse import ACCEPTABLE_PROBABILITY, MU_T, RATINGS
 
 from .options import (
     add_bound,
+    add_isolators,
     add_moat,
     add_stories,
     checked_gaps,
@@ -55,6 +56,7 @@ def options(p) -> None:
     site_options(p)
     p.set_defaults(rule="p695")  # FEMA P695's assessment scales by its own rule
     add_bound(p)
+    add_isolators(p)
     add_stories(p)
     add_moat(p)
     p.add_argument("--mu-t", type=float, default=MU_T, metavar="MU_T",

@@ -179,6 +179,43 @@ def add_stories(p) -> None:
                         "steel special concentrically braced frame)")
 
 
+ISOLATOR_CHOICES = ("given", "designed-tfp")
+"""--isolators: the building's own isolators, or triple friction pendulums designed for the
+site (pipeline.motions.designed_isolation)."""
+
+
+def add_isolators(p) -> None:
+    """--isolators, --t-m: the isolation system a study runs (the building's own, or one
+    designed for the site and a target period)."""
+    from pipeline.motions.designed_isolation import TARGET_PERIOD
+
+    p.add_argument("--isolators", choices=ISOLATOR_CHOICES, default=ISOLATOR_CHOICES[0],
+                   help="the isolation system: given (default) the building's own isolators "
+                        "(the paper's bilinear ones unless --building says otherwise); "
+                        "designed-tfp: triple friction pendulums designed for the site, "
+                        "nominal T_M --t-m at the nominal D_M, their restrainers beyond the "
+                        "lower bound's D_TM (pipeline.motions.designed_isolation), the "
+                        "building's masses and stories kept")
+    p.add_argument("--t-m", type=float, default=TARGET_PERIOD, metavar="S",
+                   help=f"the target effective period T_M of --isolators designed-tfp at "
+                        f"nominal properties, s (default {TARGET_PERIOD:g})")
+
+
+def isolated_building(args, target, factors):
+    """The building a suite is designed for: --building as given, or on triple friction
+    pendulums designed for the site's S_M1 (of --sm1-g, or of the site-specific target) and
+    --t-m (--isolators designed-tfp). ValueError where the design cannot be met."""
+    if getattr(args, "isolators", "given") == "given":
+        return args.building
+    from pipeline.motions.designed_isolation import designed_isolation
+    from pipeline.motions.site_specific import site_specific_parameters
+
+    s_m1 = args.sm1_g if target is None else site_specific_parameters(target)[0][1]
+    if not (np.isfinite(args.t_m) and args.t_m > 0):
+        raise ValueError(f"--t-m must be a positive period (s), got {args.t_m:g}")
+    return designed_isolation(s_m1, args.building, args.t_m, factors).building
+
+
 def property_factors(args):
     """The pipeline.motions.bounds.PropertyFactors of --lambda-max, --lambda-min (the
     module's defaults for a study without them); SweepError, one line, for factors the code
@@ -287,7 +324,8 @@ def scaled_suite(args, pairs, names):
     except ValueError as err:
         raise SweepError(f"--target-spectrum: {err}") from None
     try:
-        suite = code_suite(pairs, names, args.building, args.rule, args.sms_g, args.sm1_g,
+        building = isolated_building(args, target, factors)
+        suite = code_suite(pairs, names, building, args.rule, args.sms_g, args.sm1_g,
                            args.tl, args.dt, bound=getattr(args, "bound", "nominal"),
                            factors=factors, target=target)
         stories = getattr(args, "stories", "linear")

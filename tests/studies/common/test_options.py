@@ -332,3 +332,32 @@ def test_a_spectrum_table_the_code_cannot_use_is_refused_in_one_line(tmp_path, c
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "covers 0.5 to 3 s" in err
     assert "need 0.2 to 5 s at least (ASCE 7-22 section 21.4)" in err
+
+
+@pytest.mark.parametrize("name", ["collapse", "loss"])
+def test_the_collapse_and_loss_studies_run_a_designed_isolation_system_when_asked(name):
+    """--isolators designed-tfp: the building's masses and stories on triple friction
+    pendulums designed for the site and --t-m (pipeline.motions.designed_isolation); given (the
+    default) keeps the building's own isolators; a period the friction forbids is one line."""
+    from pipeline.building_file import building_from
+    from pipeline.errors import SweepError
+    from pipeline.motions.designed_isolation import designed_isolation
+    from studies.common.options import isolated_building, property_factors, scaled_suite
+
+    parser = importlib.import_module(f"studies.{name}").recipe.parser()
+
+    def parsed(*argv):
+        args = parser.parse_args(list(argv))
+        args.building = building_from(args.building)  # as Recipe.main resolves it
+        return args
+
+    given = parsed()
+    assert isolated_building(given, None, property_factors(given)) is given.building
+    args = parsed("--isolators", "designed-tfp", "--t-m", "2.5", "--sm1-g", "0.9")
+    building = isolated_building(args, None, property_factors(args))
+    expected = designed_isolation(0.9, args.building, 2.5, property_factors(args)).building
+    assert building.isolator.law == "triple_friction_pendulum"
+    assert building.isolator.values == expected.isolator.values
+    with pytest.raises(SweepError, match="cannot be reached"):
+        scaled_suite(parsed("--isolators", "designed-tfp", "--t-m", "6", "--sm1-g", "0.1"), [],
+                     [])
