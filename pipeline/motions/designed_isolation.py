@@ -67,7 +67,6 @@ def designed_isolation(s_m1: float, building, target_period: float = TARGET_PERI
     D_TM (factors: the bounds' PropertyFactors; torsion_factor: D_TM / D_M, section
     17.5.3.3's lower bound), the two settled by rounds (the module docstring). ValueError, in
     one line, where the design cannot be met (tfp_design's) or does not settle."""
-    basis = None
     d_m = G * s_m1 * target_period / (4.0 * math.pi**2 * float(damping_coefficient(FIRST_DAMPING)))
     d_tm = torsion_factor * d_m
     for rounds in range(1, ROUNDS + 1):
@@ -83,4 +82,3 @@ def designed_isolation(s_m1: float, building, target_period: float = TARGET_PERI
     raise ValueError(f"the triple friction pendulum for T_M {target_period:g} s did not settle "
                      f"in {ROUNDS} rounds (D_M {d_m:.4g} m, D_TM {d_tm:.4g} m): target another "
                      "period")
-
