@@ -99,7 +99,7 @@ def compute(args):
     same_basis(fragility, suite)
     gaps = fragility.gap.values
     known = np.isclose(fragility.gap_fraction.values[:, None],
-                       collapse.gap_fractions(suite.design)[None]).any(axis=1)
+                       collapse.gap_fractions(suite.design, suite.building)[None]).any(axis=1)
     if not known.all() or list(fragility.record.values) != list(suite.names):
         raise SweepError("--collapse: the archive's gaps or pairs are not this study's (run "
                          "it with the same site, bound, stories and pairs)")

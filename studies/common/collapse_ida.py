@@ -46,10 +46,23 @@ INTERVAL = (0.025, 0.975)
 """The quantiles of the bootstrap's draws that bound an interval: 95%."""
 
 
-def gap_fractions(design) -> np.ndarray:
-    """Gaps / D_M: 0.8 and 1.0 D_M, the code's clearance D_TM and 1.5 D_TM."""
+BEYOND_CAPACITY = 1.1
+"""The last gap of a building whose bearings have a displacement capacity: this times the
+capacity, beyond it (the wall there is never met before the bearings fail: the no-wall
+building's limit, shown)."""
+
+
+def gap_fractions(design, building=None) -> np.ndarray:
+    """Gaps / D_M: 0.8 and 1.0 D_M, the code's clearance D_TM and 1.5 D_TM, and where the
+    building's (engine.Building) bearings have a displacement capacity below BEYOND_CAPACITY
+    times it, BEYOND_CAPACITY times it."""
     clearance = design.d_tm / design.d_m
-    return np.array([0.8, 1.0, clearance, 1.5 * clearance])
+    fractions = [0.8, 1.0, clearance, 1.5 * clearance]
+    if building is not None:
+        capacity = building.isolation.displacement_capacity(building.total_mass, building.g)
+        if np.isfinite(capacity) and BEYOND_CAPACITY * capacity > fractions[-1] * design.d_m:
+            fractions.append(BEYOND_CAPACITY * capacity / design.d_m)
+    return np.array(fractions)
 
 
 def options(p) -> None:
@@ -88,7 +101,7 @@ def compute(args):
     suite = oriented_suite(args)
     levels = np.array(QUICK_LEVELS if args.quick else LEVELS, dtype=float)
     counts = QUICK_COUNTS if args.quick else COUNTS
-    fractions = gap_fractions(suite.design)
+    fractions = gap_fractions(suite.design, suite.building)
     if args.quick:
         fractions = fractions[[0, 2]]
     gaps = checked_gaps(fractions * suite.design.d_m, suite.design)

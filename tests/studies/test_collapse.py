@@ -343,3 +343,22 @@ def test_past_the_models_floor_acceleration_every_sensitive_component_is_at_its_
     highest = sensitive[states].apply(lambda r: r.dropna().astype(float).iloc[-1], axis=1)
     assert len(sensitive) >= 5 and (sensitive[("Demand", "Unit")] == "g").all()
     assert highest.max() == pytest.approx(4.1) and highest.max() < ACCEL_LIMIT / G
+
+
+def test_the_gaps_reach_beyond_the_bearings_capacity_where_they_have_one():
+    """0.8 and 1.0 D_M, D_TM and 1.5 D_TM; and for bearings with a displacement capacity (a
+    designed triple friction pendulum's 2 d1 + d2 + d3 + ...), BEYOND_CAPACITY times it."""
+    import engine
+    from pipeline.motions.designed_isolation import designed_isolation
+    from studies.common.collapse_ida import BEYOND_CAPACITY, gap_fractions
+
+    designed = designed_isolation(0.9, engine.Building())
+    design, building = designed.basis.designs["lower"], designed.basis.buildings["lower"]
+    clearance = design.d_tm / design.d_m
+    np.testing.assert_array_equal(gap_fractions(design), [0.8, 1.0, clearance, 1.5 * clearance])
+    fractions = gap_fractions(design, building)
+    assert fractions.size == 5
+    assert fractions[-1] * design.d_m == pytest.approx(
+        BEYOND_CAPACITY * designed.design.capacity, rel=1e-12)
+    paper = engine.Building()  # no capacity: the four gaps
+    np.testing.assert_array_equal(gap_fractions(design, paper), gap_fractions(design))
