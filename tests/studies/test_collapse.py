@@ -17,6 +17,7 @@ import pytest
 from scipy.stats import norm
 
 from engine.results import COLLAPSE_MODES
+from engine.units import CM
 from pipeline.assess import collapse as pc
 from studies import collapse
 from tests.helpers import (
@@ -362,3 +363,28 @@ def test_the_gaps_reach_beyond_the_bearings_capacity_where_they_have_one():
         BEYOND_CAPACITY * designed.design.capacity, rel=1e-12)
     paper = engine.Building()  # no capacity: the four gaps
     np.testing.assert_array_equal(gap_fractions(design, paper), gap_fractions(design))
+
+
+def test_the_loss_figure_draws_the_archive_and_the_groups_stacked(loss_quick):
+    """(a)-(c) one curve per barrier from the archive's variables against the gap; (d) against
+    the bare wall the repair cost at the MCE_R given no collapse by component group, stacked:
+    its top edge is their sum (repair_cost_by_group), each band one group."""
+    from studies import loss
+    from tests.helpers import drawn
+
+    ds = loss_quick
+    fig = loss.plot(ds)
+    axes = fig.axes
+    gaps = ds.gap.values / CM
+    for ax, name, scale in ((axes[0], "median_repair_cost_mce", 1e-6),
+                            (axes[1], "expected_annual_loss", 1e-3)):
+        lines = drawn(ax)
+        assert [label for label, _, _ in lines] == [str(b) for b in ds.barrier.values]
+        for (_, x, y), barrier in zip(lines, ds.barrier.values, strict=True):
+            np.testing.assert_allclose(x, gaps)
+            np.testing.assert_allclose(y, scale * ds[name].sel(barrier=barrier).values)
+    bands = axes[3].collections
+    groups = ds.repair_cost_by_group.sel(barrier="bare wall").sel(level=1.0, method="nearest")
+    assert [b.get_label() for b in bands] == [str(g) for g in ds.component_group.values]
+    top = bands[-1].get_paths()[0].vertices[:, 1].max()
+    assert top == pytest.approx(1e-6 * float(groups.sum("component_group").max()), rel=1e-12)

@@ -23,10 +23,10 @@ from pipeline.assess import derived
 from pipeline.assess import hazard as hazards
 from pipeline.assess import loss as p58
 
-from .common import collapse_ida as collapse
-from .common.paper import AREA, DELTA_U, THICKNESS
-from .common.plot import letter_panels, plt, store_caption
-from .common.recipe import Recipe, Verdict, provenance, run_options
+from ..common import collapse_ida as collapse
+from ..common.paper import AREA, DELTA_U, THICKNESS
+from ..common.recipe import Recipe, Verdict, provenance, run_options
+from .figure import caption, plot  # noqa: F401  (caption: the docs cite studies.loss.caption)
 
 LEVELS = (0.2, 0.4, 2 / 3, 1.0, 1.5)
 """The stripes, x MCE_R: a service level (a fifth of the MCE_R, a stated choice), 0.4, the
@@ -427,33 +427,6 @@ def _why(ds, at) -> str:
                     + ", ".join(f"{level:g}" for level in few) + " x MCE_R" if few.size else
                     "EAL not computed: a stripe's repair cost is not a number")
     return f"  ({'; '.join(said)})" if said else ""
-
-
-def plot(ds):
-    """(a) the median repair cost at the MCE_R against the gap, one curve per barrier; (b) the
-    expected annual loss; (c) the annual rate of pounding."""
-    fig, axes = plt.subplots(1, 3, figsize=(12, 3.8), constrained_layout=True)
-    panels = ((ds.median_repair_cost_mce, 1e-6, "median repair cost at MCE_R (M$ 2011)"),
-              (ds.expected_annual_loss, 1e-3, "expected annual loss (k$ 2011 / yr)"),
-              (ds.annual_rate_contact, 1e4, "annual rate of pounding (x 10^-4 / yr)"))
-    for ax, (values, scale, label) in zip(axes, panels, strict=True):
-        for k, barrier in enumerate(ds.barrier.values):  # the same colours in every panel
-            ax.plot(ds.gap.values / CM, scale * values.sel(barrier=barrier).values,
-                    marker="osD^vP"[k % 6], markerfacecolor="none", label=str(barrier))
-        ax.set_xlabel("seismic gap (cm)")
-        ax.set_ylabel(label)
-    axes[0].legend(fontsize=8, ncol=2)
-    letter_panels(axes)
-    store_caption(ds, caption(ds))
-    return fig
-
-
-def caption(ds) -> str:
-    """The figure's caption (the archive's figure_caption)."""
-    return ("Repair cost and annual rates of the building against the seismic gap, one curve "
-            "per barrier (FEMA P-58 by pelicun). (a) the median repair cost at the MCE_R; (b) "
-            "the expected annual loss over the hazard curve; (c) the mean annual frequency of "
-            f"pounding. Hazard: {ds.attrs['hazard']}.")
 
 
 def check(ds) -> list[Verdict]:

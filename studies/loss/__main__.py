@@ -1,0 +1,4 @@
+"""`python -m studies.loss`: the recipe's command line."""
+from . import main
+
+raise SystemExit(main())
