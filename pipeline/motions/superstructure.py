@@ -17,8 +17,11 @@ the values marked "stated choice" are not the standard's):
 - F_x = C_vx V_s over levels 1..N, C_vx = w_x h_x^k / sum w_i h_i^k with h_x the height
   above the isolation level and k = 14 beta_M T_fb (eq. 17.5-11), T_fb the fixed-base
   superstructure's first period;
-- each story's design shear the sum of F_x above it, its strength OVERSTRENGTH times that
-  (stated choice), its stiffness the building's.
+- each story's design shear the sum of F_x above it, its strength the lateral system's
+  Omega_0 times that (ASCE 7-22 Table 12.2-1; lateral_systems.py), or a given overstrength;
+- its stiffness the building's (the lateral system "given", the default, with
+  OVERSTRENGTH: a stated choice), or that strength over the system's yield drift, T_fb and
+  the distribution then iterated with the stiffnesses to a fixed point (STIFFNESS_ROUNDS).
 """
 from __future__ import annotations
 
@@ -28,13 +31,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import lateral_systems
+from .lateral_systems import DEFAULT as DEFAULT_SYSTEM
+
 R_I = 2.0
 """The superstructure's response modification R_I: 3/8 R, at most 2 (ASCE 7-22 17.5.4.2);
 2 for any system with R >= 16/3 (e.g. steel special moment or concentrically braced frames)."""
-OVERSTRENGTH = 2.0
-"""Story strength over its design shear: stated choice, the overstrength factor Omega_0 of a
-steel special concentrically braced frame (ASCE 7-22 Table 12.2-1). A designed building's
-actual overstrength depends on its design (FEMA P695 measures it by pushover)."""
+OVERSTRENGTH = lateral_systems.SYSTEMS[DEFAULT_SYSTEM].omega_0
+"""Story strength over its design shear on the building's own stories (the default lateral
+system): 2, a stated choice, the overstrength factor Omega_0 of a steel special concentrically
+braced frame (ASCE 7-22 Table 12.2-1). A designed building's actual overstrength depends on
+its design (FEMA P695 measures it by pushover)."""
 PLAUSIBLE_OVERSTRENGTH = (1.0, 3.0)
 """The overstrength a study takes: at least the design shear, at most 3, the largest Omega_0
 of ASCE 7-22 Table 12.2-1 (a stated bound; a pushover's measured overstrength of a real frame
@@ -46,6 +53,10 @@ COLLAPSE_DRIFT_RATIO = 0.10
 """The drift ratio at which a story is taken as collapsed: stated choice, the 10% interstory
 drift commonly used as the collapse cap of incremental dynamic analyses (Vamvatsikos &
 Cornell 2002); the deteriorating law reaches zero strength on its own before or after it."""
+STIFFNESS_ROUNDS = 50
+"""At most this many rounds of stiffness -> T_fb -> forces -> strength -> stiffness (each
+story's stiffness from its strength and the system's yield drift); they stop once T_fb
+repeats to 1e-12 (a few rounds: T_fb moves the distribution's exponent alone)."""
 STORY_LAW = "imk"
 """The story law of the code-designed building: the deteriorating law (collapse needs it)."""
 
@@ -55,7 +66,8 @@ class SuperstructureDesign:
     """The code's superstructure design: v_b, v_st, v_s N; v_s_activation N (1.5 x the
     isolation system's yield force); k_exponent (-) and t_fb s of the vertical distribution;
     level_forces (N,) N on levels 1..N; story_shear (N,) N; strength (N,) N; story_height
-    (N,) m; r_i, overstrength; story_law; building: the engine.Building it designs."""
+    (N,) m; stiffness (N,) N/m; r_i, overstrength; story_law; lateral_system (a
+    lateral_systems.LateralSystem); building: the engine.Building it designs."""
 
     v_b: float
     v_st: float
@@ -67,9 +79,11 @@ class SuperstructureDesign:
     story_shear: np.ndarray
     strength: np.ndarray
     story_height: np.ndarray
+    stiffness: np.ndarray
     r_i: float
     overstrength: float
     story_law: str
+    lateral_system: object
     building: object
 
     def attributes(self) -> dict:
@@ -82,16 +96,22 @@ class SuperstructureDesign:
                 "overstrength": self.overstrength, "T_fb": self.t_fb,
                 "vertical_distribution_k": self.k_exponent,
                 "story_strength": self.strength.tolist(),
+                "story_stiffness": self.stiffness.tolist(),
                 "story_height": self.story_height.tolist(),
                 "story_law": self.building.story_law.describe(),
                 "p_delta": int(self.building.p_delta),
-                "collapse_drift_ratio": float(self.building.collapse_drift_ratio or np.nan)}
+                "collapse_drift_ratio": float(self.building.collapse_drift_ratio or np.nan),
+                **self.lateral_system.attributes()}
 
     def describe(self) -> str:
-        return (f"code-designed ({self.story_law} stories): V_b {self.v_b / 1e3:.0f} kN, V_st "
-                f"{self.v_st / 1e3:.0f} kN, V_s {self.v_s / 1e3:.0f} kN (R_I {self.r_i:g}), "
-                f"story strengths {self.overstrength:g} x design shear: "
-                + ", ".join(f"{s / 1e3:.0f}" for s in self.strength) + " kN")
+        stiffness = "" if self.lateral_system.yield_drift_ratio is None else (
+            "; stiffnesses " + ", ".join(f"{k / 1e6:.0f}" for k in self.stiffness)
+            + f" MN/m (yield drift {100 * self.lateral_system.yield_drift_ratio:g}%)")
+        return (f"code-designed ({self.story_law} stories, {self.lateral_system.title}): V_b "
+                f"{self.v_b / 1e3:.0f} kN, V_st {self.v_st / 1e3:.0f} kN, V_s "
+                f"{self.v_s / 1e3:.0f} kN (R_I {self.r_i:g}), story strengths "
+                f"{self.overstrength:g} x design shear: "
+                + ", ".join(f"{s / 1e3:.0f}" for s in self.strength) + " kN" + stiffness)
 
 
 def superstructure_share(building, beta_m: float) -> float:
@@ -103,25 +123,32 @@ def superstructure_share(building, beta_m: float) -> float:
 
 
 def code_designed_building(design, building, *, r_i: float = R_I,
-                           overstrength: float = OVERSTRENGTH, story_law: str = STORY_LAW,
+                           overstrength: float | None = None, story_law: str = STORY_LAW,
                            p_delta: bool = True,
                            collapse_drift_ratio: float | None = COLLAPSE_DRIFT_RATIO,
-                           activation_force: float | None = None) -> SuperstructureDesign:
+                           activation_force: float | None = None,
+                           lateral_system: str = DEFAULT_SYSTEM) -> SuperstructureDesign:
     """The superstructure the code designs (module docstring) on `building`'s isolators.
 
     design: a pipeline.motions.target.IsolationDesign (k_m N/m, d_m m, beta_m) at the bound
     that governs forces; building: engine.Building (its masses, story stiffnesses, isolator
     and story heights, STORY_HEIGHT where it has none). story_law: a law of
-    engine.stories.LAWS, given the strengths by its code_values. activation_force: 1.5 times
-    the force that fully activates the isolation system (N; default 1.5 x `building`'s
-    isolator yield force; the largest over the property bounds is the caller's to give).
-    ValueError for a bad argument.
+    engine.stories.LAWS, given the strengths (and the system's backbone) by its code_values.
+    lateral_system: a name of lateral_systems.SYSTEMS: its Omega_0 the overstrength unless
+    one is given (the default system's: OVERSTRENGTH), its yield drift the stiffnesses (the
+    default keeps the building's), its 3/8 R the largest R_I. activation_force: 1.5 times the
+    force that fully activates the isolation system (N; default 1.5 x `building`'s isolator
+    yield force; the largest over the property bounds is the caller's to give). ValueError
+    for a bad argument.
     """
     from engine.building import DEFAULTS as BUILDING_DEFAULTS
     from engine.stories import LAWS, Stories
 
-    if not (math.isfinite(r_i) and 1 <= r_i <= 2):
-        raise ValueError(f"R_I must be in [1, 2] (ASCE 7-22 17.5.4.2), got {r_i!r}")
+    system = lateral_systems.system(lateral_system)
+    overstrength = system.omega_0 if overstrength is None else overstrength
+    if not (math.isfinite(r_i) and 1 <= r_i <= system.r_i):
+        raise ValueError(f"R_I must be in [1, {system.r_i:g}] for {system.title} (3/8 R, at "
+                         f"most 2: ASCE 7-22 17.5.4.2), got {r_i!r}")
     if not (math.isfinite(overstrength) and overstrength >= 1):
         raise ValueError(f"overstrength must be >= 1, got {overstrength!r}")
     if story_law not in LAWS:
@@ -134,24 +161,35 @@ def code_designed_building(design, building, *, r_i: float = R_I,
     activation = 1.5 * building.yield_force if activation_force is None \
         else float(activation_force)
     v_s = max(v_st / r_i, activation)
-    t_fb = 2 * math.pi / building.fixed_base_omega1()
-    k = 14 * design.beta_m * t_fb
     elevation = np.cumsum(heights)  # level x's height above the isolation level
-    weights = masses[1:] * elevation**k
-    forces = v_s * weights / weights.sum()
-    shear = np.cumsum(forces[::-1])[::-1]
-    strength = overstrength * shear
-    values = LAWS[story_law].code_values(strength, heights)
+    stiff, t_fb = building, math.nan
+    for _ in range(STIFFNESS_ROUNDS):
+        last, t_fb = t_fb, 2 * math.pi / stiff.fixed_base_omega1()
+        k = 14 * design.beta_m * t_fb
+        weights = masses[1:] * elevation**k
+        forces = v_s * weights / weights.sum()
+        shear = np.cumsum(forces[::-1])[::-1]
+        strength = overstrength * shear
+        if system.yield_drift_ratio is None or abs(t_fb - last) <= 1e-12 * t_fb:
+            break
+        # the stiffness at which each story yields at the system's drift, both directions
+        stiff = dataclasses.replace(building, story_stiffness=tuple(
+            map(float, strength / (system.yield_drift_ratio * heights))),
+            story_stiffness_y=None)
+    values = LAWS[story_law].code_values(
+        strength, heights, plastic_drift_ratio=system.plastic_drift_ratio,
+        post_capping_drift_ratio=system.post_capping_drift_ratio)
     designed = dataclasses.replace(
-        building, stories=Stories.of(story_law, **values), story_yield_force=None,
+        stiff, stories=Stories.of(story_law, **values), story_yield_force=None,
         story_post_yield_ratio=BUILDING_DEFAULTS["story_post_yield_ratio"],
         story_height=tuple(map(float, heights)), p_delta=p_delta,
         collapse_drift_ratio=collapse_drift_ratio)
     return SuperstructureDesign(v_b=v_b, v_st=v_st, v_s=v_s, v_s_activation=activation,
                                 k_exponent=k, t_fb=t_fb, level_forces=forces,
                                 story_shear=shear, strength=strength, story_height=heights,
-                                r_i=r_i, overstrength=overstrength, story_law=story_law,
-                                building=designed)
+                                stiffness=np.asarray(stiff.story_stiffness, float), r_i=r_i,
+                                overstrength=overstrength, story_law=story_law,
+                                lateral_system=system, building=designed)
 
 
 def for_basis(basis, story_law: str = STORY_LAW, **options) -> SuperstructureDesign:

@@ -24,6 +24,7 @@ from pipeline.motions.bounds import (
     PLAUSIBLE_FACTORS,
 )
 from pipeline.motions.code_suite import DEFAULT_RULE, RULE_TEXT, SITE
+from pipeline.motions.lateral_systems import DEFAULT as DEFAULT_SYSTEM
 
 PAIR_SET = "far-field"
 """The FEMA P695 record set the studies run by default (pipeline.records.pair_names)."""
@@ -152,8 +153,9 @@ the building's own stories (linear: the paper's model)."""
 
 
 def add_stories(p) -> None:
-    """--stories, --r-i, --overstrength: the superstructure a study runs
-    (pipeline.motions.superstructure)."""
+    """--stories, --lateral-system, --r-i, --overstrength: the superstructure a study runs
+    (pipeline.motions.superstructure, pipeline.motions.lateral_systems)."""
+    from pipeline.motions.lateral_systems import DEFAULT, SYSTEMS
     from pipeline.motions.superstructure import (
         COLLAPSE_DRIFT_RATIO,
         OVERSTRENGTH,
@@ -170,13 +172,21 @@ def add_stories(p) -> None:
                         "unless the building gives heights); in plan each story's law acts "
                         "along x and y, uncoupled; bilinear: the same strengths, hardening "
                         "stories; linear: the building's own stories (the paper's model)")
+    p.add_argument("--lateral-system", choices=tuple(SYSTEMS), default=DEFAULT,
+                   help="the designed stories' lateral system: given (default) the "
+                        "building's own story stiffnesses; steel-smf, steel-scbf: steel "
+                        "special moment or concentrically braced frames (ASCE 7-22 Table "
+                        "12.2-1), each story's strength the system's Omega_0 x its design "
+                        "shear and its stiffness that strength over the system's yield drift "
+                        "(pipeline.motions.lateral_systems)")
     p.add_argument("--r-i", type=float, default=R_I, metavar="R_I",
                    help="the superstructure's response modification R_I, 1 to 2 (ASCE 7-22 "
                         f"17.5.4.2; default {R_I:g})")
-    p.add_argument("--overstrength", type=float, default=OVERSTRENGTH, metavar="FACTOR",
-                   help="story strength over its design shear (default "
-                        f"{OVERSTRENGTH:g}: a stated choice, the overstrength factor of a "
-                        "steel special concentrically braced frame)")
+    p.add_argument("--overstrength", type=float, default=None, metavar="FACTOR",
+                   help="story strength over its design shear (default: the lateral "
+                        f"system's Omega_0; {OVERSTRENGTH:g} on the building's own stories, a "
+                        "stated choice, the overstrength factor of a steel special "
+                        "concentrically braced frame)")
 
 
 ISOLATOR_CHOICES = ("given", "designed-tfp")
@@ -330,9 +340,11 @@ def scaled_suite(args, pairs, names):
                            factors=factors, target=target)
         stories = getattr(args, "stories", "linear")
         if stories != "linear":
-            checked_overstrength(args.overstrength)
-            suite = suite.with_superstructure(stories, r_i=args.r_i,
-                                              overstrength=args.overstrength)
+            if args.overstrength is not None:
+                checked_overstrength(args.overstrength)
+            suite = suite.with_superstructure(
+                stories, r_i=args.r_i, overstrength=args.overstrength,
+                lateral_system=getattr(args, "lateral_system", DEFAULT_SYSTEM))
         return suite
     except ValueError as err:
         raise SweepError(str(err)) from err

@@ -60,9 +60,10 @@ def plan_fields(stiffness, yield_force, post_yield_ratio):
     return row[:, 0], row[:, 1], row[:, 2]
 
 
-def code_values(strength, height):
+def code_values(strength, height, **backbone):
     """The law's values for stories of a designed strength (N,) N and height (N,) m: yielding
-    at the strength, the default hardening."""
+    at the strength, the default hardening (a lateral system's backbone drift ratios, for a
+    law that caps and deteriorates, do not apply)."""
     return {"yield_force": tuple(map(float, strength))}
 
 

@@ -474,15 +474,16 @@ CODE_POST_CAPPING_DRIFT_RATIO = 0.10
 """theta_pc / h of a code-designed story (stated choice, unverified)."""
 
 
-def code_values(strength, height):
+def code_values(strength, height, plastic_drift_ratio=CODE_PLASTIC_DRIFT_RATIO,
+                post_capping_drift_ratio=CODE_POST_CAPPING_DRIFT_RATIO):
     """The law's values for stories of a designed strength (N,) N (their yield strength) and
-    height (N,) m: theta_p and theta_pc as CODE_PLASTIC_DRIFT_RATIO and
-    CODE_POST_CAPPING_DRIFT_RATIO of the height, the other parameters at their defaults."""
+    height (N,) m: theta_p and theta_pc as plastic_drift_ratio and post_capping_drift_ratio
+    of the height (the lateral system's backbone; default CODE_PLASTIC_DRIFT_RATIO and
+    CODE_POST_CAPPING_DRIFT_RATIO), the other parameters at their defaults."""
     height = np.asarray(height, float)
     return {"yield_force": tuple(map(float, strength)),
-            "plastic_deformation": tuple(map(float, CODE_PLASTIC_DRIFT_RATIO * height)),
-            "post_capping_deformation": tuple(map(float,
-                                                  CODE_POST_CAPPING_DRIFT_RATIO * height))}
+            "plastic_deformation": tuple(map(float, plastic_drift_ratio * height)),
+            "post_capping_deformation": tuple(map(float, post_capping_drift_ratio * height))}
 
 
 def yield_strength(stiffness, **values):

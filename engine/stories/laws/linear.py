@@ -47,9 +47,10 @@ def plan_fields(stiffness):
     return k, np.zeros_like(k), np.full_like(k, np.inf)
 
 
-def code_values(strength, height):
+def code_values(strength, height, **backbone):
     """The law's values for stories of a designed strength (N,) N and height (N,) m: none,
-    a linear story has no strength of its own."""
+    a linear story has no strength of its own (nor backbone: its drift ratios do not
+    apply)."""
     return {}
 
 

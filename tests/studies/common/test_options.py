@@ -361,3 +361,30 @@ def test_the_collapse_and_loss_studies_run_a_designed_isolation_system_when_aske
     with pytest.raises(SweepError, match="cannot be reached"):
         scaled_suite(parsed("--isolators", "designed-tfp", "--t-m", "6", "--sm1-g", "0.1"), [],
                      [])
+
+
+def test_the_lateral_system_designs_the_stories_a_study_runs():
+    """--lateral-system steel-smf: the collapse study's suite runs the stories the code designs
+    for steel special moment frames (their Omega_0 3 the overstrength, each story yielding at
+    1% drift); --overstrength overrides Omega_0; the default keeps the building's own
+    stiffnesses."""
+    import engine
+    from pipeline.building_file import building_from
+    from pipeline.checks import resolve_pairs
+    from studies.common.options import scaled_suite
+
+    parser = importlib.import_module("studies.collapse").recipe.parser()
+    pairs, _ = resolve_pairs(["RSN953"])
+
+    def suite(*argv):
+        args = parser.parse_args(list(argv))
+        args.building = building_from(args.building)
+        return scaled_suite(args, pairs, ["RSN953"]).superstructure
+
+    smf = suite("--lateral-system", "steel-smf")
+    assert smf.lateral_system.name == "steel-smf" and smf.overstrength == 3.0
+    np.testing.assert_allclose(smf.strength / smf.stiffness, 0.01 * smf.story_height)
+    assert suite("--lateral-system", "steel-smf", "--overstrength", "2.5").overstrength == 2.5
+    given = suite()
+    assert given.lateral_system.name == "given" and given.overstrength == 2.0
+    assert given.building.story_stiffness == engine.Building().story_stiffness
