@@ -56,8 +56,9 @@ loss study's 120 groups: 100 s one at a time, 24 s in batches; each group's dema
 still fitted alone); more would hold more of its tables (several columns per component,
 location, direction and damage state, for every realization) in memory."""
 MIN_RUNS = 3
-"""Fewer runs standing than this at an intensity and configuration: no demand model is fitted
-(the losses are NaN there and the count says why)."""
+"""Fewer runs standing than this at an intensity and configuration: no demand model is fitted;
+the loss given no collapse there is bounded by the replacement (`losses`: an upper bound, the
+output's `bounded` says where)."""
 def pelicun():
     """The pelicun module, or a one-line error saying how to install it."""
     try:
@@ -175,8 +176,11 @@ def losses(groups, rows, *, stories: int, floor_area: float, yield_drift: float,
     TIME_PER_M2 of the total floor area. Returns repair_cost (USD 2011) and repair_time
     (worker-days, the parallel repair time) (G, samples) given no collapse, irreparable (G,
     samples) bool, repair_cost_by_group (G, samples, COMPONENT_GROUPS) summing repair_cost,
-    collapse_probability (G,) (Phi of the group's deviate), replacement_cost and
-    replacement_time; NaN (False) for the groups without a model. The collapse enters
+    collapse_probability (G,) (Phi of the group's deviate), bounded (G,) bool,
+    replacement_cost and replacement_time. A group of fewer than MIN_RUNS runs has no demand
+    model: its loss given no collapse is taken at its upper bound, the replacement (every
+    realization irreparable, replaced: `bounded`), its collapse probability its own; a group
+    None is NaN (False) throughout. The collapse enters
     exactly, not sampled (FEMA P-58-1 Eq. 7-1: P(C) times the replacement plus (1 - P(C))
     times the loss given no collapse): `mixture` gives its statistics. progress: None, or
     called with no argument as each group is done (BATCH groups at a time: pelicun's cost is
@@ -193,8 +197,18 @@ def losses(groups, rows, *, stories: int, floor_area: float, yield_drift: float,
                                            np.nan),
            "irreparable": np.zeros((len(groups), samples), bool),
            "collapse_probability": np.full(len(groups), np.nan),
+           "bounded": np.zeros(len(groups), bool),
            "replacement_cost": cost, "replacement_time": time}
-    modelled = [g for g, group in enumerate(groups) if group is not None]
+    for g, group in enumerate(groups):
+        if group is not None:
+            out["collapse_probability"][g] = norm.cdf(group.collapse_deviate)
+            if len(group.pfa) < MIN_RUNS:  # no demand model: at most the replacement
+                out["bounded"][g] = out["irreparable"][g] = True
+                out["repair_cost"][g], out["repair_time"][g] = cost, time
+                out["repair_cost_by_group"][g] = 0.0
+                out["repair_cost_by_group"][g, :, COMPONENT_GROUPS.index(REPLACED)] = cost
+    modelled = [g for g, group in enumerate(groups)
+                if group is not None and len(group.pfa) >= MIN_RUNS]
     if not modelled:
         return out
     assessment = _assessment(marginals(rows, stories, floor_area),
@@ -205,9 +219,8 @@ def losses(groups, rows, *, stories: int, floor_area: float, yield_drift: float,
         some = _assess([groups[g] for g in batch], assessment, yield_drift, samples, seed)
         for name, value in some.items():
             out[name][batch] = value
-        for g in batch:
-            out["collapse_probability"][g] = norm.cdf(groups[g].collapse_deviate)
-            if progress is not None:
+        if progress is not None:
+            for _ in batch:
                 progress()
     return out
 
@@ -324,7 +337,8 @@ def _assess(groups, a, yield_drift, samples, seed) -> dict:
             "repair_cost_by_group": parts.reshape(*shape, -1)}
 
 
-COMPONENT_GROUPS = ("acceleration-sensitive", "drift-sensitive", "irreparable (replaced)")
+REPLACED = "irreparable (replaced)"
+COMPONENT_GROUPS = ("acceleration-sensitive", "drift-sensitive", REPLACED)
 """What a realization's repair cost given no collapse sums (pelicun's: the components' costs,
 and the replacement where the residual drift makes the building irreparable): the components
 whose FEMA P-58 fragility reads a floor acceleration, the others (story drift), and the
@@ -335,7 +349,7 @@ def component_group(loss: str) -> int:
     """The COMPONENT_GROUPS index of one of pelicun's loss columns: a component by its
     fragility's demand type in FEMA P-58's database, or the replacement."""
     if loss == "replacement":
-        return 2
+        return COMPONENT_GROUPS.index(REPLACED)
     return 0 if "Acceleration" in str(_default_data()[0].loc[loss, ("Demand", "Type")]) else 1
 
 

@@ -152,10 +152,11 @@ STORY_CHOICES = ("imk", "bilinear", "linear")
 the building's own stories (linear: the paper's model)."""
 
 
-def add_stories(p) -> None:
-    """--stories, --lateral-system, --r-i, --overstrength: the superstructure a study runs
-    (pipeline.motions.superstructure, pipeline.motions.lateral_systems)."""
-    from pipeline.motions.lateral_systems import DEFAULT, SYSTEMS
+def add_stories(p, lateral_system: str = DEFAULT_SYSTEM) -> None:
+    """--stories, --lateral-system (default `lateral_system`), --r-i, --overstrength: the
+    superstructure a study runs (pipeline.motions.superstructure,
+    pipeline.motions.lateral_systems)."""
+    from pipeline.motions.lateral_systems import SYSTEMS
     from pipeline.motions.superstructure import (
         COLLAPSE_DRIFT_RATIO,
         OVERSTRENGTH,
@@ -172,13 +173,14 @@ def add_stories(p) -> None:
                         "unless the building gives heights); in plan each story's law acts "
                         "along x and y, uncoupled; bilinear: the same strengths, hardening "
                         "stories; linear: the building's own stories (the paper's model)")
-    p.add_argument("--lateral-system", choices=tuple(SYSTEMS), default=DEFAULT,
-                   help="the designed stories' lateral system: given (default) the "
-                        "building's own story stiffnesses; steel-smf, steel-scbf: steel "
-                        "special moment or concentrically braced frames (ASCE 7-22 Table "
-                        "12.2-1), each story's strength the system's Omega_0 x its design "
-                        "shear and its stiffness that strength over the system's yield drift "
-                        "(pipeline.motions.lateral_systems)")
+    p.add_argument("--lateral-system", choices=tuple(SYSTEMS), default=lateral_system,
+                   help="the designed stories' lateral system: "
+                        + "; ".join(f"{name} {system.title}"
+                                    + (" (default)" if name == lateral_system else "")
+                                    for name, system in SYSTEMS.items())
+                        + ". A steel system's stories (ASCE 7-22 Table 12.2-1) have each the "
+                        "strength Omega_0 x its design shear and the stiffness at which it "
+                        "yields at the system's drift (pipeline.motions.lateral_systems)")
     p.add_argument("--r-i", type=float, default=R_I, metavar="R_I",
                    help="the superstructure's response modification R_I, 1 to 2 (ASCE 7-22 "
                         f"17.5.4.2; default {R_I:g})")
@@ -194,18 +196,19 @@ ISOLATOR_CHOICES = ("given", "designed-tfp")
 site (pipeline.motions.designed_isolation)."""
 
 
-def add_isolators(p) -> None:
-    """--isolators, --t-m: the isolation system a study runs (the building's own, or one
-    designed for the site and a target period)."""
+def add_isolators(p, default: str = ISOLATOR_CHOICES[0]) -> None:
+    """--isolators (default `default`), --t-m: the isolation system a study runs (the
+    building's own, or one designed for the site and a target period)."""
     from pipeline.motions.designed_isolation import TARGET_PERIOD
 
-    p.add_argument("--isolators", choices=ISOLATOR_CHOICES, default=ISOLATOR_CHOICES[0],
-                   help="the isolation system: given (default) the building's own isolators "
-                        "(the paper's bilinear ones unless --building says otherwise); "
-                        "designed-tfp: triple friction pendulums designed for the site, "
-                        "nominal T_M --t-m at the nominal D_M, their restrainers beyond the "
-                        "lower bound's D_TM (pipeline.motions.designed_isolation), the "
-                        "building's masses and stories kept")
+    mark = {choice: " (default)" if choice == default else "" for choice in ISOLATOR_CHOICES}
+    p.add_argument("--isolators", choices=ISOLATOR_CHOICES, default=default,
+                   help=f"the isolation system: given{mark['given']} the building's own "
+                        "isolators (the paper's bilinear ones unless --building says "
+                        f"otherwise); designed-tfp{mark['designed-tfp']}: triple friction "
+                        "pendulums designed for the site, nominal T_M --t-m at the nominal "
+                        "D_M, their restrainers beyond the lower bound's D_TM "
+                        "(pipeline.motions.designed_isolation), the building's masses kept")
     p.add_argument("--t-m", type=float, default=TARGET_PERIOD, metavar="S",
                    help=f"the target effective period T_M of --isolators designed-tfp at "
                         f"nominal properties, s (default {TARGET_PERIOD:g})")

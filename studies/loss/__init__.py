@@ -242,15 +242,14 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
                 keep = entered[:, i, b, g]
                 deviate = float(np.log(level / acmr[b, g]) / beta[b, g])
                 groups.append(p58.Group(peaks["peak_total_accel_xy"][keep, i, b, g],
-                                        ratio[keep, i, b, g], deviate)
-                              if keep.sum() >= p58.MIN_RUNS else None)
+                                        ratio[keep, i, b, g], deviate))
     yield_drift = float(np.median(np.asarray(building.story_yield_drift) / height))
     if not args.quiet:
         print(f"FEMA P-58 losses by pelicun {p58.version()}: {len(groups)} stripes x "
               f"configurations, {args.samples} realizations each", flush=True)
     from pipeline.progress import Progress
 
-    modelled = sum(group is not None for group in groups)
+    modelled = sum(len(group.pfa) >= p58.MIN_RUNS for group in groups)
     bar = Progress(modelled, quiet=args.quiet, label="FEMA P-58",
                    unit="stripes x configurations")
     out = p58.losses(groups, rows, stories=len(height), floor_area=args.floor_area,
@@ -265,6 +264,7 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
     mean_time, time_q = p58.mixture(out["repair_time"].reshape(*shape, -1), p_c,
                                     out["replacement_time"], q)
     median_cost = cost_q[QUANTILES.index(0.5)]
+    bounded = out["bounded"].reshape(shape)  # too few runs standing: at most the replacement
     weights = np.asarray(suite.weights, float)
     share = weights / weights.sum()  # each pair's share of the weight, per earthquake
     contact = np.einsum("r,rlbg->lbg", share, (peaks["n_impacts"] > 0).astype(float))
@@ -310,6 +310,9 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
                                         "(NaN: no bumpers)"),
         "runs_used": variable(dims, entered.sum(axis=0).astype(np.int32), "1", "runs in the "
                               "demand model: every run that did not collapse"),
+        "loss_bounded": variable(dims, bounded.astype(np.int8), "1", f"1 where fewer than "
+                                 f"{p58.MIN_RUNS} runs stand: no demand model, the loss given "
+                                 "no collapse taken at its upper bound, the replacement"),
         "runs_past_accel_limit": variable(dims, past_limit.sum(axis=0).astype(np.int32), "1",
                                           "runs_used with a floor acceleration past what the "
                                           "model represents (validity_limits), as computed"),
@@ -326,6 +329,10 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
         "expected_annual_loss": variable(conf, eal, "USD_2011 yr-1", "expected annual loss, "
                                          "USD_2011 yr-1 (FEMA P-58-1 chapter 8 over the "
                                          "hazard curve)"),
+        "expected_annual_loss_bound": variable(
+            conf, np.where(bounded.any(axis=0), "at most", "exact"), "1", "exact, or 'at "
+            "most': a stripe's loss given no collapse bounded by the replacement "
+            "(loss_bounded)"),
         "annual_rate_contact": variable(conf, rate_contact, "yr-1", "mean annual frequency "
                                         "of contact (pounding)"),
         "annual_rate_crushed": variable(conf, rate_crushed, "yr-1", "mean annual frequency "
@@ -404,7 +411,8 @@ def decision_table(ds) -> str:
                 f"{'<=' if str(ds.collapse_probability_bound[at].values) != 'exact' else '':>2}"
                 f"{100 * float(ds.collapse_probability[at]):11.1f}% "
                 f"{float(ds.median_repair_cost_mce[at]) / 1e6:14.2f} M$ "
-                f"{float(ds.expected_annual_loss[at]) / 1e3:7.1f} k$ "
+                f"{'<=' if _eal_bounded(ds, at) else '':>2}"
+                f"{float(ds.expected_annual_loss[at]) / 1e3:5.1f} k$ "
                 f"{float(ds.annual_rate_contact[at]):13.2e}" + _why(ds, at))
     if "repair_cost_by_group" in ds:  # what pounding damages: the acceleration-sensitive
         mce = ds.repair_cost_by_group.sel(level=1.0, method="nearest")
@@ -415,17 +423,24 @@ def decision_table(ds) -> str:
     return "\n".join(lines)
 
 
+def _eal_bounded(ds, at) -> bool:
+    """Whether a row's EAL is an upper bound (expected_annual_loss_bound; an archive before
+    it: never)."""
+    return "expected_annual_loss_bound" in ds \
+        and str(ds.expected_annual_loss_bound[at].values) != "exact"
+
+
 def _why(ds, at) -> str:
-    """Beside a row's numbers: its runs outside the model's range, why an EAL is missing."""
+    """Beside a row's numbers: its runs outside the model's range, why an EAL is a bound."""
     said = []
     outside = int(ds.runs_outside_range[at].sum())
     if outside:
         said.append(f"{outside} runs outside the model's range, in as computed")
-    if np.isnan(float(ds.expected_annual_loss[at])):
-        few = ds.level.values[ds.runs_used[at].values < p58.MIN_RUNS]
-        said.append(f"EAL not computed: fewer than {p58.MIN_RUNS} runs standing at "
-                    + ", ".join(f"{level:g}" for level in few) + " x MCE_R" if few.size else
-                    "EAL not computed: a stripe's repair cost is not a number")
+    if _eal_bounded(ds, at):
+        few = ds.level.values[ds.loss_bounded[at].values.astype(bool)]
+        said.append(f"EAL at most: fewer than {p58.MIN_RUNS} runs standing at "
+                    + ", ".join(f"{level:g}" for level in few) + " x MCE_R, their loss given no "
+                    "collapse bounded by the replacement")
     return f"  ({'; '.join(said)})" if said else ""
 
 
@@ -456,7 +471,8 @@ recipe = Recipe(
     name="loss", figure="beyond the paper",
     summary="Repair cost, expected annual loss and annual rates of pounding, crushed bumpers "
             "and collapse with and without bumpers at every gap: FEMA P-58 by pelicun for the "
-            "code-designed isolated building in plan; the designer's decision table",
+            "code-designed isolated building (as studies.collapse's) in plan; the designer's "
+            "decision table",
     compute=compute, plot=plot, check=check, records=(), options=options,
     chosen=(f"as studies.collapse; stripes {', '.join(f'{v:.3g}' for v in LEVELS)} x MCE_R "
             f"(service level 0.2); {FLOOR_AREA:g} m^2 floors of a default office inventory; "

@@ -351,7 +351,8 @@ def test_the_collapse_and_loss_studies_run_a_designed_isolation_system_when_aske
         args.building = building_from(args.building)  # as Recipe.main resolves it
         return args
 
-    given = parsed()
+    assert parsed().isolators == "designed-tfp"  # these studies' default (collapse_ida)
+    given = parsed("--isolators", "given")
     assert isolated_building(given, None, property_factors(given)) is given.building
     args = parsed("--isolators", "designed-tfp", "--t-m", "2.5", "--sm1-g", "0.9")
     building = isolated_building(args, None, property_factors(args))
@@ -364,10 +365,10 @@ def test_the_collapse_and_loss_studies_run_a_designed_isolation_system_when_aske
 
 
 def test_the_lateral_system_designs_the_stories_a_study_runs():
-    """--lateral-system steel-smf: the collapse study's suite runs the stories the code designs
-    for steel special moment frames (their Omega_0 3 the overstrength, each story yielding at
-    1% drift); --overstrength overrides Omega_0; the default keeps the building's own
-    stiffnesses."""
+    """--lateral-system steel-smf (the collapse study's default): its suite runs the stories
+    the code designs for steel special moment frames (their Omega_0 3 the overstrength, each
+    story yielding at 1% drift); --overstrength overrides Omega_0; given keeps the building's
+    own stiffnesses, the default of the studies that test the paper's conclusions."""
     import engine
     from pipeline.building_file import building_from
     from pipeline.checks import resolve_pairs
@@ -381,10 +382,13 @@ def test_the_lateral_system_designs_the_stories_a_study_runs():
         args.building = building_from(args.building)
         return scaled_suite(args, pairs, ["RSN953"]).superstructure
 
-    smf = suite("--lateral-system", "steel-smf")
+    smf = suite("--isolators", "given")
     assert smf.lateral_system.name == "steel-smf" and smf.overstrength == 3.0
     np.testing.assert_allclose(smf.strength / smf.stiffness, 0.01 * smf.story_height)
-    assert suite("--lateral-system", "steel-smf", "--overstrength", "2.5").overstrength == 2.5
-    given = suite()
+    for name in ("suite", "fragility", "design"):
+        study = importlib.import_module(f"studies.{name}").recipe.parser()
+        assert study.parse_args([]).lateral_system == "given", name
+    assert suite("--isolators", "given", "--overstrength", "2.5").overstrength == 2.5
+    given = suite("--isolators", "given", "--lateral-system", "given")
     assert given.lateral_system.name == "given" and given.overstrength == 2.0
     assert given.building.story_stiffness == engine.Building().story_stiffness
