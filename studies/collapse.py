@@ -152,8 +152,9 @@ recipe = Recipe(
             f"levels {', '.join(map(str, LEVELS))} x MCE_R, {REFINEMENTS} bisections; each pair "
             f"in both orientations; triple friction pendulums of nominal T_M 3 s, steel special "
             f"moment frames (Omega_0 3, yield drift 1%), R_I 2; gaps 0.8 and 1.0 D_M, D_TM, "
-            f"1.5 D_TM and 1.1 x the bearings' capacity; mu_T {MU_T:g}, ratings {' '.join(RATINGS)}; quick: {QUICK_PAIRS} "
-            f"pairs, levels {', '.join(map(str, QUICK_LEVELS))}, gaps 0.8 D_M and D_TM, "
+            f"1.5 D_TM and 1.1 x the bearings' capacity; mu_T {MU_T:g}, ratings "
+            f"{' '.join(RATINGS)}; quick: {QUICK_PAIRS} pairs, levels "
+            f"{', '.join(map(str, QUICK_LEVELS))}, gaps 0.8 D_M and D_TM, "
             f"{QUICK_COUNTS[0]} and {QUICK_COUNTS[1]} bumpers"))
 main = recipe.main
 

@@ -328,9 +328,10 @@ TESTED_IN = {
         "the fragility recipe's quick run and its figure",
         ("studies.fragility.figure",)),
     "tests/studies/test_collapse.py": (
-        "the loss study (and its figure) runs on the quick collapse archive this file makes "
-        "once; the IDA both collapse studies run",
-        ("studies.loss", "studies.loss.figure", "studies.common.collapse_ida")),
+        "the loss study (its figure and decision table) runs on the quick collapse archive this "
+        "file makes once; the IDA both collapse studies run",
+        ("studies.loss", "studies.loss.figure", "studies.loss.table",
+         "studies.common.collapse_ida")),
     # groups: one file, several modules checked alike
     "tests/studies/test_figures.py": (
         "a group: the figures of several recipes read right without the paper (labels, "

@@ -19,7 +19,7 @@ import json
 import numpy as np
 
 from engine.units import CM
-from pipeline.assess import derived
+from pipeline.assess import derived, moat_damage
 from pipeline.assess import hazard as hazards
 from pipeline.assess import loss as p58
 
@@ -27,6 +27,7 @@ from ..common import collapse_ida as collapse
 from ..common.paper import AREA, DELTA_U, THICKNESS
 from ..common.recipe import Recipe, Verdict, provenance, run_options
 from .figure import caption, plot  # noqa: F401  (caption: the docs cite studies.loss.caption)
+from .table import decision_table
 
 LEVELS = (0.2, 0.4, 2 / 3, 1.0, 1.5)
 """The stripes, x MCE_R: a service level (a fifth of the MCE_R, a stated choice), 0.4, the
@@ -42,7 +43,10 @@ QUANTILES = (0.1, 0.5, 0.9)
 """The repair cost's and time's quantiles over the realizations."""
 PEAKS = ("peak_total_accel_xy", "peak_interstory_drift_xy", "n_impacts", "max_indentation",
          "max_impact_force", "peak_total_accel", "peak_interstory_drift", "collapsed",
-         "collapse_mode")
+         "collapse_mode", "peak_isolator_disp")
+MOAT_GROUP = "moat and isolation plane"
+"""The component group of what pounding and the isolators' largest displacements damage
+beyond FEMA P-58's inventory (pipeline.assess.moat_damage)."""
 
 
 def options(p) -> None:
@@ -259,14 +263,25 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
     shape = (levels.size, n_b, n_g)
     q = np.array(QUANTILES)
     p_c = out["collapse_probability"].reshape(shape)
-    mean_cost, cost_q = p58.mixture(out["repair_cost"].reshape(*shape, -1), p_c,
+    bounded = out["bounded"].reshape(shape)  # too few runs standing: at most the replacement
+    weights = np.asarray(suite.weights, float)
+    share = weights / weights.sum()  # each pair's share of the weight, per earthquake
+    moat_rows = moat_damage.read()
+    moat_runs = moat_damage.costs(moat_rows, peaks, d_tm=suite.design.d_tm, delta_u=DELTA_U,
+                                  bumpers=np.array([0.0, 0.0, *counts])[None, None, :, None],
+                                  floor_area=args.floor_area)  # (items, R, L, B, G)
+    moat = moat_damage.mean_given_no_collapse(moat_runs, entered, share)  # (items, L, B, G)
+    # each realization given no collapse adds a standing run's moat cost (a bound holds it)
+    moat_draws = moat_damage.realizations(moat_runs.sum(axis=0), entered, share,
+                                          args.samples) * ~bounded[..., None]
+    mean_cost, cost_q = p58.mixture(out["repair_cost"].reshape(*shape, -1) + moat_draws, p_c,
                                     out["replacement_cost"], q)
     mean_time, time_q = p58.mixture(out["repair_time"].reshape(*shape, -1), p_c,
                                     out["replacement_time"], q)
     median_cost = cost_q[QUANTILES.index(0.5)]
-    bounded = out["bounded"].reshape(shape)  # too few runs standing: at most the replacement
-    weights = np.asarray(suite.weights, float)
-    share = weights / weights.sum()  # each pair's share of the weight, per earthquake
+    by_group = np.concatenate([np.moveaxis(out["repair_cost_by_group"].reshape(
+        *shape, -1, len(p58.COMPONENT_GROUPS)).mean(axis=-2), -1, 0),
+        moat_draws.mean(axis=-1)[None]])
     contact = np.einsum("r,rlbg->lbg", share, (peaks["n_impacts"] > 0).astype(float))
     crushed = np.einsum("r,rlbg->lbg", share,
                         derived.crushed(peaks["max_indentation"], DELTA_U).astype(float))
@@ -286,9 +301,13 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
                                 "(FEMA P-58 by pelicun; a collapse or an irreparable "
                                 "residual drift costs the replacement)"),
         "repair_cost_by_group": variable(
-            ("component_group",) + dims, np.moveaxis(out["repair_cost_by_group"].reshape(
-                *shape, -1, len(p58.COMPONENT_GROUPS)).mean(axis=-2), -1, 0), "USD_2011",
-            "mean repair cost given no collapse, USD_2011, by component group (summing it)"),
+            ("component_group",) + dims, by_group, "USD_2011", "mean repair cost given no "
+            "collapse, USD_2011, by component group (summing it)"),
+        "moat_damage_cost": variable(
+            ("moat_item",) + dims, moat, "USD_2011", "mean repair cost given no collapse of "
+            "each item of the moat inventory, USD_2011 (over the standing runs, weighted per "
+            "earthquake; the realizations draw whole runs: repair_cost_by_group's moat group "
+            "is their mean; pipeline.assess.moat_damage)"),
         "repair_cost_quantile": variable(("quantile",) + dims, cost_q,
                                          "USD_2011", "repair cost quantiles over the "
                                          "realizations, USD_2011"),
@@ -371,8 +390,11 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
                                  "seismic gap / D_M"),
         "gap": variable("gap_fraction", gaps, "m", "seismic gap"),
         "quantile": variable("quantile", q, "1", "quantile over the realizations"),
-        "component_group": variable("component_group", list(p58.COMPONENT_GROUPS), "1",
-                                    "FEMA P-58 components by their demand, or the replacement"),
+        "component_group": variable("component_group", [*p58.COMPONENT_GROUPS, MOAT_GROUP], "1",
+                                    "FEMA P-58 components by their demand, the replacement, or "
+                                    "the moat inventory's items"),
+        "moat_item": variable("moat_item", [r["item"] for r in moat_rows], "1",
+                              "an item of the moat inventory (moat_inventory)"),
         **collapse_mode_coords(),
         **more_coords,
     }
@@ -387,6 +409,10 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
         "hazard": curve.source, "floor_area": args.floor_area, "floor_area_units": "m2",
         "inventory": args.inventory or "pipeline/data/office_inventory.csv (default)",
         "components": json.dumps({r["component"]: r["description"] for r in rows}),
+        "moat_inventory": json.dumps({r["item"]: {"trigger": r["trigger"], "per": r["per"],
+                                                  "unit_cost_usd_2011": r["unit_cost"],
+                                                  "description": r["description"]}
+                                      for r in moat_rows}),
         "replacement_cost": out["replacement_cost"],
         "replacement_cost_units": "USD_2011", "samples": args.samples,
         "replacement_time": out["replacement_time"], "replacement_time_units": "worker_day",
@@ -397,51 +423,6 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
         "collapse_modes": json.dumps(collapse_numbers(peaks["collapse_mode"])),
         "levels": ", ".join(f"{v:.3g}" for v in levels) + " x MCE_R (stripes)"})
     return labelled_dataset(data, coords, attrs)
-
-
-def decision_table(ds) -> str:
-    """The decision table: gap x barrier -> P(collapse | MCE_R), median cost, EAL, pounding."""
-    lines = [f"{'gap':>8} {'barrier':>11} {'P(coll|MCE_R)':>14} {'median cost MCE_R':>18} "
-             f"{'EAL':>10} {'pounding /yr':>13}"]
-    for g, gap in enumerate(ds.gap.values):
-        for b, barrier in enumerate(ds.barrier.values):
-            at = dict(barrier=b, gap_fraction=g)
-            lines.append(
-                f"{gap / CM:6.1f}cm {barrier:>11} "
-                f"{'<=' if str(ds.collapse_probability_bound[at].values) != 'exact' else '':>2}"
-                f"{100 * float(ds.collapse_probability[at]):11.1f}% "
-                f"{float(ds.median_repair_cost_mce[at]) / 1e6:14.2f} M$ "
-                f"{'<=' if _eal_bounded(ds, at) else '':>2}"
-                f"{float(ds.expected_annual_loss[at]) / 1e3:5.1f} k$ "
-                f"{float(ds.annual_rate_contact[at]):13.2e}" + _why(ds, at))
-    if "repair_cost_by_group" in ds:  # what pounding damages: the acceleration-sensitive
-        mce = ds.repair_cost_by_group.sel(level=1.0, method="nearest")
-        share = 100 * mce / mce.sum("component_group")
-        lines.append("the mean repair cost at the MCE_R given no collapse (repair_cost_by_group): "
-                     + ", ".join(f"{g} {float(share[i].min()):.0f}-{float(share[i].max()):.0f}%"
-                                 for i, g in enumerate(p58.COMPONENT_GROUPS)))
-    return "\n".join(lines)
-
-
-def _eal_bounded(ds, at) -> bool:
-    """Whether a row's EAL is an upper bound (expected_annual_loss_bound; an archive before
-    it: never)."""
-    return "expected_annual_loss_bound" in ds \
-        and str(ds.expected_annual_loss_bound[at].values) != "exact"
-
-
-def _why(ds, at) -> str:
-    """Beside a row's numbers: its runs outside the model's range, why an EAL is a bound."""
-    said = []
-    outside = int(ds.runs_outside_range[at].sum())
-    if outside:
-        said.append(f"{outside} runs outside the model's range, in as computed")
-    if _eal_bounded(ds, at):
-        few = ds.level.values[ds.loss_bounded[at].values.astype(bool)]
-        said.append(f"EAL at most: fewer than {p58.MIN_RUNS} runs standing at "
-                    + ", ".join(f"{level:g}" for level in few) + " x MCE_R, their loss given no "
-                    "collapse bounded by the replacement")
-    return f"  ({'; '.join(said)})" if said else ""
 
 
 def check(ds) -> list[Verdict]:

@@ -41,4 +41,5 @@ def caption(ds) -> str:
             "per barrier (FEMA P-58 by pelicun). (a) the median repair cost at the MCE_R; (b) "
             "the expected annual loss over the hazard curve; (c) the mean annual frequency of "
             "pounding; (d) against the bare wall, the mean repair cost at the MCE_R given no "
-            f"collapse by component group, stacked. Hazard: {ds.attrs['hazard']}.")
+            "collapse by component group, stacked (the moat and isolation plane's repairs among "
+            f"them). Hazard: {ds.attrs['hazard']}.")

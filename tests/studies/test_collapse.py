@@ -203,6 +203,20 @@ def test_the_loss_archive_holds_the_decision(loss_quick):
     assert ds.repair_cost_by_group.dims == ("component_group", "level", "barrier",
                                             "gap_fraction")
     assert (ds.repair_cost_by_group >= 0).all() and (ds.repair_cost_by_group[0] > 0).any()
+    # the moat's own damage is a group of its own: the realizations' draws of whole runs, whose
+    # mean is the items' weighted mean to a slice of the weights (1 / samples) per run, where a
+    # stripe has a demand model; the groups sum to the mean repair cost given no collapse
+    assert list(ds.component_group.values)[-1] == loss.MOAT_GROUP
+    moat = ds.repair_cost_by_group.sel(component_group=loss.MOAT_GROUP)
+    modelled = ds.loss_bounded == 0
+    exact = ds.moat_damage_cost.sum("moat_item")
+    slices = ds.record.size * float(exact.max()) / ds.attrs["samples"]
+    np.testing.assert_allclose(moat.where(modelled, 0), exact.where(modelled, 0), rtol=0,
+                               atol=slices)
+    assert float(exact.max()) > 0  # the quick grid's runs strike the wall
+    p_c, replacement = ds.loss_collapse_probability, ds.attrs["replacement_cost"]
+    np.testing.assert_allclose(ds.repair_cost_by_group.sum("component_group"),
+                               (ds.repair_cost - p_c * replacement) / (1 - p_c), rtol=1e-9)
     assert "(repair_cost_by_group): acceleration-sensitive " in loss.decision_table(ds)
     # how each run collapsed, counted by mode (pipeline.assess.collapse_modes)
     assert ds.collapse_mode.dims == ds.collapsed.dims
