@@ -12,7 +12,8 @@ holds in a run:
   the bearings and the utility connections are made for (ASCE 7-22 17.5.3's D_TM).
 The quantities follow the building (`per`): the plan's perimeter (m; a square plan of the floor
 area), the bearings (one under each column of a square grid of BAY spans), the bumpers (n on
-each of the moat's 4 walls), or the building (one). Every cost is a stated allowance in USD of
+each of the moat's 4 walls; a circular moat's bumpers are counted alike, as 4 sets of n), or
+the building (one). Every cost is a stated allowance in USD of
 2011 (FEMA P-58's year), not a FEMA P-58 consequence function: give the building's own table
 where they are known.
 """

@@ -64,6 +64,11 @@ def options(p) -> None:
                    help="the building's components (the columns of the default "
                         "pipeline/data/office_inventory.csv: FEMA P-58 IDs, quantities per m^2 "
                         "or per story)")
+    p.add_argument("--moat-inventory", metavar="CSV",
+                   help="what the moat and the isolation plane hold, priced once pounding or "
+                        "the isolators' displacement damage it (the columns of the default "
+                        "pipeline/data/moat_inventory.csv: item, trigger, per, unit_cost in USD "
+                        "2011, description; pipeline.assess.moat_damage)")
     p.add_argument("--floor-area", type=float, default=FLOOR_AREA, metavar="M2",
                    help=f"floor area per story, m^2 (default {FLOOR_AREA:g})")
     p.add_argument("--samples", type=int, default=None, metavar="N",
@@ -88,6 +93,10 @@ def compute(args):
         rows = p58.read_inventory(args.inventory)
     except ValueError as e:
         raise SweepError(f"--inventory: {e}") from None
+    try:  # read again where the archive is made; refused here, before any compute
+        moat_damage.read(args.moat_inventory)
+    except ValueError as e:
+        raise SweepError(f"--moat-inventory: {e}") from None
     unknown = p58.unknown_components(rows)
     if unknown:  # before any compute: pelicun would refuse them after the simulations
         raise SweepError(f"--inventory: {', '.join(unknown)}: not in FEMA P-58's fragility "
@@ -266,7 +275,7 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
     bounded = out["bounded"].reshape(shape)  # too few runs standing: at most the replacement
     weights = np.asarray(suite.weights, float)
     share = weights / weights.sum()  # each pair's share of the weight, per earthquake
-    moat_rows = moat_damage.read()
+    moat_rows = moat_damage.read(args.moat_inventory)
     moat_runs = moat_damage.costs(moat_rows, peaks, d_tm=suite.design.d_tm, delta_u=DELTA_U,
                                   bumpers=np.array([0.0, 0.0, *counts])[None, None, :, None],
                                   floor_area=args.floor_area)  # (items, R, L, B, G)
@@ -408,6 +417,8 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
                   "with the demands computed (runs_outside_range)",
         "hazard": curve.source, "floor_area": args.floor_area, "floor_area_units": "m2",
         "inventory": args.inventory or "pipeline/data/office_inventory.csv (default)",
+        "moat_inventory_file": args.moat_inventory or "pipeline/data/moat_inventory.csv "
+                                                      "(default)",
         "components": json.dumps({r["component"]: r["description"] for r in rows}),
         "moat_inventory": json.dumps({r["item"]: {"trigger": r["trigger"], "per": r["per"],
                                                   "unit_cost_usd_2011": r["unit_cost"],

@@ -417,3 +417,18 @@ def test_the_loss_figure_draws_the_archive_and_the_groups_stacked(loss_quick):
     assert [b.get_label() for b in bands] == [str(g) for g in ds.component_group.values]
     top = bands[-1].get_paths()[0].vertices[:, 1].max()
     assert top == pytest.approx(1e-6 * float(groups.sum("component_group").max()), rel=1e-12)
+
+
+def test_the_loss_study_refuses_a_wrong_moat_inventory_in_one_line(tmp_path, capsys):
+    """--moat-inventory: a table whose trigger is unknown is refused before any compute, in one
+    line naming the option, the file's line and the choices."""
+    from studies import loss
+
+    bad = tmp_path / "moat.csv"
+    bad.write_text("item,trigger,per,unit_cost,description\nwall,flood,building,1,no\n")
+    out = tmp_path / "out"
+    assert loss.main(["--quick", "--moat-inventory", str(bad), "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and err.startswith("loss: error: --moat-inventory: ")
+    assert "line 2: trigger must be one of contact, crushed, beyond_d_tm" in err, err
+    assert not out.exists() or not any(out.rglob("*.nc"))

@@ -79,3 +79,4 @@ def test_the_realizations_draw_whole_runs_by_their_weights():
     assert set(np.unique(draws[0])) == {0.0, 100.0}  # never the collapsed run's 5000
     again = moat_damage.realizations(run_costs[:, :1] * 2, standing[:, :1], share, 1000)
     np.testing.assert_array_equal(again[0] == 200.0, draws[0] == 100.0)
+
