@@ -25,6 +25,7 @@ from pipeline.motions.bounds import (
 )
 from pipeline.motions.code_suite import DEFAULT_RULE, RULE_TEXT, SITE
 from pipeline.motions.lateral_systems import DEFAULT as DEFAULT_SYSTEM
+from pipeline.motions.superstructure import COLLAPSE_DRIFT_RATIO
 
 PAIR_SET = "far-field"
 """The FEMA P695 record set the studies run by default (pipeline.records.pair_names)."""
@@ -157,19 +158,14 @@ def add_stories(p, lateral_system: str = DEFAULT_SYSTEM) -> None:
     superstructure a study runs (pipeline.motions.superstructure,
     pipeline.motions.lateral_systems)."""
     from pipeline.motions.lateral_systems import SYSTEMS
-    from pipeline.motions.superstructure import (
-        COLLAPSE_DRIFT_RATIO,
-        OVERSTRENGTH,
-        R_I,
-        STORY_HEIGHT,
-    )
+    from pipeline.motions.superstructure import OVERSTRENGTH, R_I, STORY_HEIGHT
 
     p.add_argument("--stories", choices=STORY_CHOICES, default=STORY_CHOICES[0],
                    help="the superstructure: imk (default) the building the code designs on "
                         "its isolation (ASCE 7-22 17.5.4-17.5.5: story strengths --overstrength "
                         "x the design shears) on deteriorating stories (modified IMK), with "
-                        "P-Delta and collapse at a story drift of "
-                        f"{COLLAPSE_DRIFT_RATIO:g} of its height ({STORY_HEIGHT:g} m stories "
+                        "P-Delta and collapse at a story drift of --collapse-drift of its "
+                        f"height ({STORY_HEIGHT:g} m stories "
                         "unless the building gives heights); in plan each story's law acts "
                         "along x and y, uncoupled; bilinear: the same strengths, hardening "
                         "stories; linear: the building's own stories (the paper's model)")
@@ -184,6 +180,12 @@ def add_stories(p, lateral_system: str = DEFAULT_SYSTEM) -> None:
     p.add_argument("--r-i", type=float, default=R_I, metavar="R_I",
                    help="the superstructure's response modification R_I, 1 to 2 (ASCE 7-22 "
                         f"17.5.4.2; default {R_I:g})")
+    p.add_argument("--collapse-drift", type=float, default=COLLAPSE_DRIFT_RATIO,
+                   metavar="RATIO",
+                   help="the story drift ratio at which a designed story is taken as collapsed "
+                        f"(default {COLLAPSE_DRIFT_RATIO:g}, Vamvatsikos & Cornell 2002's IDA "
+                        "cap; Kitayama & Constantinou 2018 count 0.05), "
+                        f"{PLAUSIBLE_COLLAPSE_DRIFT[0]:g} to {PLAUSIBLE_COLLAPSE_DRIFT[1]:g}")
     p.add_argument("--overstrength", type=float, default=None, metavar="FACTOR",
                    help="story strength over its design shear (default: the lateral "
                         f"system's Omega_0; {OVERSTRENGTH:g} on the building's own stories, a "
@@ -304,6 +306,25 @@ def checked_site(args) -> None:
                              f"{largest:g} {unit}){hint}")
 
 
+PLAUSIBLE_COLLAPSE_DRIFT = (0.01, 0.2)
+"""The story drift ratios at which a study may take a story as collapsed: from 1% (a story
+barely past yield) to 20% (beyond any frame's tested drift; a percent typed as a ratio, 5 for
+0.05, is refused)."""
+
+
+def checked_collapse_drift(value: float) -> float:
+    """--collapse-drift within PLAUSIBLE_COLLAPSE_DRIFT (SweepError, one line, otherwise)."""
+    from pipeline.errors import SweepError
+
+    low, high = PLAUSIBLE_COLLAPSE_DRIFT
+    if not (math.isfinite(value) and low <= value <= high):
+        hint = f": give a ratio ({value:g}% is {value / 100:g})" if low <= value / 100 <= high \
+            else ""
+        raise SweepError(f"--collapse-drift {value:g} is implausible (outside [{low:g}, "
+                         f"{high:g}], a story drift ratio){hint}")
+    return value
+
+
 def checked_overstrength(value: float) -> float:
     """--overstrength within PLAUSIBLE_OVERSTRENGTH (SweepError, one line, otherwise)."""
     from pipeline.errors import SweepError
@@ -345,9 +366,12 @@ def scaled_suite(args, pairs, names):
         if stories != "linear":
             if args.overstrength is not None:
                 checked_overstrength(args.overstrength)
+            drift = checked_collapse_drift(getattr(args, "collapse_drift",
+                                                   COLLAPSE_DRIFT_RATIO))
             suite = suite.with_superstructure(
                 stories, r_i=args.r_i, overstrength=args.overstrength,
-                lateral_system=getattr(args, "lateral_system", DEFAULT_SYSTEM))
+                lateral_system=getattr(args, "lateral_system", DEFAULT_SYSTEM),
+                collapse_drift_ratio=drift)
         return suite
     except ValueError as err:
         raise SweepError(str(err)) from err

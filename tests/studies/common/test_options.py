@@ -392,3 +392,28 @@ def test_the_lateral_system_designs_the_stories_a_study_runs():
     given = suite("--isolators", "given", "--lateral-system", "given")
     assert given.lateral_system.name == "given" and given.overstrength == 2.0
     assert given.building.story_stiffness == engine.Building().story_stiffness
+
+
+def test_the_collapse_drift_is_the_designed_stories_and_a_percent_is_refused():
+    """--collapse-drift 0.05 (Kitayama & Constantinou 2018's limit): the designed building
+    collapses at 5% of its story height; 5 (a percent typed as a ratio) is refused in one line
+    that gives the ratio."""
+    from pipeline.building_file import building_from
+    from pipeline.checks import resolve_pairs
+    from pipeline.errors import SweepError
+    from studies.common.options import scaled_suite
+
+    parser = importlib.import_module("studies.collapse").recipe.parser()
+    pairs, _ = resolve_pairs(["RSN953"])
+
+    def suite(*argv):
+        args = parser.parse_args(list(argv))
+        args.building = building_from(args.building)
+        return scaled_suite(args, pairs, ["RSN953"])
+
+    assert suite("--isolators", "given").building.collapse_drift_ratio == 0.10
+    assert suite("--isolators", "given", "--collapse-drift", "0.05").building \
+        .collapse_drift_ratio == 0.05
+    with pytest.raises(SweepError, match=r"--collapse-drift 5 is implausible .*: give a ratio "
+                                         r"\(5% is 0.05\)"):
+        suite("--isolators", "given", "--collapse-drift", "5")
