@@ -330,7 +330,7 @@ TESTED_IN = {
     "tests/studies/test_collapse.py": (
         "the loss study (its figure and decision table) runs on the quick collapse archive this "
         "file makes once; the IDA both collapse studies run",
-        ("studies.loss", "studies.loss.figure", "studies.loss.table",
+        ("studies.loss", "studies.loss.basis", "studies.loss.figure", "studies.loss.table",
          "studies.common.collapse_ida")),
     # groups: one file, several modules checked alike
     "tests/studies/test_figures.py": (

@@ -37,6 +37,9 @@ MU_T = 3.0
 """The period-based ductility (FEMA P695 Eq. 6-6) when the isolated building's pushover is
 not computed: 3, the least at which P695 takes the record-to-record beta as 0.4 (stated
 choice; SSF grows with mu_T, so a larger one would be less conservative)."""
+BOOTSTRAP_SEED = 0
+"""The seed of the resamplings of the earthquakes (`resampled_weights`): a study that pairs its
+draws with a collapse archive's draws the same earthquakes with it."""
 
 
 def collapse_intensities(collapsed, levels) -> tuple[np.ndarray, np.ndarray]:
@@ -138,7 +141,7 @@ def collapse_median(intensity, censored, weights, top_level: float):
 
 def bootstrap_probabilities(intensity, censored, weights, events, top_level: float,
                             margin, beta_total: float, *, draws: int = 1000,
-                            seed: int = 0) -> np.ndarray:
+                            seed: int = BOOTSTRAP_SEED) -> np.ndarray:
     """P(collapse | MCE_R) (draws, ...) of every configuration under `draws` resamplings of the
     earthquakes with replacement (each drawn earthquake brings all its pairs at their
     weights: the pairs of one event are not independent), the same resamplings for every
@@ -150,16 +153,24 @@ def bootstrap_probabilities(intensity, censored, weights, events, top_level: flo
     from scipy.stats import norm
 
     cens = np.asarray(censored, bool)
-    labels, which = np.unique(np.asarray(events).astype(str), return_inverse=True)
-    picks = np.random.default_rng(seed).integers(0, labels.size, (draws, labels.size))
-    counts = np.stack([np.bincount(row, minlength=labels.size) for row in picks])
-    weight = (counts[:, which] * np.asarray(weights, float)).T  # (R, draws)
+    weight = resampled_weights(weights, events, draws=draws, seed=seed)
     shape = (cens.shape[0], draws) + cens.shape[1:]
     x = np.broadcast_to(np.asarray(intensity, float)[:, None], shape)
     s_ct, known, _ = collapse_median(x, np.broadcast_to(cens[:, None], shape), weight,
                                      top_level)
     s_ct = np.where(known, s_ct, top_level)
     return norm.cdf(-np.log(np.asarray(margin, float) * s_ct) / beta_total)
+
+
+def resampled_weights(weights, events, *, draws: int, seed: int = BOOTSTRAP_SEED) -> np.ndarray:
+    """(R, draws) the pairs' weights under `draws` resamplings of the earthquakes with
+    replacement: each pair's weight (R,) times the number of times its event (R,) is drawn.
+    The resamplings of `bootstrap_probabilities` (the same seed gives the same draws), for
+    any statistic to be paired with its."""
+    labels, which = np.unique(np.asarray(events).astype(str), return_inverse=True)
+    picks = np.random.default_rng(seed).integers(0, labels.size, (draws, labels.size))
+    counts = np.stack([np.bincount(row, minlength=labels.size) for row in picks])
+    return (counts[:, which] * np.asarray(weights, float)).T
 
 
 @dataclass(frozen=True)

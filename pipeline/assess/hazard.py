@@ -22,11 +22,43 @@ MCE_R_RATE = 1.0 / 2475.0
 """The annual rate at which the default curve is exceeded at S_MT: 2% in 50 years (the
 uniform-hazard definition that ASCE 7-22 section 21.2 risk-targets; the risk-targeted MCE_R
 is not a fixed return period, so anchoring it there is a stated approximation)."""
-SLOPE = 3.0
-"""The default curve's log-log slope k, lambda(Sa) = lambda(S_MT) (Sa / S_MT)^-k: 3, a stated
-choice for a high-seismicity site at a long period (Cornell et al. 2002, J. Struct. Eng.
-128(4), take k from 1 to 4 locally; not checked against a site's hazard). Give the site's own
-curve with a table (`from_table`)."""
+PEER_RETURN_PERIODS = (43.0, 144.0, 289.0, 475.0, 949.0, 1485.0, 2475.0, 3899.0, 7462.0,
+                       10000.0)
+PEER_SA_G = (0.04, 0.10, 0.17, 0.24, 0.35, 0.42, 0.50, 0.57, 0.69, 0.75)
+"""A site's uniform-hazard Sa(2.99 s), g, at PEER_RETURN_PERIODS (years): the hazard that
+Kitayama & Cilsalar (2021, Bull. Earthquake Eng., doi 10.1007/s10518-021-01274-y) assess
+isolated buildings at (their data repository's stripes, the period nearest the default
+T_M of 3.07 s). Only its shape is used (`fit_second_order`); not checked against the USGS
+source."""
+
+
+def fit_second_order(sa, rate, anchor_sa: float, anchor_rate: float) -> tuple[float, float]:
+    """(k1, k2) of the second-order hazard form through (anchor_sa, anchor_rate), fitted by
+    least squares in ln(rate) to the points (sa, rate) (any one unit of Sa):
+    ln(lambda / anchor_rate) = -k1 x - k2 x^2, x = ln(Sa / anchor_sa) (Vamvatsikos 2013,
+    Earthquake Eng. Struct. Dyn. 42(8), the second-order approximation of a hazard curve in
+    log-log). k1 is the curve's log-log slope at the anchor; k2 > 0 flattens it towards low
+    intensities."""
+    x = np.log(np.asarray(sa, float) / anchor_sa)
+    y = np.log(np.asarray(rate, float) / anchor_rate)
+    (k1, k2), *_ = np.linalg.lstsq(np.column_stack([-x, -x * x]), y, rcond=None)
+    return float(k1), float(k2)
+
+
+SLOPE, CURVATURE = fit_second_order(
+    PEER_SA_G, 1.0 / np.array(PEER_RETURN_PERIODS),
+    anchor_sa=PEER_SA_G[PEER_RETURN_PERIODS.index(2475.0)], anchor_rate=MCE_R_RATE)
+"""The default curve's k1 (2.59: its log-log slope at S_MT) and k2 (0.413): the second-order
+form (fit_second_order) fitted to PEER_SA_G's return periods with its 2475-year intensity at
+1/2475 per year, which the default puts at S_MT. Its log-log slope k1 + 2 k2 x is 3.2 at
+twice S_MT and 1.3 at a fifth of it (the peer's points: 3.4-3.5 between 1 and 1.5 times their
+2475-year intensity, 1.3 between a tenth and a fifth of it); a power law of slope 3 (this
+module's earlier default) puts 5.6 times the rate above 0.2 S_MT. Cornell et al. (2002, J.
+Struct. Eng. 128(4)) take a local slope of 1 to 4."""
+GRID = 400
+"""Points of the default curve's table, log-spaced from its flat top (the vertex of the
+quadratic, 0.043 S_MT) to 100 S_MT, S_MT one of them: log-log interpolation between them is
+within 1e-4 of the form."""
 POINTS = 4000
 """Integration points (log-spaced) of a lognormal fragility over the hazard curve, from 8
 dispersions below its median to 8 above."""
@@ -69,12 +101,33 @@ class Hazard:
 
 def default(s_mt: float) -> Hazard:
     """The documented default curve for a site whose MCE_R spectral acceleration at the
-    isolated period is s_mt (m/s^2): a power law through MCE_R_RATE at s_mt with slope SLOPE."""
-    sa = s_mt * np.array([0.01, 1.0, 100.0])
-    return Hazard(sa, MCE_R_RATE * (sa / s_mt) ** -SLOPE,
-                  f"power law lambda(Sa) = {MCE_R_RATE:.3g}/yr (Sa / S_MT)^-{SLOPE:g} "
-                  f"(S_MT {s_mt / G:.3g} g at T_M): the documented default, not a site's "
-                  "hazard")
+    isolated period is s_mt (m/s^2): the second-order form through MCE_R_RATE at s_mt with the
+    peer's shape (SLOPE, CURVATURE), tabulated from its vertex (where its slope is zero) to 100
+    S_MT. Below the vertex (0.043 S_MT) the rate grows by under 1% per halving of Sa (the
+    table's first interval extrapolated), about flat: no stripe's interval reaches there."""
+    return second_order(s_mt, SLOPE, CURVATURE)
+
+
+def second_order(s_mt: float, slope: float, curvature: float) -> Hazard:
+    """lambda(Sa) = MCE_R_RATE exp(-slope x - curvature x^2), x = ln(Sa / s_mt) (m/s^2), as a
+    table of GRID points from the vertex x = -slope / (2 curvature) (or 0.01 s_mt, if nearer;
+    curvature 0: a power law of that slope) to 100 s_mt; its `source` names the form."""
+    if slope <= 0 or curvature < 0:
+        raise ValueError("a hazard curve's slope must be positive and its curvature not "
+                         "negative")
+    low = max(-slope / (2 * curvature), math.log(0.01)) if curvature > 0 else math.log(0.01)
+    below = round(GRID * -low / (math.log(100.0) - low))  # S_MT itself a point of the table
+    x = np.concatenate([np.linspace(low, 0.0, below + 1)[:-1],
+                        np.linspace(0.0, math.log(100.0), GRID - below)])
+    rate = MCE_R_RATE * np.exp(-slope * x - curvature * x * x)
+    if curvature == 0:
+        form = f"(Sa / S_MT)^-{slope:.3g} (a power law"
+    else:
+        form = (f"exp(-{slope:.3g} x - {curvature:.3g} x^2), x = ln(Sa / S_MT) (Vamvatsikos "
+                "2013's second-order form")
+    return Hazard(s_mt * np.exp(x), rate,
+                  f"lambda(Sa) = {MCE_R_RATE:.3g}/yr {form}, S_MT {s_mt / G:.3g} g at T_M): "
+                  "the documented default's form, not this site's hazard")
 
 
 def from_table(path) -> Hazard:

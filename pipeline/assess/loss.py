@@ -176,6 +176,9 @@ def losses(groups, rows, *, stories: int, floor_area: float, yield_drift: float,
     TIME_PER_M2 of the total floor area. Returns repair_cost (USD 2011) and repair_time
     (worker-days, the parallel repair time) (G, samples) given no collapse, irreparable (G,
     samples) bool, repair_cost_by_group (G, samples, COMPONENT_GROUPS) summing repair_cost,
+    run_repair_cost (G, max runs) each run's own mean repair cost given no collapse (its
+    demands assessed as they are, no model fitted, `_runs_sample`: for the record-to-record
+    spread of the mean, a bootstrap's; NaN beyond a group's runs),
     collapse_probability (G,) (Phi of the group's deviate), bounded (G,) bool,
     replacement_cost and replacement_time. A group of fewer than MIN_RUNS runs has no demand
     model: its loss given no collapse is taken at its upper bound, the replacement (every
@@ -198,6 +201,9 @@ def losses(groups, rows, *, stories: int, floor_area: float, yield_drift: float,
            "irreparable": np.zeros((len(groups), samples), bool),
            "collapse_probability": np.full(len(groups), np.nan),
            "bounded": np.zeros(len(groups), bool),
+           "run_repair_cost": np.full((len(groups), max((len(g.pfa) for g in groups
+                                                         if g is not None), default=0)),
+                                      np.nan),
            "replacement_cost": cost, "replacement_time": time}
     for g, group in enumerate(groups):
         if group is not None:
@@ -207,6 +213,7 @@ def losses(groups, rows, *, stories: int, floor_area: float, yield_drift: float,
                 out["repair_cost"][g], out["repair_time"][g] = cost, time
                 out["repair_cost_by_group"][g] = 0.0
                 out["repair_cost_by_group"][g, :, COMPONENT_GROUPS.index(REPLACED)] = cost
+                out["run_repair_cost"][g, :len(group.pfa)] = cost
     modelled = [g for g, group in enumerate(groups)
                 if group is not None and len(group.pfa) >= MIN_RUNS]
     if not modelled:
@@ -217,6 +224,8 @@ def losses(groups, rows, *, stories: int, floor_area: float, yield_drift: float,
     for start in range(0, len(modelled), BATCH):
         batch = modelled[start:start + BATCH]
         some = _assess([groups[g] for g in batch], assessment, yield_drift, samples, seed)
+        runs = some.pop("run_repair_cost")
+        out["run_repair_cost"][batch, :runs.shape[1]] = runs
         for name, value in some.items():
             out[name][batch] = value
         if progress is not None:
@@ -290,8 +299,10 @@ def _assess(groups, a, yield_drift, samples, seed) -> dict:
     damage and loss calculation over them all, its draws (component quantities, capacities,
     consequences) made for one group's `samples` realizations and repeated for each
     (`common_draws`): every group draws the same numbers, as if assessed alone. Returns
-    repair_cost, repair_time and irreparable (len(groups), samples), given no collapse, and
-    repair_cost_by_group (len(groups), samples, COMPONENT_GROUPS), which sums repair_cost."""
+    repair_cost, repair_time and irreparable (len(groups), samples), given no collapse,
+    repair_cost_by_group (len(groups), samples, COMPONENT_GROUPS), which sums repair_cost, and
+    run_repair_cost (len(groups), max runs): each run's mean repair cost on its own demands
+    (`_runs_sample`, assessed in the same calculation on the same draws)."""
     import pandas as pd
     from pelicun.model import DemandModel
 
@@ -307,10 +318,17 @@ def _assess(groups, a, yield_drift, samples, seed) -> dict:
             a.demand.estimate_RID_and_adjust_sample({"yield_drift": yield_drift})
             a.demand.expand_sample("ONE", 1.0, "unitless")
             stacked.append(a.demand.sample)
-        # the generator now stands where each group's own assessment would draw on from
+        # the generator now stands where each group's own assessment would draw on from: the
+        # runs' own demands below draw their residual drifts from a generator of their own
+        state = a.options.rng.bit_generator.state
+        for group in groups:
+            a.options.seed = seed + 1
+            stacked.append(_runs_sample(a, group, samples, yield_drift))
+        a.options.rng.bit_generator.state = state
         a.demand.sample = pd.concat(stacked, ignore_index=True)
-        with common_draws(len(groups) * samples, samples):
-            a.asset.generate_cmp_sample(len(groups) * samples)
+        size = 2 * len(groups) * samples
+        with common_draws(size, samples):
+            a.asset.generate_cmp_sample(size)
             a.damage.calculate(dmg_process={"1_excessiveRID": {"DS1": "irreparable_DS1"}})
             a.loss.calculate()
             # pelicun keeps the component losses in pandas' nullable dtypes, a block a column:
@@ -328,13 +346,47 @@ def _assess(groups, a, yield_drift, samples, seed) -> dict:
     part = damage.xs("irreparable", axis=1, level="cmp")
     hit = part.loc[:, part.columns.get_level_values("ds") != "0"].to_numpy(float)
     shape = (len(groups), samples)
+    model = slice(0, len(groups) * samples)  # the fitted model's realizations; then the runs'
     kinds = [component_group(c) for c in by_loss.columns]
     parts = np.stack([by_loss.loc[:, [k == g for k in kinds]].to_numpy(float).sum(axis=1)
                       for g in range(len(COMPONENT_GROUPS))], axis=-1)
-    return {"repair_cost": total[("repair_cost", "")].to_numpy(float).reshape(shape),
-            "repair_time": total[("repair_time", "parallel")].to_numpy(float).reshape(shape),
-            "irreparable": (np.nan_to_num(hit).sum(axis=1) > 0).reshape(shape),
-            "repair_cost_by_group": parts.reshape(*shape, -1)}
+    cost = total[("repair_cost", "")].to_numpy(float)
+    return {"repair_cost": cost[model].reshape(shape),
+            "repair_time": total[("repair_time", "parallel")].to_numpy(float)[model]
+            .reshape(shape),
+            "irreparable": (np.nan_to_num(hit).sum(axis=1) > 0)[model].reshape(shape),
+            "repair_cost_by_group": parts[model].reshape(*shape, -1),
+            "run_repair_cost": run_means(cost[len(groups) * samples:].reshape(shape),
+                                         [len(g.pfa) for g in groups])}
+
+
+def _runs_sample(a, group, samples: int, yield_drift: float):
+    """pelicun's demand sample of `samples` realizations on the group's runs themselves, no
+    model fitted: realization k takes run k mod R's demands (their residual drifts estimated
+    as the fitted model's are), so that each run's mean loss is known (`run_means`)."""
+    import pandas as pd
+    from pelicun.model import DemandModel
+
+    raw = raw_demands(group.pfa, group.pid)
+    runs = raw.drop(index="Units")
+    tiled = runs.iloc[np.arange(samples) % len(runs)].reset_index(drop=True)
+    a.demand = DemandModel(a)
+    a.demand.load_sample(pd.concat([tiled, raw.loc[["Units"]]]))
+    a.demand.estimate_RID_and_adjust_sample({"yield_drift": yield_drift})
+    a.demand.expand_sample("ONE", 1.0, "unitless")
+    return a.demand.sample
+
+
+def run_means(realizations, runs) -> np.ndarray:
+    """(G, max(runs)) each run's mean over the realizations (G, S) that took its demands
+    (realization k: run k mod R of its group's R = runs[g]); NaN beyond a group's runs."""
+    x = np.asarray(realizations, float)
+    out = np.full((x.shape[0], max(runs, default=0)), np.nan)
+    for g, r in enumerate(runs):
+        which = np.arange(x.shape[1]) % r
+        out[g, :r] = np.bincount(which, weights=x[g], minlength=r) / np.bincount(which,
+                                                                                  minlength=r)
+    return out
 
 
 REPLACED = "irreparable (replaced)"

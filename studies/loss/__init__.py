@@ -8,9 +8,10 @@ plan. Per stripe and configuration (pipeline.assess.loss, FEMA P-58-1 chapters 5
 joint lognormal of the peak floor accelerations and drift ratios fitted to every run that did
 not collapse, SAMPLES realizations, damage to an office inventory (--inventory) of
 --floor-area per floor, collapse from its fragility, repair cost (by component group) and
-time; over a hazard curve (--hazard; default a documented power law) the expected annual loss
-and the annual rates of contact, crushed bumpers and collapse (chapter 8). The decision table:
-gap x barrier -> P(collapse | MCE_R), median repair cost at the MCE_R, EAL, pounding per year.
+time; over a hazard curve (--hazard; default a documented second-order form) the expected
+annual loss and the annual rates of contact, crushed bumpers and collapse (chapter 8). The
+decision table: gap x barrier -> P(collapse | MCE_R), median repair cost at the MCE_R, EAL,
+pounding per year.
 """
 from __future__ import annotations
 
@@ -19,13 +20,14 @@ import json
 import numpy as np
 
 from engine.units import CM
-from pipeline.assess import derived, moat_damage
+from pipeline.assess import annual_loss, derived, moat_damage
 from pipeline.assess import hazard as hazards
 from pipeline.assess import loss as p58
 
 from ..common import collapse_ida as collapse
 from ..common.paper import AREA, DELTA_U, THICKNESS
 from ..common.recipe import Recipe, Verdict, provenance, run_options
+from .basis import collapse_archive, same_basis
 from .figure import caption, plot  # noqa: F401  (caption: the docs cite studies.loss.caption)
 from .table import decision_table
 
@@ -57,9 +59,10 @@ def options(p) -> None:
                         "fragility (default: the collapse study runs first)")
     p.add_argument("--hazard", metavar="CSV",
                    help="the site's hazard curve: a CSV table with the columns sa_g "
-                        "(Sa(T_M), g) and annual_rate (1/yr); default: a power law of slope "
-                        f"{hazards.SLOPE:g} through 1/{1 / hazards.MCE_R_RATE:.0f} per year at "
-                        "S_MT (a documented default, not a site's hazard)")
+                        "(Sa(T_M), g) and annual_rate (1/yr); default: 1/"
+                        f"{1 / hazards.MCE_R_RATE:.0f} per year at S_MT, log-log slope "
+                        f"{hazards.SLOPE:.2f} there, flatter below (a documented default "
+                        "shaped after a published site's, not this site's hazard)")
     p.add_argument("--inventory", metavar="CSV",
                    help="the building's components (the columns of the default "
                         "pipeline/data/office_inventory.csv: FEMA P-58 IDs, quantities per m^2 "
@@ -121,73 +124,6 @@ def compute(args):
     peaks, swept = run(suite, levels, gaps, counts, args)
     ds = dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, args)
     return ds.assign_attrs({**provenance(swept), **ds.attrs})
-
-
-BASIS = ("S_MS_g", "S_M1_g", "T_L", "scaling_rule", "isolator_bound")
-"""The attributes of a collapse archive that must be this loss run's (pipeline.suite_labels):
-the site, the scaling rule and the isolator bound; and every building_* attribute (the
-building designed for them, pipeline.provenance.building_attributes)."""
-
-
-def same_basis(fragility, suite) -> None:
-    """SweepError, one line naming the first difference, unless the collapse archive
-    `fragility` was run on this loss run's site, rule, bound and building (its gaps, D_TM
-    fractions, and its fragilities are theirs: a loss at another site would use them
-    silently)."""
-    from pipeline.errors import SweepError
-    from pipeline.provenance import building_attributes
-    from pipeline.suite_labels import archive_variables
-
-    mine = {**archive_variables(suite)[2], **building_attributes(suite.building)}
-    theirs = fragility.attrs
-    for key in (*BASIS, *sorted(k for k in mine if k.startswith("building_"))):
-        a, b = theirs.get(key), mine.get(key)
-        if a is None and b is None:
-            continue
-        if a is None or b is None or not _same(a, b):
-            raise SweepError(f"--collapse: the archive was run with {key} = {_text(a)}, this "
-                             f"loss run has {_text(b)}: run the collapse study with this "
-                             f"run's site, rule, bound and building options, or leave "
-                             f"--collapse out to run it now")
-
-
-def _same(a, b) -> bool:
-    """Whether two attribute values are the same (numbers to 1e-12, text exactly)."""
-    if isinstance(a, str) or isinstance(b, str):
-        return str(a) == str(b)
-    a, b = np.atleast_1d(np.asarray(a, dtype=float)), np.atleast_1d(np.asarray(b, dtype=float))
-    return a.shape == b.shape and bool(np.allclose(a, b, rtol=1e-12, atol=0.0))
-
-
-def _text(value) -> str:
-    """An attribute value in a message: none when absent, at most 60 characters."""
-    if value is None:
-        return "none"
-    text = str(np.asarray(value).tolist()) if not isinstance(value, str) else value
-    return text if len(text) <= 60 else text[:57] + "..."
-
-
-def collapse_archive(args):
-    """The collapse study's archive: --collapse, or the collapse study run now with these
-    options (quick with --quick)."""
-    import xarray as xr
-
-    from pipeline.errors import SweepError
-
-    if args.collapse:
-        try:
-            archive = xr.load_dataset(args.collapse)
-        except (OSError, ValueError) as e:
-            raise SweepError(f"--collapse: cannot read {args.collapse} ({e})") from None
-        if archive.attrs.get("recipe") != "collapse":  # a sweep's, another study's
-            made = archive.attrs.get("recipe") or "not a study's"
-            raise SweepError(f"--collapse: {args.collapse} is not a collapse study's archive "
-                             f"({made}); give the collapse.nc that python -m studies.collapse "
-                             "writes, or leave --collapse out to run it now")
-        return archive
-    if not args.quiet:
-        print("the collapse fragilities first (studies.collapse)", flush=True)
-    return collapse.compute(args)
 
 
 def run(suite, levels, gaps, counts, args) -> tuple[dict, object]:
@@ -297,18 +233,28 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
     crushed[:, :2] = np.nan  # no bumpers
     sa = levels * s_mt
     eal = hazards.mean_annual(sa, mean_cost, curve)
+    cost_draws = repair_cost_draws(fragility, suite, levels, entered, out,
+                                   moat_runs.sum(axis=0) * ~bounded[None])  # (draw, L, B, G)
+    eal_draws = annual_loss.annual_loss(sa, cost_draws, curve)  # (draw, barrier, gap)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        eal_ratio = eal_draws / eal_draws[:, [names_of(fragility).index("bare wall")]]
     rate_contact = hazards.mean_annual(sa, contact, curve)
     rate_crushed = hazards.mean_annual(sa, crushed, curve)
     rate_collapse = hazards.lognormal_annual(acmr * s_mt, beta, curve)
     at_mce = int(np.argmin(np.abs(levels - 1.0)))
-    names = tuple(str(b) for b in fragility.barrier.values)
+    names = names_of(fragility)
     conf = ("barrier", "gap_fraction")
+    span = ("interval_bound",) + conf
     dims = ("level",) + conf
     rdims = ("record", "level") + conf
     data = {
         "repair_cost": variable(dims, mean_cost, "USD_2011", "mean repair cost, USD_2011 "
                                 "(FEMA P-58 by pelicun; a collapse or an irreparable "
                                 "residual drift costs the replacement)"),
+        "repair_cost_interval": variable(
+            ("interval_bound",) + dims, np.quantile(cost_draws, collapse.INTERVAL, axis=0),
+            "USD_2011", f"the paired bootstrap's {collapse.INTERVAL[1] - collapse.INTERVAL[0]:.0%} "
+            "interval of the mean repair cost, USD_2011 (pipeline.assess.annual_loss)"),
         "repair_cost_by_group": variable(
             ("component_group",) + dims, by_group, "USD_2011", "mean repair cost given no "
             "collapse, USD_2011, by component group (summing it)"),
@@ -357,6 +303,18 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
         "expected_annual_loss": variable(conf, eal, "USD_2011 yr-1", "expected annual loss, "
                                          "USD_2011 yr-1 (FEMA P-58-1 chapter 8 over the "
                                          "hazard curve)"),
+        "expected_annual_loss_interval": variable(
+            span, np.quantile(eal_draws, collapse.INTERVAL, axis=0), "USD_2011 yr-1",
+            f"the paired bootstrap's {collapse.INTERVAL[1] - collapse.INTERVAL[0]:.0%} interval "
+            "of the expected annual loss, USD_2011 yr-1 (the collapse study's resamplings of "
+            "the earthquakes; pipeline.assess.annual_loss)"),
+        "expected_annual_loss_ratio": variable(
+            conf, eal / eal[[names.index("bare wall")]], "1", "expected annual loss over the "
+            "bare wall's at the same gap"),
+        "expected_annual_loss_ratio_interval": variable(
+            span, np.quantile(eal_ratio, collapse.INTERVAL, axis=0), "1", f"the paired "
+            f"bootstrap's {collapse.INTERVAL[1] - collapse.INTERVAL[0]:.0%} interval of "
+            "expected_annual_loss_ratio (inside it, 1 is no difference)"),
         "expected_annual_loss_bound": variable(
             conf, np.where(bounded.any(axis=0), "at most", "exact"), "1", "exact, or 'at "
             "most': a stripe's loss given no collapse bounded by the replacement "
@@ -399,6 +357,8 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
                                  "seismic gap / D_M"),
         "gap": variable("gap_fraction", gaps, "m", "seismic gap"),
         "quantile": variable("quantile", q, "1", "quantile over the realizations"),
+        "interval_bound": variable("interval_bound", np.array(collapse.INTERVAL), "1",
+                                   "the bootstrap interval's bounds (quantiles of the draws)"),
         "component_group": variable("component_group", [*p58.COMPONENT_GROUPS, MOAT_GROUP], "1",
                                     "FEMA P-58 components by their demand, the replacement, or "
                                     "the moat inventory's items"),
@@ -414,7 +374,10 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
                   "frequencies over the hazard curve (pipeline.assess.hazard; FEMA P-58-1 "
                   "chapter 8); the demand model fitted to every run that did not collapse, "
                   "unweighted (pelicun takes no weights), those outside the model's range "
-                  "with the demands computed (runs_outside_range)",
+                  "with the demands computed (runs_outside_range); the intervals the collapse "
+                  "study's paired bootstrap over the earthquakes carried through every stripe, "
+                  "the repair cost given no collapse moved by the runs' own costs, relative "
+                  "(pipeline.assess.annual_loss)",
         "hazard": curve.source, "floor_area": args.floor_area, "floor_area_units": "m2",
         "inventory": args.inventory or "pipeline/data/office_inventory.csv (default)",
         "moat_inventory_file": args.moat_inventory or "pipeline/data/moat_inventory.csv "
@@ -434,6 +397,34 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
         "collapse_modes": json.dumps(collapse_numbers(peaks["collapse_mode"])),
         "levels": ", ".join(f"{v:.3g}" for v in levels) + " x MCE_R (stripes)"})
     return labelled_dataset(data, coords, attrs)
+
+
+def names_of(fragility) -> tuple[str, ...]:
+    """The barriers of a collapse archive, in its order."""
+    return tuple(str(b) for b in fragility.barrier.values)
+
+
+def repair_cost_draws(fragility, suite, levels, entered, out, moat) -> np.ndarray:
+    """(draw, level, barrier, gap) each stripe's mean repair cost, USD_2011, under each of the
+    collapse archive's resamplings of the earthquakes (pipeline.assess.annual_loss): its
+    P(collapse | MCE_R) draws, the runs' own repair costs (out: p58.losses' on the groups of
+    `dataset`, level by barrier by gap, each of the runs `entered` (R, L, B, G)), the moat's
+    per run (moat (R, L, B, G), USD_2011, none where a stripe's loss is bounded)."""
+    from pipeline.assess.collapse import resampled_weights
+
+    shape = entered.shape[1:]
+    run_cost = np.full(entered.shape, np.nan)
+    for k, index in enumerate(np.ndindex(shape)):
+        keep = entered[(slice(None), *index)]
+        run_cost[(keep, *index)] = out["run_repair_cost"][k, :keep.sum()]
+    model = out["repair_cost"].reshape(*shape, -1).mean(axis=-1)
+    mce = fragility.collapse_probability_draws.transpose("draw", "barrier", "gap_fraction")
+    draws = resampled_weights(suite.weights, suite.events, draws=mce.sizes["draw"])
+    given = annual_loss.given_no_collapse(model, run_cost, entered, suite.weights, draws) \
+        + np.nan_to_num(annual_loss.weighted_means(moat, entered, draws))
+    beta = fragility.beta_total.transpose("barrier", "gap_fraction").values
+    p_c = annual_loss.stripe_collapse(levels, mce.values, beta)
+    return annual_loss.stripe_means(p_c, given, out["replacement_cost"])
 
 
 def check(ds) -> list[Verdict]:
@@ -469,8 +460,9 @@ recipe = Recipe(
     chosen=(f"as studies.collapse; stripes {', '.join(f'{v:.3g}' for v in LEVELS)} x MCE_R "
             f"(service level 0.2); {FLOOR_AREA:g} m^2 floors of a default office inventory; "
             f"replacement {p58.COST_PER_M2:g} USD_2011 and {p58.TIME_PER_M2:g} worker-days "
-            f"per m^2; hazard a power law of slope {hazards.SLOPE:g} through "
-            f"1/{1 / hazards.MCE_R_RATE:.0f} per year at S_MT; {p58.SAMPLES} realizations; "
+            f"per m^2; hazard the second-order form through 1/{1 / hazards.MCE_R_RATE:.0f} per "
+            f"year at S_MT, slope {hazards.SLOPE:.2f} and curvature {hazards.CURVATURE:.3f}; "
+            f"{p58.SAMPLES} realizations; "
             f"quick: stripes {', '.join(map(str, QUICK_LEVELS))}, {QUICK_SAMPLES} "
             "realizations"))
 main = recipe.main

@@ -1,7 +1,7 @@
 """The loss study's decision table: gap x barrier -> P(collapse | MCE_R), the median repair
-cost at the MCE_R, the expected annual loss and the annual rate of pounding, and beside each
-row what a reader must know of it (runs outside the model's range, an EAL that is a bound);
-under it the repair cost's shares by component group."""
+cost at the MCE_R, the expected annual loss with its paired interval and the annual rate of
+pounding, and beside each row what a reader must know of it (runs outside the model's range,
+an EAL that is a bound); under it the repair cost's shares by component group."""
 from __future__ import annotations
 
 from engine.units import CM
@@ -11,7 +11,7 @@ from pipeline.assess import loss as p58
 def decision_table(ds) -> str:
     """The decision table: gap x barrier -> P(collapse | MCE_R), median cost, EAL, pounding."""
     lines = [f"{'gap':>8} {'barrier':>11} {'P(coll|MCE_R)':>14} {'median cost MCE_R':>18} "
-             f"{'EAL':>10} {'pounding /yr':>13}"]
+             f"{'EAL':>10} {'EAL 95%':>13} {'pounding /yr':>13}"]
     for g, gap in enumerate(ds.gap.values):
         for b, barrier in enumerate(ds.barrier.values):
             at = dict(barrier=b, gap_fraction=g)
@@ -22,6 +22,7 @@ def decision_table(ds) -> str:
                 f"{float(ds.median_repair_cost_mce[at]) / 1e6:14.2f} M$ "
                 f"{'<=' if _eal_bounded(ds, at) else '':>2}"
                 f"{float(ds.expected_annual_loss[at]) / 1e3:5.1f} k$ "
+                f"{_interval(ds, at):>13} "
                 f"{float(ds.annual_rate_contact[at]):13.2e}" + _why(ds, at))
     if "repair_cost_by_group" in ds:  # what pounding damages: the acceleration-sensitive
         mce = ds.repair_cost_by_group.sel(level=1.0, method="nearest")
@@ -30,6 +31,15 @@ def decision_table(ds) -> str:
                      + ", ".join(f"{g} {float(share[i].min()):.0f}-{float(share[i].max()):.0f}%"
                                  for i, g in enumerate(ds.component_group.values)))
     return "\n".join(lines)
+
+
+def _interval(ds, at) -> str:
+    """A row's EAL interval in k$ (expected_annual_loss_interval; an archive before it:
+    blank)."""
+    if "expected_annual_loss_interval" not in ds:
+        return ""
+    low, high = ds.expected_annual_loss_interval[at].values / 1e3
+    return f"[{low:.1f}-{high:.1f}]"
 
 
 def _eal_bounded(ds, at) -> bool:

@@ -251,6 +251,25 @@ def test_annual_values_recompute_from_the_stripes_and_the_hazard(loss_quick):
     np.testing.assert_allclose(ds.annual_rate_collapse.values, rate, rtol=1e-12)
 
 
+def test_the_expected_annual_loss_carries_its_paired_interval(loss_quick):
+    ds = loss_quick
+    low, high = ds.expected_annual_loss_interval.sel(interval_bound=[0.025, 0.975]).values
+    eal = ds.expected_annual_loss.values
+    assert (low <= high).all() and (low > 0).all()
+    # the draws resample the earthquakes: some configurations' EAL moves with them
+    assert (high > low).any()
+    cost = ds.repair_cost_interval
+    assert cost.dims == ("interval_bound", "level", "barrier", "gap_fraction")
+    assert (cost.diff("interval_bound") >= 0).all() and (cost > 0).all()
+    # the ratio to the bare wall at the same gap: 1 for the bare wall, on every draw
+    ratio = ds.expected_annual_loss_ratio
+    np.testing.assert_allclose(ratio.sel(barrier="bare wall"), 1.0, rtol=1e-12)
+    bare = ds.expected_annual_loss_ratio_interval.sel(barrier="bare wall")
+    np.testing.assert_allclose(bare, 1.0, rtol=1e-12)
+    np.testing.assert_allclose(ratio, eal / ds.expected_annual_loss.sel(barrier="bare wall")
+                               .values[None], rtol=1e-12)
+
+
 def test_the_loss_study_refuses_a_missing_collapse_archive_in_one_line(tmp_path, capsys):
     pytest.importorskip("pelicun")
     from studies import loss

@@ -159,3 +159,13 @@ def test_the_repair_cost_by_component_group_sums_it():
     np.testing.assert_allclose(parts.sum(axis=-1), out["repair_cost"], rtol=1e-12)
     assert (parts[0] > 0).any(axis=0).all()  # strong shaking: every group somewhere
     assert parts[1, :, 0].mean() > 0 and np.all(parts[1, :, 1:] == 0)
+
+
+def test_each_runs_mean_is_over_the_realizations_that_took_its_demands():
+    from pipeline.assess import loss as p58
+
+    # realization k takes run k mod R: 7 realizations on 3 runs -> runs 0, 1, 2, 0, 1, 2, 0
+    x = np.array([[1.0, 2.0, 3.0, 5.0, 4.0, 3.0, 9.0], [0.0] * 7])
+    got = p58.run_means(x, [3, 2])
+    assert got[0].tolist() == pytest.approx([5.0, 3.0, 3.0])
+    assert got[1, :2].tolist() == [0.0, 0.0] and np.isnan(got[1, 2])
