@@ -55,6 +55,8 @@ indexed component by component), which 32 groups of 1000 realizations share (the
 loss study's 120 groups: 100 s one at a time, 24 s in batches; each group's demand model is
 still fitted alone); more would hold more of its tables (several columns per component,
 location, direction and damage state, for every realization) in memory."""
+RUN_SHARE = 0.25
+"""The runs' own realizations per group (`run_realizations`) as a share of its fitted model's."""
 MIN_RUNS = 3
 """Fewer runs standing than this at an intensity and configuration: no demand model is fitted;
 the loss given no collapse there is bounded by the replacement (`losses`: an upper bound, the
@@ -321,13 +323,16 @@ def _assess(groups, a, yield_drift, samples, seed) -> dict:
         # the generator now stands where each group's own assessment would draw on from: the
         # runs' own demands below draw their residual drifts from a generator of their own
         state = a.options.rng.bit_generator.state
+        per_run = run_realizations(samples)
         for group in groups:
             a.options.seed = seed + 1
-            stacked.append(_runs_sample(a, group, samples, yield_drift))
+            stacked.append(_runs_sample(a, group, per_run, yield_drift))
         a.options.rng.bit_generator.state = state
         a.demand.sample = pd.concat(stacked, ignore_index=True)
-        size = 2 * len(groups) * samples
-        with common_draws(size, samples):
+        size = len(groups) * (samples + per_run)
+        which = np.concatenate([np.tile(np.arange(samples), len(groups)),
+                                np.tile(np.arange(per_run), len(groups))])
+        with common_draws(which, samples):
             a.asset.generate_cmp_sample(size)
             a.damage.calculate(dmg_process={"1_excessiveRID": {"DS1": "irreparable_DS1"}})
             a.loss.calculate()
@@ -356,8 +361,15 @@ def _assess(groups, a, yield_drift, samples, seed) -> dict:
             .reshape(shape),
             "irreparable": (np.nan_to_num(hit).sum(axis=1) > 0)[model].reshape(shape),
             "repair_cost_by_group": parts[model].reshape(*shape, -1),
-            "run_repair_cost": run_means(cost[len(groups) * samples:].reshape(shape),
+            "run_repair_cost": run_means(cost[len(groups) * samples:].reshape(len(groups), -1),
                                          [len(g.pfa) for g in groups])}
+
+
+def run_realizations(samples: int) -> int:
+    """Realizations of a group's runs' own demands (`_runs_sample`) beside `samples` of its
+    fitted model: RUN_SHARE of them (at least one), several a run (44 runs: 5 or 6 each of
+    the default's 250), enough for the runs' relative spread and a quarter of the cost."""
+    return max(1, int(samples * RUN_SHARE))
 
 
 def _runs_sample(a, group, samples: int, yield_drift: float):
@@ -406,22 +418,24 @@ def component_group(loss: str) -> int:
 
 
 @contextmanager
-def common_draws(size: int, samples: int):
-    """Within it, pelicun's random variables asked for `size` realizations draw `samples` and
-    repeat them size / samples times (common random numbers across the stacked groups of
-    `_assess`): the draws of one group's assessment, in the same order from the same
-    generator. Other sizes draw as pelicun does."""
+def common_draws(which, samples: int):
+    """Within it, pelicun's random variables asked for len(which) realizations draw `samples`
+    and give realization k the draw which[k] (common random numbers across the stacked groups
+    of `_assess`: each group's realizations take the draws 0, 1, ... from the start, those of
+    one group's assessment, in the same order from the same generator). Other sizes draw as
+    pelicun does."""
     from pelicun.uq import RandomVariableRegistry
 
     draw = RandomVariableRegistry.generate_sample
+    which = np.asarray(which, int)
 
     def repeated(registry, sample_size, method):
-        if sample_size != size or size == samples:
+        if sample_size != which.size or which.size == samples:
             return draw(registry, sample_size, method)
         draw(registry, samples, method)
         for rv in registry.RV.values():
             if rv._sample is not None:
-                rv._sample = np.tile(rv._sample, size // samples)
+                rv._sample = rv._sample[which]
         return None
 
     RandomVariableRegistry.generate_sample = repeated

@@ -99,6 +99,14 @@ def options(p) -> None:
 
 
 def compute(args):
+    """The collapse archive (`compute_with_grid`'s, without its grid's sweep)."""
+    return compute_with_grid(args)[0]
+
+
+def compute_with_grid(args):
+    """(the collapse archive, the sweep of its grid of levels: every pair at every level
+    without wall, against the bare wall and with the bumpers at every gap, `run`'s), so that
+    a study running the same grid at some of these levels can take them from it."""
     from pipeline.errors import SweepError
 
     if args.rule != "p695":
@@ -125,7 +133,7 @@ def compute(args):
         np.abs(levels - 1.0)))).values / suite.design.d_m
     ds = dataset(suite, levels, fractions, gaps, counts, (mode, at_intensity), intensity, args,
                  free)
-    return ds.assign_attrs({**provenance(swept), **ds.attrs})
+    return ds.assign_attrs({**provenance(swept), **ds.attrs}), swept
 
 
 def oriented_suite(args):
@@ -185,22 +193,27 @@ def refined(suite, levels, gaps, counts, mode, args, rounds: int):
         return high, how.astype(np.int8)
     low = np.where(first > 0, levels[np.maximum(first - 1, 0)], 0.5 * levels[0])
     n_b, n_g = high.shape[1:]
-    # one member per (barrier, gap): its wall as the grid's (no wall, the bare wall, bumpers)
+    # one member per (barrier, gap): its wall as the grid's (no wall, the bare wall, bumpers);
+    # the building without wall is the same at every gap, its brackets too: run once a pair
     law = np.array([["none"] * n_g, ["linear"] * n_g, *(["bumper"] * n_g for _ in counts)])
-    columns = {"law": law.ravel(), "gap": np.where(law == "none", np.nan, gaps).ravel(),
-               "thickness": np.where(law == "bumper", THICKNESS, np.nan).ravel(),
+    run_once = np.ones((n_b, n_g), bool)
+    run_once[0, 1:] = False
+    member = np.cumsum(run_once).reshape(n_b, n_g) - 1  # each (barrier, gap)'s member
+    member[0, :] = 0
+    columns = {"law": law[run_once], "gap": np.where(law == "none", np.nan, gaps)[run_once],
+               "thickness": np.where(law == "bumper", THICKNESS, np.nan)[run_once],
                "n_bumpers": np.array([[np.nan] * n_g] * 2 + [[n] * n_g for n in counts],
-                                     dtype=float).ravel()}
+                                     dtype=float)[run_once]}
     for _ in range(rounds):
         middle = np.where(censored, levels[0], 0.5 * (low + high))
         table = {name: np.broadcast_to(value, (len(suite.pairs), value.size))
                  for name, value in columns.items()}
-        table["level"] = middle.reshape(len(suite.pairs), -1)
+        table["level"] = middle[:, run_once]
         ds = pipeline.sweep(suite.pairs, moat=args.moat, members=table, factors=suite.factors,
                             **{**run_options(args), "building": suite.building})
-        fell = ds["collapsed"].values.reshape(high.shape).astype(bool) & ~censored
+        fell = ds["collapsed"].values[:, member].astype(bool) & ~censored
         high = np.where(fell, middle, high)
-        how = np.where(fell, ds["collapse_mode"].values.reshape(high.shape), how)
+        how = np.where(fell, ds["collapse_mode"].values[:, member], how)
         low = np.where(fell | censored, low, middle)
     return np.where(censored, np.nan, high), how.astype(np.int8)
 

@@ -105,7 +105,7 @@ def compute(args):
         raise SweepError(f"--inventory: {', '.join(unknown)}: not in FEMA P-58's fragility "
                          "database (pelicun's); give FEMA P-58 component IDs, as "
                          "pipeline/data/office_inventory.csv does")
-    fragility = collapse_archive(args)
+    fragility, grid = collapse_archive(args)
     suite = collapse.oriented_suite(args)  # the collapse study's records, both orientations
     s_mt = float(suite.target.at(suite.design.t_m))
     try:
@@ -121,22 +121,39 @@ def compute(args):
                          "it with the same site, bound, stories and pairs)")
     counts = [int(b.split()[0]) for b in fragility.barrier.values[2:]]
     levels = np.array(QUICK_LEVELS if args.quick else LEVELS, dtype=float)
-    peaks, swept = run(suite, levels, gaps, counts, args)
+    peaks, swept = run(suite, levels, gaps, counts, args, grid)
     ds = dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, args)
-    return ds.assign_attrs({**provenance(swept), **ds.attrs})
+    taken = [] if grid is None else levels[np.isin(levels, grid.level.values)]
+    return ds.assign_attrs({**provenance(swept), **ds.attrs, "stripes_from_collapse_grid": (
+        ", ".join(f"{v:.3g}" for v in taken) + " x MCE_R: the collapse study's runs, run in "
+        "this process (sweep_arguments: the stripes run here)" if len(taken) else "none")})
 
 
-def run(suite, levels, gaps, counts, args) -> tuple[dict, object]:
+def run(suite, levels, gaps, counts, args, grid=None) -> tuple[dict, object]:
     """Every pair at every stripe without wall, against the bare wall and with the bumpers at
     every gap (pipeline.sweep, resumable, here or on dask): (PEAKS name -> (R, L, barrier,
-    gap, ...) arrays, the barriers in the collapse grid's order; the sweep's Dataset)."""
+    gap, ...) arrays, the barriers in the collapse grid's order; the sweep's Dataset). The
+    stripes among the levels of `grid` (the collapse study's sweep of the same pairs, gaps and
+    barriers, run in this process: collapse_ida.compute_with_grid) are taken from it, the
+    same simulations; the others are run."""
     import pipeline
 
-    ds = pipeline.sweep(suite.pairs, moat=args.moat, gap=gaps, thickness=THICKNESS,
-                        n_bumpers=list(counts), baseline=True, unconstrained=True,
-                        level=levels, factors=suite.factors,
-                        **{**run_options(args), "building": suite.building})
-    return {name: by_barrier(ds, name, counts) for name in PEAKS}, ds
+    done = np.zeros(levels.size, bool) if grid is None else np.isin(levels, grid.level.values)
+    ds = grid
+    if not done.all():
+        ds = pipeline.sweep(suite.pairs, moat=args.moat, gap=gaps, thickness=THICKNESS,
+                            n_bumpers=list(counts), baseline=True, unconstrained=True,
+                            level=levels[~done], factors=suite.factors,
+                            **{**run_options(args), "building": suite.building})
+    peaks = {}
+    for name in PEAKS:
+        parts = [] if done.all() else [by_barrier(ds, name, counts)]
+        if done.any():
+            parts.append(by_barrier(grid.sel(level=levels[done]), name, counts))
+        both = np.concatenate(parts, axis=1)  # the levels run here, then those taken
+        order = np.argsort(np.concatenate([np.flatnonzero(~done), np.flatnonzero(done)]))
+        peaks[name] = both[:, order]
+    return peaks, ds
 
 
 def by_barrier(ds, name: str, counts) -> np.ndarray:

@@ -52,8 +52,9 @@ def _text(value) -> str:
 
 
 def collapse_archive(args):
-    """The collapse study's archive: --collapse, or the collapse study run now with these
-    options (quick with --quick)."""
+    """(the collapse study's archive, its grid's sweep or None): --collapse (no sweep), or the
+    collapse study run now with these options (quick with --quick), whose sweep of every pair
+    at its levels the loss study reuses where its stripes are among them."""
     import xarray as xr
 
     from pipeline.errors import SweepError
@@ -68,7 +69,7 @@ def collapse_archive(args):
             raise SweepError(f"--collapse: {args.collapse} is not a collapse study's archive "
                              f"({made}); give the collapse.nc that python -m studies.collapse "
                              "writes, or leave --collapse out to run it now")
-        return archive
+        return archive, None
     if not args.quiet:
         print("the collapse fragilities first (studies.collapse)", flush=True)
-    return collapse.compute(args)
+    return collapse.compute_with_grid(args)

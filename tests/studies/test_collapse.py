@@ -451,3 +451,48 @@ def test_the_loss_study_refuses_a_wrong_moat_inventory_in_one_line(tmp_path, cap
     assert len(err.splitlines()) == 1 and err.startswith("loss: error: --moat-inventory: ")
     assert "line 2: trigger must be one of contact, crushed, beyond_d_tm" in err, err
     assert not out.exists() or not any(out.rglob("*.nc"))
+
+
+def test_the_loss_study_takes_the_stripes_the_collapse_grid_ran(monkeypatch):
+    """Run without --collapse, the loss study takes its stripes at the collapse grid's levels
+    from that grid's sweep (the same simulations: checked bit for bit on the quick studies when
+    written) and sweeps only the others, each stripe in its place."""
+    import types
+
+    import xarray as xr
+
+    import pipeline
+    from studies import loss
+
+    def fake(levels, tag):  # a sweep's peaks: 100 x level + tag, per record, level, gap ...
+        base = (100 * np.asarray(levels)[None, :, None] + tag) * np.ones((2, 1, 3))
+        dims = ("record", "level", "gap")
+        data = {}
+        for name in loss.PEAKS:
+            data["baseline_" + name] = (dims, base)
+            data["unconstrained_" + name] = (dims[:2], base[:, :, 0])
+            data[name] = (dims + ("n_bumpers",), np.stack([base + 1, base + 2], axis=-1))
+        return xr.Dataset(data, coords={"level": list(levels), "n_bumpers": [4, 32]})
+
+    swept = []
+
+    def sweep(pairs, **kw):
+        swept.append(list(kw["level"]))
+        return fake(kw["level"], 0.5)
+
+    monkeypatch.setattr(pipeline, "sweep", sweep)
+    monkeypatch.setattr(loss, "run_options", lambda args: {})
+    suite = types.SimpleNamespace(pairs=None, factors=None, building=None)
+    args = types.SimpleNamespace(moat="rectangular")
+    levels = np.array([0.2, 1.0, 1.25, 1.5])
+    grid = fake([0.5, 1.0, 1.5, 2.0], 0.0)
+    peaks, _ = loss.run(suite, levels, np.ones(3), [4, 32], args, grid)
+    assert swept == [[0.2, 1.25]]  # only the stripes the grid did not run
+    got = peaks["n_impacts"]  # (record, level, barrier, gap)
+    assert got.shape == (2, 4, 4, 3)
+    np.testing.assert_array_equal(got[0, :, 1, 0], [20.5, 100.0, 125.5, 150.0])  # bare wall
+    np.testing.assert_array_equal(got[0, :, 3, 0], [22.5, 102.0, 127.5, 152.0])  # 32 bumpers
+    # with an archive given (no grid) every stripe is swept
+    swept.clear()
+    loss.run(suite, levels, np.ones(3), [4, 32], args)
+    assert swept == [levels.tolist()]

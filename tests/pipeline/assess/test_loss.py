@@ -87,6 +87,13 @@ def test_a_group_assessed_among_others_is_the_group_assessed_alone(monkeypatch):
     assert abs(cost.mean() - ref.mean()) < 4 * error
     # the demands differ enough to reach the irreparable drift in some groups only
     assert not together["irreparable"][0].any() and 0 < together["irreparable"][1].mean() < 1
+    # each run's own demands too: its mean cost over its realizations (100 of 400, 8 or 9 a
+    # run), within the consequences' sampling error of the group assessed alone
+    runs, ref_runs = together["run_repair_cost"][1], alone["run_repair_cost"][0]
+    assert runs.shape == (12,) and (runs > 0).all()
+    np.testing.assert_allclose(runs, ref_runs, rtol=0.1)
+    # the runs' mean and the fitted model's agree within the model's extrapolation
+    assert runs.mean() == pytest.approx(cost.mean(), rel=0.2)
 
 
 def test_the_mixture_of_collapse_and_repair():
