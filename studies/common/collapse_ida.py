@@ -178,8 +178,9 @@ def refined(suite, levels, gaps, counts, mode, args, rounds: int):
     """Each pair's collapse intensity (R, barrier, gap), x MCE_R: its first collapsing level
     of the grid, then `rounds` bisections between it and the level below (the last standing;
     half the first level where that one collapses), each round one sweep of every pair and
-    configuration at its own midpoint (listed members, pipeline.listed). NaN where the pair
-    never collapses. mode (R, L, barrier, gap): the grid's runs' collapse_mode (`run`).
+    configuration at its own midpoint (listed members, pipeline.listed; the building without
+    wall once a pair, the same at every gap). NaN where the pair never collapses. mode (R, L,
+    barrier, gap): the grid's runs' collapse_mode (`run`).
     Returns (the intensity; how the pair collapsed there: the collapse_mode (R, barrier, gap)
     int8 of its run at that intensity, 0 where it never collapses)."""
     import pipeline

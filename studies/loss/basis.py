@@ -7,6 +7,9 @@ import numpy as np
 
 from ..common import collapse_ida as collapse
 
+READ = ("acmr", "beta_total", "collapse_probability", "collapse_probability_bound",
+        "collapse_probability_draws", "gap", "gap_fraction", "record", "barrier")
+"""The collapse archive's variables the loss study reads."""
 BASIS = ("S_MS_g", "S_M1_g", "T_L", "scaling_rule", "isolator_bound")
 """The attributes of a collapse archive that must be this loss run's (pipeline.suite_labels):
 the site, the scaling rule and the isolator bound; and every building_* attribute (the
@@ -69,6 +72,11 @@ def collapse_archive(args):
             raise SweepError(f"--collapse: {args.collapse} is not a collapse study's archive "
                              f"({made}); give the collapse.nc that python -m studies.collapse "
                              "writes, or leave --collapse out to run it now")
+        missing = [name for name in READ if name not in archive.variables]
+        if missing:  # an archive of an earlier version of the collapse study
+            raise SweepError(f"--collapse: {args.collapse} has no {', '.join(missing)} (an "
+                             "earlier version of the collapse study wrote it): run python -m "
+                             "studies.collapse again, or leave --collapse out to run it now")
         return archive, None
     if not args.quiet:
         print("the collapse fragilities first (studies.collapse)", flush=True)

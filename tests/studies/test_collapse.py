@@ -297,6 +297,26 @@ def test_the_loss_study_refuses_an_archive_not_of_the_collapse_study(tmp_path, c
     assert not out.exists()
 
 
+def test_the_loss_study_refuses_a_collapse_archive_without_its_draws(quick_path, tmp_path,
+                                                                     capsys):
+    """An archive of an earlier collapse study (no bootstrap draws, which the EAL's interval
+    reads) is refused in one line that says to run the collapse study again, nothing
+    written."""
+    pytest.importorskip("pelicun")
+    import xarray as xr
+
+    from studies import loss
+
+    with xr.open_dataset(quick_path / "quick" / "collapse.nc") as ds:
+        old = tmp_path / "old.nc"
+        ds.drop_vars("collapse_probability_draws").to_netcdf(old)
+    out = tmp_path / "out"
+    assert loss.main(["--quick", "--collapse", str(old), "--out", str(out)]) == 2
+    (line,) = capsys.readouterr().err.strip().splitlines()
+    assert "has no collapse_probability_draws" in line and "studies.collapse again" in line
+    assert not out.exists()
+
+
 def test_the_loss_study_refuses_components_fema_p58_lacks_before_compute(tmp_path, capsys):
     """Issue 40: an inventory naming a component FEMA P-58 does not hold ended in a traceback
     after the simulations. It is refused in one line before any compute, naming it, nothing
