@@ -193,9 +193,10 @@ def add_stories(p, lateral_system: str = DEFAULT_SYSTEM) -> None:
                         "concentrically braced frame)")
 
 
-ISOLATOR_CHOICES = ("given", "designed-tfp")
-"""--isolators: the building's own isolators, or triple friction pendulums designed for the
-site (pipeline.motions.designed_isolation)."""
+ISOLATOR_CHOICES = ("given", "designed-tfp", "designed-lrb")
+"""--isolators: the building's own isolators, or triple friction pendulums or lead-rubber
+bearings designed for the site (pipeline.motions.designed_isolation.DESIGNS, which a test holds
+to these)."""
 
 
 def add_isolators(p, default: str = ISOLATOR_CHOICES[0]) -> None:
@@ -209,17 +210,21 @@ def add_isolators(p, default: str = ISOLATOR_CHOICES[0]) -> None:
                         "isolators (the paper's bilinear ones unless --building says "
                         f"otherwise); designed-tfp{mark['designed-tfp']}: triple friction "
                         "pendulums designed for the site, nominal T_M --t-m at the nominal "
-                        "D_M, their restrainers beyond the lower bound's D_TM "
-                        "(pipeline.motions.designed_isolation), the building's masses kept")
+                        "D_M, their restrainers beyond the lower bound's D_TM; "
+                        f"designed-lrb{mark['designed-lrb']}: lead-rubber bearings (bilinear, "
+                        "Q_d 6%% of the weight, K1 10 K2) designed alike, their capacity 10%% "
+                        "beyond D_TM (pipeline.motions.designed_isolation), the building's "
+                        "masses kept")
     p.add_argument("--t-m", type=float, default=TARGET_PERIOD, metavar="S",
-                   help=f"the target effective period T_M of --isolators designed-tfp at "
-                        f"nominal properties, s (default {TARGET_PERIOD:g})")
+                   help=f"the target effective period T_M of designed isolators at nominal "
+                        f"properties, s (default {TARGET_PERIOD:g})")
 
 
 def isolated_building(args, target, factors):
-    """The building a suite is designed for: --building as given, or on triple friction
-    pendulums designed for the site's S_M1 (of --sm1-g, or of the site-specific target) and
-    --t-m (--isolators designed-tfp). ValueError where the design cannot be met."""
+    """The building a suite is designed for: --building as given, or on the isolators
+    --isolators names (triple friction pendulums, lead-rubber bearings) designed for the
+    site's S_M1 (of --sm1-g, or of the site-specific target) and --t-m. ValueError where the
+    design cannot be met."""
     if getattr(args, "isolators", "given") == "given":
         return args.building
     from pipeline.motions.designed_isolation import designed_isolation
@@ -228,7 +233,8 @@ def isolated_building(args, target, factors):
     s_m1 = args.sm1_g if target is None else site_specific_parameters(target)[0][1]
     if not (np.isfinite(args.t_m) and args.t_m > 0):
         raise ValueError(f"--t-m must be a positive period (s), got {args.t_m:g}")
-    return designed_isolation(s_m1, args.building, args.t_m, factors).building
+    return designed_isolation(s_m1, args.building, args.t_m, factors,
+                              kind=args.isolators).building
 
 
 def property_factors(args):

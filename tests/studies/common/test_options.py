@@ -337,8 +337,9 @@ def test_a_spectrum_table_the_code_cannot_use_is_refused_in_one_line(tmp_path, c
 @pytest.mark.parametrize("name", ["collapse", "loss"])
 def test_the_collapse_and_loss_studies_run_a_designed_isolation_system_when_asked(name):
     """--isolators designed-tfp: the building's masses and stories on triple friction
-    pendulums designed for the site and --t-m (pipeline.motions.designed_isolation); given (the
-    default) keeps the building's own isolators; a period the friction forbids is one line."""
+    pendulums designed for the site and --t-m (pipeline.motions.designed_isolation), or
+    designed-lrb on lead-rubber bearings; given keeps the building's own isolators; a period
+    the friction forbids is one line."""
     from pipeline.building_file import building_from
     from pipeline.errors import SweepError
     from pipeline.motions.designed_isolation import designed_isolation
@@ -359,6 +360,12 @@ def test_the_collapse_and_loss_studies_run_a_designed_isolation_system_when_aske
     expected = designed_isolation(0.9, args.building, 2.5, property_factors(args)).building
     assert building.isolator.law == "triple_friction_pendulum"
     assert building.isolator.values == expected.isolator.values
+    # --isolators designed-lrb: lead-rubber bearings for the same target
+    lrb = parsed("--isolators", "designed-lrb", "--t-m", "2.5", "--sm1-g", "0.9")
+    bearing = isolated_building(lrb, None, property_factors(lrb)).isolator
+    expected = designed_isolation(0.9, lrb.building, 2.5, property_factors(lrb),
+                                  kind="designed-lrb").building.isolator
+    assert bearing.law == "bilinear" and bearing.values == expected.values
     with pytest.raises(SweepError, match="cannot be reached"):
         scaled_suite(parsed("--isolators", "designed-tfp", "--t-m", "6", "--sm1-g", "0.1"), [],
                      [])
