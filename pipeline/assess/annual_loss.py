@@ -1,7 +1,8 @@
-"""The expected annual loss under resamplings of the earthquakes: the paired bootstrap of the
-collapse study (`collapse.resampled_weights`, the same seed: the same resampled earthquakes)
-carried through the loss at every stripe, so that two configurations' EALs are compared on
-the same draws. Pure functions of arrays.
+"""A stripe's loss, collapse and repair mixed (FEMA P-58-1 Eq. 7-1: `mixture` of the
+realizations, `stripe_means`), and the expected annual loss under resamplings of the
+earthquakes: the paired bootstrap of the collapse study (`collapse.resampled_weights`, the
+same seed: the same resampled earthquakes) carried through the loss at every stripe, so that
+two configurations' EALs are compared on the same draws. Pure functions of arrays.
 
 Each draw changes what a stripe's mean loss is made of:
 - P(collapse | stripe): the collapse study's draw of P(collapse | MCE_R) (the fragility of
@@ -63,6 +64,28 @@ def stripe_collapse(levels, mce_draws, beta) -> np.ndarray:
     z = norm.ppf(p)[:, None]
     x = np.log(np.asarray(levels, float)).reshape((1, -1) + (1,) * (z.ndim - 2))
     return norm.cdf(x / np.asarray(beta, float) + z)
+
+
+def mixture(given_no_collapse, collapse_probability, replacement: float, quantiles=()):
+    """The statistics of a loss that is `replacement` with probability collapse_probability
+    (..., ) and else distributed as the realizations given_no_collapse (..., S): (mean (...),
+    quantiles (len(quantiles), ...)), the quantiles of the mixture's distribution (the
+    realizations weighted (1 - P(C)) / S each, the replacement P(C))."""
+    x = np.asarray(given_no_collapse, float)
+    p = np.asarray(collapse_probability, float)
+    mean = p * replacement + (1 - p) * x.mean(axis=-1)
+    q = np.asarray(quantiles, float)
+    out = np.full((q.size, *x.shape[:-1]), np.nan)
+    for index in np.ndindex(x.shape[:-1]):
+        if not np.isfinite(p[index]) or np.isnan(x[index]).any():
+            continue
+        values = np.append(np.sort(x[index]), replacement)
+        weight = np.append(np.full(x.shape[-1], (1 - p[index]) / x.shape[-1]), p[index])
+        order = np.argsort(values, kind="stable")
+        cdf = np.cumsum(weight[order])
+        out[(slice(None), *index)] = values[order][
+            np.minimum(np.searchsorted(cdf, q - 1e-12), values.size - 1)]
+    return mean, out
 
 
 def stripe_means(collapse, given, replacement: float) -> np.ndarray:

@@ -6,17 +6,16 @@ cost. The damage and loss calculation is pelicun's; this module turns the simula
 into its demand samples and its results into arrays.
 
 Method (FEMA P-58-1 chapters 5 to 7, the intensity-based assessment): at each intensity and
-configuration the runs that did not collapse give the demands (studies.loss enters every
-one, those outside the model's range as computed); pelicun fits a joint lognormal
-distribution to them (FEMA P-58-1 section 5.3, Yang et al. 2009) and draws `samples`
-realizations. The building collapses with the collapse
-fragility's probability at that intensity and is then replaced (the collapse enters exactly,
-by its probability: `mixture`); a realization is irreparable where its residual drift exceeds
-the irreparable-drift fragility (replaced too), or else is repaired, component by component,
-at the cost and in the time of the component's damage states (FEMA P-58's consequence
-functions, with their economies of scale). The residual drift is FEMA P-58-1 section 5.4's
-estimate from the peak drift and the story's yield drift (the simulator's records end while
-the building still moves).
+configuration the runs that did not collapse give the demands (studies.loss enters every one,
+those outside the model's range as computed); pelicun fits a joint lognormal distribution to
+them (FEMA P-58-1 section 5.3, Yang et al. 2009) and draws `samples` realizations. The building
+collapses with the collapse fragility's probability at that intensity and is then replaced (the
+collapse enters exactly, by its probability: annual_loss.mixture); a realization is irreparable
+where its residual drift exceeds the irreparable-drift fragility (replaced too), or else is
+repaired, component by component, at the cost and in the time of the component's damage states
+(FEMA P-58's consequence functions, with their economies of scale). The residual drift is FEMA
+P-58-1 section 5.4's estimate from the peak drift and the story's yield drift (the simulator's
+records end while the building still moves).
 
 Units: accelerations m/s^2, drift ratios 1, costs in the database's USD of 2011 (FEMA P-58's
 consequence data), repair times in worker-days.
@@ -32,6 +31,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+
+from .loss_tables import fragilities, replacement
 
 INVENTORY = Path(__file__).resolve().parents[1] / "data" / "office_inventory.csv"
 """The default inventory of an office building: each component's FEMA P-58 ID, its quantity
@@ -185,11 +186,11 @@ def losses(groups, rows, *, stories: int, floor_area: float, yield_drift: float,
     replacement_cost and replacement_time. A group of fewer than MIN_RUNS runs has no demand
     model: its loss given no collapse is taken at its upper bound, the replacement (every
     realization irreparable, replaced: `bounded`), its collapse probability its own; a group
-    None is NaN (False) throughout. The collapse enters
-    exactly, not sampled (FEMA P-58-1 Eq. 7-1: P(C) times the replacement plus (1 - P(C))
-    times the loss given no collapse): `mixture` gives its statistics. progress: None, or
-    called with no argument as each group is done (BATCH groups at a time: pelicun's cost is
-    mostly per assessment, not per realization, so the groups share one, `_assess`)."""
+    None is NaN (False) throughout. The collapse enters exactly, not sampled (FEMA P-58-1
+    Eq. 7-1: P(C) times the replacement plus (1 - P(C)) times the loss given no collapse):
+    annual_loss.mixture gives its statistics. progress: None, or called with no argument as
+    each group is done (BATCH groups at a time, sharing one pelicun assessment, `_assess`;
+    every other batch in a second process where there are two cores, the same numbers)."""
     pelicun()
     from scipy.stats import norm
 
@@ -220,20 +221,70 @@ def losses(groups, rows, *, stories: int, floor_area: float, yield_drift: float,
                 if group is not None and len(group.pfa) >= MIN_RUNS]
     if not modelled:
         return out
-    assessment = _assessment(marginals(rows, stories, floor_area),
-                             database(tuple(r["component"] for r in rows)), stories, cost, time,
-                             seed)
-    for start in range(0, len(modelled), BATCH):
-        batch = modelled[start:start + BATCH]
-        some = _assess([groups[g] for g in batch], assessment, yield_drift, samples, seed)
-        runs = some.pop("run_repair_cost")
-        out["run_repair_cost"][batch, :runs.shape[1]] = runs
-        for name, value in some.items():
-            out[name][batch] = value
-        if progress is not None:
-            for _ in batch:
-                progress()
+    setting = (tuple(tuple(sorted(r.items())) for r in rows), stories, floor_area, cost, time,
+               seed, yield_drift, samples)
+    batches = [modelled[start:start + BATCH] for start in range(0, len(modelled), BATCH)]
+    # every other batch to a second process where there are two cores (pelicun holds the GIL):
+    # each batch draws what it would draw alone (its generator seeded anew), in any process
+    pool = _helper() if len(batches) > 1 else None
+    theirs = {}
+    if pool is not None:
+        from pipeline.execute.dask_client import main_hidden
+
+        with main_hidden():  # the helper must not re-run a script without a __main__ guard
+            theirs = {k: pool.submit(_assess_elsewhere, setting, [groups[g] for g in batch])
+                      for k, batch in enumerate(batches) if k % 2}
+    try:
+        for k, batch in enumerate(batches):
+            some = theirs[k].result() if k in theirs else \
+                _assess_with(setting, [groups[g] for g in batch])
+            runs = some.pop("run_repair_cost")
+            out["run_repair_cost"][batch, :runs.shape[1]] = runs
+            for name, value in some.items():
+                out[name][batch] = value
+            if progress is not None:
+                for _ in batch:
+                    progress()
+    finally:
+        _ASSESSMENTS.clear()  # pelicun's tables freed, as the assessment went out of scope
+        if pool is not None:
+            pool.shutdown(cancel_futures=True)
     return out
+
+
+def _helper():
+    """One more process for `losses`' batches where this one may run on two cores or more
+    (spawned: a clean interpreter, whatever threads this one runs), else None."""
+    import multiprocessing
+    import os
+    from concurrent.futures import ProcessPoolExecutor
+
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    return ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn")) \
+        if (cores or 1) > 1 else None
+
+
+_ASSESSMENTS: dict = {}
+"""setting -> the pelicun assessment `_assess_with` built for it, in this process."""
+
+
+def _assess_with(setting, groups) -> dict:
+    """`_assess` of the groups on the assessment of `setting` (rows as sorted items, stories,
+    floor_area, replacement cost and time, seed, yield_drift, samples), built once a process."""
+    rows, stories, floor_area, cost, time, seed, yield_drift, samples = setting
+    if setting not in _ASSESSMENTS:
+        _ASSESSMENTS.clear()  # one building's at a time
+        table = [dict(r) for r in rows]
+        _ASSESSMENTS[setting] = _assessment(
+            marginals(table, stories, floor_area),
+            database(tuple(r["component"] for r in table)), stories, cost, time, seed)
+    return _assess(groups, _ASSESSMENTS[setting], yield_drift, samples, seed)
+
+
+def _assess_elsewhere(setting, groups) -> dict:
+    """`_assess_with` in the helper process (pelicun imported there first)."""
+    pelicun()
+    return _assess_with(setting, groups)
 
 
 @functools.cache
@@ -281,7 +332,7 @@ def _assessment(assets, data, stories, cost, time, seed):
         a.stories = stories
         a.asset.load_cmp_model({"marginals": assets})
         a.asset.generate_cmp_sample(1)
-        a.damage.load_model_parameters([fragilities(), data[0]],
+        a.damage.load_model_parameters([fragilities(*IRREPARABLE_DRIFT), data[0]],
                                        sorted(a.asset.list_unique_component_ids()))
         a.loss.decision_variables = ("Cost", "Time")
         # The loss map written out in a fixed order (pelicun's "fill" policy builds it from a
@@ -443,57 +494,3 @@ def common_draws(which, samples: int):
         yield
     finally:
         RandomVariableRegistry.generate_sample = draw
-
-
-def mixture(given_no_collapse, collapse_probability, replacement: float, quantiles=()):
-    """The statistics of a loss that is `replacement` with probability collapse_probability
-    (..., ) and else distributed as the realizations given_no_collapse (..., S): (mean (...),
-    quantiles (len(quantiles), ...)), the quantiles of the mixture's distribution (the
-    realizations weighted (1 - P(C)) / S each, the replacement P(C))."""
-    x = np.asarray(given_no_collapse, float)
-    p = np.asarray(collapse_probability, float)
-    mean = p * replacement + (1 - p) * x.mean(axis=-1)
-    q = np.asarray(quantiles, float)
-    out = np.full((q.size, *x.shape[:-1]), np.nan)
-    for index in np.ndindex(x.shape[:-1]):
-        if not np.isfinite(p[index]) or np.isnan(x[index]).any():
-            continue
-        values = np.append(np.sort(x[index]), replacement)
-        weight = np.append(np.full(x.shape[-1], (1 - p[index]) / x.shape[-1]), p[index])
-        order = np.argsort(values, kind="stable")
-        cdf = np.cumsum(weight[order])
-        out[(slice(None), *index)] = values[order][
-            np.minimum(np.searchsorted(cdf, q - 1e-12), values.size - 1)]
-    return mean, out
-
-
-def fragilities():
-    """The irreparable-drift fragility and the irreparable placeholder (a DataFrame in
-    pelicun's damage-model columns)."""
-    import pandas as pd
-
-    rows = {
-        "excessiveRID": ["Residual Interstory Drift Ratio", "unitless", "lognormal",
-                         IRREPARABLE_DRIFT[0], IRREPARABLE_DRIFT[1]],
-        "irreparable": ["One", "unitless", None, 1e10, None],
-    }
-    columns = pd.MultiIndex.from_tuples([("Demand", "Type"), ("Demand", "Unit"),
-                                         ("LS1", "Family"), ("LS1", "Theta_0"),
-                                         ("LS1", "Theta_1")])
-    table = pd.DataFrame.from_dict(rows, orient="index")
-    table.columns = columns
-    table[("Demand", "Directional")] = 1
-    table[("Demand", "Offset")] = 0
-    table["Incomplete"] = 0
-    return table
-
-
-def replacement(cost: float, time: float):
-    """The replacement consequence (a DataFrame in pelicun's loss-model columns): the
-    building's cost (USD 2011) and time (worker-days), without dispersion."""
-    import pandas as pd
-
-    index = pd.MultiIndex.from_tuples([("replacement", "Cost"), ("replacement", "Time")])
-    return pd.DataFrame({("Quantity", "Unit"): ["1 EA", "1 EA"],
-                         ("DV", "Unit"): ["USD_2011", "worker_day"],
-                         ("DS1", "Theta_0"): [cost, time]}, index=index)

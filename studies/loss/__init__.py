@@ -236,10 +236,10 @@ def dataset(suite, levels, gaps, counts, peaks, fragility, rows, curve, s_mt, ar
     # each realization given no collapse adds a standing run's moat cost (a bound holds it)
     moat_draws = moat_damage.realizations(moat_runs.sum(axis=0), entered, share,
                                           args.samples) * ~bounded[..., None]
-    mean_cost, cost_q = p58.mixture(out["repair_cost"].reshape(*shape, -1) + moat_draws, p_c,
-                                    out["replacement_cost"], q)
-    mean_time, time_q = p58.mixture(out["repair_time"].reshape(*shape, -1), p_c,
-                                    out["replacement_time"], q)
+    mean_cost, cost_q = annual_loss.mixture(
+        out["repair_cost"].reshape(*shape, -1) + moat_draws, p_c, out["replacement_cost"], q)
+    mean_time, time_q = annual_loss.mixture(out["repair_time"].reshape(*shape, -1), p_c,
+                                            out["replacement_time"], q)
     median_cost = cost_q[QUANTILES.index(0.5)]
     by_group = np.concatenate([np.moveaxis(out["repair_cost_by_group"].reshape(
         *shape, -1, len(p58.COMPONENT_GROUPS)).mean(axis=-2), -1, 0),

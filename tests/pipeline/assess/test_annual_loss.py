@@ -64,3 +64,13 @@ def test_the_annual_loss_is_the_stripes_mean_over_their_intervals():
     got = annual_loss.annual_loss(sa, annual_loss.stripe_means(top, given, 1e7), curve)
     assert got[0, 0] == pytest.approx(1000.0 * rates[:-1].sum() + 1e7 * rates[-1], rel=1e-12)
     assert math.isfinite(got[0, 0])
+
+
+def test_the_mixture_of_collapse_and_repair():
+    given = np.array([[1.0, 2.0, 3.0, 4.0]])
+    mean, q = annual_loss.mixture(given, np.array([0.25]), 100.0, (0.1, 0.5, 0.74, 0.76))
+    assert mean[0] == pytest.approx(0.25 * 100 + 0.75 * 2.5)
+    # each repair realization weighs 0.75 / 4: cumulative 0.1875, 0.375, 0.5625, 0.75, then 1
+    assert q[:, 0].tolist() == [1.0, 3.0, 4.0, 100.0]
+    none, _ = annual_loss.mixture(given, np.array([0.0]), 100.0)
+    assert none[0] == 2.5

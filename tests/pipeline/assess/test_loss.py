@@ -96,17 +96,6 @@ def test_a_group_assessed_among_others_is_the_group_assessed_alone(monkeypatch):
     assert runs.mean() == pytest.approx(cost.mean(), rel=0.2)
 
 
-def test_the_mixture_of_collapse_and_repair():
-    loss = pytest.importorskip("pipeline.assess.loss")
-    given = np.array([[1.0, 2.0, 3.0, 4.0]])
-    mean, q = loss.mixture(given, np.array([0.25]), 100.0, (0.1, 0.5, 0.74, 0.76))
-    assert mean[0] == pytest.approx(0.25 * 100 + 0.75 * 2.5)
-    # each repair realization weighs 0.75 / 4: cumulative 0.1875, 0.375, 0.5625, 0.75, then 1
-    assert q[:, 0].tolist() == [1.0, 3.0, 4.0, 100.0]
-    none, _ = loss.mixture(given, np.array([0.0]), 100.0)
-    assert none[0] == 2.5
-
-
 def test_a_bad_inventory_is_refused_in_one_line(tmp_path):
     loss = pytest.importorskip("pipeline.assess.loss")
     bad = tmp_path / "bad.csv"
