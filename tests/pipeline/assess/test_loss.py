@@ -66,7 +66,8 @@ def test_collapse_enters_by_its_probability():
 
 def test_a_group_assessed_among_others_is_the_group_assessed_alone(monkeypatch):
     """The groups share pelicun's assessments (BATCH at a time, here 2 so that the three
-    groups span two batches), each drawing what it would draw alone: the second group's
+    groups span two batches, the second in a helper process on two cores), each drawing what
+    it would draw alone: the second group's
     irreparable realizations (its demands' residual drift against the capacities) are the
     same realizations, and its mean repair cost agrees within the consequences' sampling
     error (pelicun draws those for the components and damage states the batch reaches)."""
@@ -94,6 +95,11 @@ def test_a_group_assessed_among_others_is_the_group_assessed_alone(monkeypatch):
     np.testing.assert_allclose(runs, ref_runs, rtol=0.1)
     # the runs' mean and the fitted model's agree within the model's extrapolation
     assert runs.mean() == pytest.approx(cost.mean(), rel=0.2)
+    # the second batch (the third group) went to the helper process where there are two
+    # cores: its numbers are those of the group assessed alone here, bit for bit
+    third = loss.losses(groups[2:], rows, **kw)
+    for name in ("repair_cost", "repair_time", "run_repair_cost"):
+        np.testing.assert_array_equal(together[name][2], third[name][0])
 
 
 def test_a_bad_inventory_is_refused_in_one_line(tmp_path):
