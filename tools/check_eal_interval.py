@@ -103,10 +103,7 @@ def compare(args) -> list[dict]:
     peaks, standing, suite, fragility, levels, drift = stripes(args)
     args.building = suite.building
     full, out = model_means(peaks, standing, np.ones(standing.shape[0], int), drift, args)
-    runs = np.full(standing.shape, np.nan)
-    for k, index in enumerate(np.ndindex(standing.shape[1:])):
-        keep = standing[(slice(None), *index)]
-        runs[(keep, *index)] = out["run_repair_cost"][k, :keep.sum()]
+    runs = annual_loss.runs_in_place(out["run_repair_cost"], standing)
     weights = np.asarray(suite.weights, float)
     mce = fragility.collapse_probability_draws.transpose("draw", "barrier", "gap_fraction")
     draws = resampled_weights(weights, suite.events, draws=mce.sizes["draw"])

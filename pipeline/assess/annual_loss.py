@@ -40,6 +40,18 @@ def weighted_means(values, standing, weights) -> np.ndarray:
         return np.where(count > 0, total / count, np.nan)
 
 
+def runs_in_place(per_group, standing) -> np.ndarray:
+    """(R, ...) each standing run's value from per_group (G, max runs) (pipeline.assess.loss.losses'
+    run_repair_cost), the groups in C order over standing's trailing axes (standing (R, ...)
+    bool), each group's runs those standing there in order; NaN where a run does not stand."""
+    standing = np.asarray(standing, bool)
+    out = np.full(standing.shape, np.nan)
+    for k, index in enumerate(np.ndindex(standing.shape[1:])):
+        keep = standing[(slice(None), *index)]
+        out[(keep, *index)] = per_group[k, :keep.sum()]
+    return out
+
+
 def given_no_collapse(model_mean, run_cost, standing, weights, draws) -> np.ndarray:
     """(D, ...) the mean repair cost given no collapse under each draw: model_mean (...) (the
     fitted demand model's) times the runs' weighted mean of run_cost (R, ...) under the draw's

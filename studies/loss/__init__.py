@@ -145,14 +145,14 @@ def run(suite, levels, gaps, counts, args, grid=None) -> tuple[dict, object]:
                             n_bumpers=list(counts), baseline=True, unconstrained=True,
                             level=levels[~done], factors=suite.factors,
                             **{**run_options(args), "building": suite.building})
+    # the levels run here, then those taken, put back in the stripes' order
+    order = np.argsort(np.concatenate([np.flatnonzero(~done), np.flatnonzero(done)]))
     peaks = {}
     for name in PEAKS:
         parts = [] if done.all() else [by_barrier(ds, name, counts)]
         if done.any():
             parts.append(by_barrier(grid.sel(level=levels[done]), name, counts))
-        both = np.concatenate(parts, axis=1)  # the levels run here, then those taken
-        order = np.argsort(np.concatenate([np.flatnonzero(~done), np.flatnonzero(done)]))
-        peaks[name] = both[:, order]
+        peaks[name] = np.concatenate(parts, axis=1)[:, order]
     return peaks, ds
 
 
@@ -429,12 +429,8 @@ def repair_cost_draws(fragility, suite, levels, entered, out, moat) -> np.ndarra
     per run (moat (R, L, B, G), USD_2011, none where a stripe's loss is bounded)."""
     from pipeline.assess.collapse import resampled_weights
 
-    shape = entered.shape[1:]
-    run_cost = np.full(entered.shape, np.nan)
-    for k, index in enumerate(np.ndindex(shape)):
-        keep = entered[(slice(None), *index)]
-        run_cost[(keep, *index)] = out["run_repair_cost"][k, :keep.sum()]
-    model = out["repair_cost"].reshape(*shape, -1).mean(axis=-1)
+    run_cost = annual_loss.runs_in_place(out["run_repair_cost"], entered)
+    model = out["repair_cost"].reshape(*entered.shape[1:], -1).mean(axis=-1)
     mce = fragility.collapse_probability_draws.transpose("draw", "barrier", "gap_fraction")
     draws = resampled_weights(suite.weights, suite.events, draws=mce.sizes["draw"])
     given = annual_loss.given_no_collapse(model, run_cost, entered, suite.weights, draws) \

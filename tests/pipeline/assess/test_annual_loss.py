@@ -74,3 +74,10 @@ def test_the_mixture_of_collapse_and_repair():
     assert q[:, 0].tolist() == [1.0, 3.0, 4.0, 100.0]
     none, _ = annual_loss.mixture(given, np.array([0.0]), 100.0)
     assert none[0] == 2.5
+
+
+def test_each_runs_value_goes_back_to_its_place():
+    standing = np.array([[True, False], [False, True], [True, True]])  # (R 3, groups 2)
+    per_group = np.array([[10.0, 30.0], [21.0, 31.0]])  # group 0: runs 0, 2; group 1: 1, 2
+    got = annual_loss.runs_in_place(per_group, standing)
+    np.testing.assert_array_equal(got, [[10.0, np.nan], [np.nan, 21.0], [30.0, 31.0]])
