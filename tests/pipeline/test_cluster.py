@@ -26,7 +26,12 @@ from tests.helpers import wait_until
 from tests.pipeline.small_sweep import no_compute
 
 PROJECT = Path(__file__).resolve().parents[2]
-ENV = {**os.environ, "NUMBA_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"}
+ENV = {**os.environ, "NUMBA_NUM_THREADS": "1", "OMP_NUM_THREADS": "1",
+       # A scheduler or worker asked to reach a worker just killed retries its address until
+       # dask's connect timeout (30 s by default; one suite run in several waited it out in
+       # test_workers_killed_mid_run): 10 s on localhost still leaves any live peer time to
+       # answer on two loaded cores.
+       "DASK_DISTRIBUTED__COMM__TIMEOUTS__CONNECT": "10s"}
 
 
 def _free_port() -> int:
