@@ -62,6 +62,7 @@ def million(repeats: int) -> None:
     print(f"10^6 members x 100 steps: {wall:.2f} s end to end, {engine_s:.2f} s in the "
           f"engine's batches, {wall - engine_s:.2f} s the rest (medians of {repeats})")
     target = Path(__file__).resolve().parent / "results" / "bench_sweep_million.json"
+    target.parent.mkdir(parents=True, exist_ok=True)  # git-ignored: absent from a clone
     target.write_text(json.dumps(out, indent=2))
 
 

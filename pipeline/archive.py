@@ -315,7 +315,9 @@ def build_dataset(grid: Grid, run, results: list[dict[str, np.ndarray]] | None,
                 peaks[q.name] = da.full((len(records), *block.shape, *tail), fill,
                                         dtype=q.dtype, chunks=(1, *chunks(block), *tail))
                 continue
-            values = np.stack([res[q.name][part] for res in results])
+            # one record: a view of its peaks (a million members' stacked copy took 0.5 s)
+            values = results[0][q.name][part][np.newaxis] if len(results) == 1 else \
+                np.stack([res[q.name][part] for res in results])
             peaks[q.name] = values.reshape(len(records), *block.shape, *values.shape[2:])
         data_vars.update(peak_variables(peaks, ("record", *block.dims), block.prefix,
                                         quantities))

@@ -116,6 +116,8 @@ class Grid:
         (a grid whose records run members of their own: the first record's)."""
         if self.table is not None:
             return self.table[0]
+        if len(self.blocks) == 1:  # not copied: a million members are 344 MB
+            return self.blocks[0].members
         return np.concatenate([b.members for b in self.blocks])
 
     def members_of(self, record: int) -> np.ndarray:
@@ -325,24 +327,30 @@ def _values(name: str, value) -> tuple[np.ndarray, bool]:
 
 def contact_for(members: np.ndarray) -> engine.Contact:
     """The engine Contact of (B,) MEMBER_DTYPE members, in their order."""
+    laws = members["law"]
+    if laws.size and np.all(laws == laws[0]):  # one law (a grid's block): no regrouping
+        return _law_contact(str(laws[0]), members)
     parts, where = [], []
-    for law in np.unique(members["law"]):
-        idx = np.flatnonzero(members["law"] == law)
-        rows = members[idx]
-        if law == NO_WALL:
-            parts.append(engine.Contact.none(idx.size))
-        else:
-            declared = LAWS[law].PARAMETERS
-            params = {p.name: rows[sweep] for sweep, p in declared.swept().items()}
-            for name in LISTED_PARAMS:  # set by listed members only: else the law's default
-                if name in declared.numeric and not np.all(np.isnan(rows[name])):
-                    params[name] = np.where(np.isnan(rows[name]), declared.numeric[name].default,
-                                            rows[name])
-            parts.append(engine.Contact.of(str(law), m_eff=rows["m_eff"], **params))
+    for law in np.unique(laws):
+        idx = np.flatnonzero(laws == law)
+        parts.append(_law_contact(str(law), members[idx]))
         where.append(idx)
     contact = engine.Contact.concat(parts)
     # Back to member order: part members sit in the order of the concatenated indices.
     return contact[np.argsort(np.concatenate(where), kind="stable")]
+
+
+def _law_contact(law: str, rows: np.ndarray) -> engine.Contact:
+    """The engine Contact of (b,) MEMBER_DTYPE members all of impact law `law`."""
+    if law == NO_WALL:
+        return engine.Contact.none(rows.size)
+    declared = LAWS[law].PARAMETERS
+    params = {p.name: rows[sweep] for sweep, p in declared.swept().items()}
+    for name in LISTED_PARAMS:  # set by listed members only: else the law's default
+        if name in declared.numeric and not np.all(np.isnan(rows[name])):
+            params[name] = np.where(np.isnan(rows[name]), declared.numeric[name].default,
+                                    rows[name])
+    return engine.Contact.of(law, m_eff=rows["m_eff"], **params)
 
 
 def buildings_for(members: np.ndarray, building: engine.Building):

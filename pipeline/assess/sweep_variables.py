@@ -88,7 +88,9 @@ def validity_variables(ds: xr.Dataset, grid, building: engine.Building) -> dict:
         start += block.size
         p = block.prefix
         force = ds[p + "max_impact_force"]
-        members = np.stack([grid.members_of(r)[part] for r in range(ds.sizes["record"])])
+
+        def column(name, part=part):  # (R, M): the members' column, no whole record copied
+            return np.stack([grid.members_of(r)[part][name] for r in range(ds.sizes["record"])])
 
         def along(values, force=force):  # (R, M) -> the block's (record, *dims)
             return xr.DataArray(values.reshape(force.shape), dims=force.dims)
@@ -102,16 +104,17 @@ def validity_variables(ds: xr.Dataset, grid, building: engine.Building) -> dict:
              floor_accel_exceeds(largest_floor_accel(ds[p + "peak_total_accel"]),
                                  limits.floor_accel),
              p + "peak_total_accel")
-        bumper = members["law"] == "bumper"
+        bumper = column("law") == "bumper"
         if bumper.any():
             # no bumpers: infinitely many, infinitely thick (never stressed, never strained)
-            area = along(np.where(np.isnan(members["area"]), default_area, members["area"]))
-            n_bumpers = along(np.where(bumper, members["n_bumpers"], np.inf))
+            area = column("area")
+            area = along(np.where(np.isnan(area), default_area, area))
+            n_bumpers = along(np.where(bumper, column("n_bumpers"), np.inf))
             flag("invalid_bumper_stress",
                  bumper_stress_exceeds(bumper_stress(pad_force(ds, p), n_bumpers, area),
                                        limits.bumper_stress),
                  p + "max_impact_force")
-            thickness = along(np.where(bumper, members["thickness"], np.inf))
+            thickness = along(np.where(bumper, column("thickness"), np.inf))
             flag("invalid_bumper_strain",
                  bumper_strain_exceeds(ds[p + "max_indentation"], thickness,
                                        limits.bumper_strain),

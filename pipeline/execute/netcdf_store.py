@@ -67,9 +67,15 @@ class WorkFolder:
     this process completed with it: the work a finished run may delete (`finish`); any other
     batch is another configuration's (an interrupted run's too: it never completed)."""
 
-    def use(self, contexts, members_of) -> None:
+    DONE: dict = {}
+    """folder -> the batch files that sweeps this process completed wrote there: theirs, which
+    `finish` removes without comparing their members (a million members' records gathered as
+    a set to compare them took 1-2 s)."""
+
+    def use(self, contexts, members_of, written=()) -> None:
         """Note that a sweep of this process completed these contexts with this folder, the
-        members of context i being members_of(i)."""
+        members of context i being members_of(i), and wrote the batch files `written`."""
+        self.DONE.setdefault(self.path, set()).update(written)
         used = self.USED.setdefault(self.path, {})
         for i, context in enumerate(contexts):
             runs = used.setdefault(context, [])
@@ -86,8 +92,13 @@ class WorkFolder:
         from ..errors import KeptWorkNotice
 
         ran = _Completed(self.USED.pop(self.path, {}))
+        done = self.DONE.pop(self.path, set())
         kept = 0
         for file in sorted(self.path.glob("*.npz")):
+            if file in done:
+                file.unlink(missing_ok=True)
+                self.READ.pop(file, None)
+                continue
             try:
                 context, members = _batch_of(file, self.READ.get(file))
             except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
@@ -109,6 +120,7 @@ class WorkFolder:
     def remove(self) -> None:
         """The folder gone, and what this process remembers of its files with it."""
         shutil.rmtree(self.path, ignore_errors=True)
+        self.DONE.pop(self.path, None)
         for file in [f for f in self.READ if f.parent == self.path]:
             del self.READ[file]
 
@@ -124,8 +136,8 @@ class WorkFolder:
         return kept
 
     def save(self, key: str, context: str, members: np.ndarray,
-             peaks: dict[str, np.ndarray]):
-        """Write atomically: a batch file is complete or absent."""
+             peaks: dict[str, np.ndarray]) -> Path:
+        """Write atomically: a batch file is complete or absent. Returns the file."""
         self.path.mkdir(parents=True, exist_ok=True)
         fd, tmp = tempfile.mkstemp(dir=self.path, prefix=f".{key}.", suffix=".tmp")
         try:
@@ -137,6 +149,7 @@ class WorkFolder:
             Path(tmp).unlink(missing_ok=True)
             raise
         self.READ[file] = (_stamp(file), (context, members, peaks))
+        return file
 
 
 def _batch_of(file: Path, known) -> tuple[str, np.ndarray | None]:
@@ -239,6 +252,7 @@ class NetCDFStore:
         self.key = sweep_key(grid.every_member, self.contexts)
         self.total = len(run.records) * grid.n_members
         self.copies: dict = {}  # see pending
+        self.written: list[Path] = []  # the batch files this sweep kept
         self.results = [empty_peaks(grid.n_members, run.building.n_levels, run.moat,
                                     run.building.can_collapse, run.n_points)
                         for _ in run.records]
@@ -293,8 +307,9 @@ class NetCDFStore:
     def accept(self, batch: batches.Batch, peaks: dict[str, np.ndarray]) -> None:
         """Keep the batch in the work folder, and its peaks here."""
         if self.work is not None:
-            self.work.save(batch.key, self.contexts[batch.record],
-                           self.grid.members_of(batch.record)[batch.members], peaks)
+            self.written.append(self.work.save(
+                batch.key, self.contexts[batch.record],
+                self.grid.members_of(batch.record)[batch.members], peaks))
         for name, value in peaks.items():
             self.results[batch.record][name][batch.members] = value
         for k, i in enumerate(batch.members if self.copies else ()):
@@ -310,7 +325,7 @@ class NetCDFStore:
         if self.out is not None:
             write_netcdf(ds, self.out)
         if self.work is not None:  # this run's work, done: a finish may take it away
-            self.work.use(self.contexts, self.grid.members_of)
+            self.work.use(self.contexts, self.grid.members_of, self.written)
         if self.own_work_dir:
             self.work.finish()
         return ds

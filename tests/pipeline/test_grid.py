@@ -42,3 +42,23 @@ def test_bad_input_fails_fast_naming_the_parameter(change, match, monkeypatch):
     kwargs = {"records": RECORDS, **SMALL, "workers": 1, "quiet": True, **change}
     with pytest.raises(SweepError, match=match):
         pipeline.sweep(**kwargs)
+
+
+def test_a_one_law_batch_gets_the_contact_it_gets_among_other_laws():
+    """contact_for's shortcut for members of one law (no regrouping) gives every array of the
+    Contact those members get when mixed with another law's, bit for bit, in member order."""
+    from dataclasses import fields
+
+    import numpy as np
+
+    from pipeline.grid import contact_for, make_grid
+
+    grid = make_grid([0.15, 0.2], n_bumpers=[4, 8], thickness=0.05, baseline=True,
+                     unconstrained=True)
+    members = grid.members
+    bumpers = np.flatnonzero(members["law"] == "bumper")
+    assert 0 < bumpers.size < members.size  # the grid mixes laws
+    mixed, alone = contact_for(members), contact_for(members[bumpers])
+    for field in fields(alone):
+        np.testing.assert_array_equal(getattr(alone, field.name),
+                                      getattr(mixed, field.name)[bumpers], err_msg=field.name)
