@@ -109,7 +109,8 @@ def _run_here(store: Store, batches: list[Batch], progress: Progress,
             output, seconds = timed(function, store.records[batch.record].accel, *args,
                                     progress=lambda step, steps, b=batch:
                                     progress.running(b.key, b.size * step / steps))
-            pace["last"] = seconds / (batch.size * samples_)
+            if batch.size:  # a Zarr region whose members were all written, killed before
+                pace["last"] = seconds / (batch.size * samples_)  # it was marked done
             with sigint_held():  # a batch kept is a batch counted: Interrupted says so
                 store.accept(batch, output)
                 progress.advance(batch.size, batch.key)
@@ -191,7 +192,8 @@ def _run_on_dask(store: Store, batches: list[Batch], workers: int, scheduler,
             for future in done:
                 part = futures.pop(future)
                 output, seconds = future.result()
-                pace["last"] = seconds / (part.size * len(records[part.record].accel))
+                if part.size:  # see _run_here
+                    pace["last"] = seconds / (part.size * len(records[part.record].accel))
                 with sigint_held():
                     store.accept(part, output)
                     progress.advance(part.size, part.key)

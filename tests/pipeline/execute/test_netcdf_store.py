@@ -111,3 +111,30 @@ def test_a_finished_run_takes_out_the_files_whose_members_all_ran_under_their_co
     changed = members[:1].copy()
     changed["gap"] = np.nextafter(changed["gap"], 1.0)  # a record differing in its last bit
     assert not ran("a", changed)
+
+
+def test_a_batch_is_its_members_whether_a_view_or_a_copy():
+    """netcdf_store.taken gives members[which] (a view for a run of consecutive indices, as a
+    fresh grid's batches are), and a batch's key is the SHA-256 of its context and its member
+    records' bytes, as work folders written by earlier versions were named: whether the
+    members are a view, a copy or a strided column of records, the same key."""
+    import hashlib
+
+    import numpy as np
+
+    from pipeline.execute.keys import batch_key
+    from pipeline.members import MEMBER_DTYPE
+
+    members = np.zeros(8, dtype=MEMBER_DTYPE)
+    members["gap"] = 0.1 + np.arange(8) * 0.01
+    members["law"] = "bumper"
+    run, scattered = np.arange(2, 6), np.array([1, 4, 5])
+    view = netcdf_store.taken(members, run)
+    assert np.shares_memory(view, members)
+    np.testing.assert_array_equal(view, members[run])
+    np.testing.assert_array_equal(netcdf_store.taken(members, scattered), members[scattered])
+    assert netcdf_store.taken(members, np.arange(0)).size == 0
+    expected = hashlib.sha256(b"context" + members[run].tobytes()).hexdigest()
+    assert batch_key("context", view) == batch_key("context", members[run].copy()) == expected
+    assert batch_key("context", members[::2]) == \
+        hashlib.sha256(b"context" + members[::2].tobytes()).hexdigest()

@@ -139,6 +139,39 @@ def test_a_batch_is_kept_a_part_at_a_time(record, reference, tmp_path, monkeypat
     _assert_same(resumed, reference)
 
 
+def test_a_region_written_whole_but_not_marked_done_resumes(record, reference, tmp_path,
+                                                            monkeypatch, count_simulated):
+    """A run killed after a region's last part was counted in batch_members_done and before
+    the region was marked done (one of the suite's runs hit it): the same sweep again marks it
+    done without simulating it, simulates only the rest, and gives the NetCDF archive's
+    numbers (its pace was a division by zero members)."""
+    from pipeline.execute import zarr_store
+
+    real, regions = zarr_store.write_batch, []
+
+    def dying(*args, **keywords):
+        place = args[6]
+        if place.index == 1:
+            raise KeyboardInterrupt
+        regions.append(place.stop - place.start)
+        return real(*args, **keywords)
+
+    monkeypatch.setattr(zarr_store, "write_batch", dying)
+    store = tmp_path / "unmarked.zarr"
+    with pytest.raises(Interrupted):
+        pipeline.sweep([record], out=store, batch_size=5, **GRID)
+    group = zarr.open_group(str(store), mode="r+")
+    assert group["batch_done"][0] == 1 and regions == [4]
+    group["batch_done"][0] = 0  # as if killed between the two writes
+    monkeypatch.setattr(zarr_store, "write_batch", real)
+    count_simulated.clear()
+    resumed = pipeline.sweep([record], out=store, batch_size=5, **GRID)
+    # 24 bumper walls, 3 bare ones and the unconstrained building, less region 0's 4
+    assert sum(count_simulated) == 28 - 4 and 0 not in count_simulated
+    assert resumed.batch_done.values.tolist() == [1] * 8
+    _assert_same(resumed, reference)
+
+
 def test_command_line_writes_a_store(tmp_path):
     from studies import sweep as sweep_cli
 
