@@ -103,10 +103,15 @@ def _stop(*procs) -> None:
 
 
 def _wait_for_workers(address: str, n: int, security=None) -> None:
+    """Until the scheduler lists n workers (at least n; exactly none for n = 0: a stopped
+    worker forgotten)."""
     from distributed import Client
 
     with Client(address, timeout=30, security=security, set_as_default=False) as client:
-        client.wait_for_workers(n, timeout=60)
+        if n:
+            client.wait_for_workers(n, timeout=60)
+        else:
+            wait_until(lambda: not client.scheduler_info()["workers"], "the workers' removal")
 
 
 @pytest.fixture(scope="module")
@@ -263,7 +268,7 @@ def test_unfit_clusters_fail_in_one_line(tmp_path, record, monkeypatch):
                 assert "\n" not in str(caught.value)
             finally:
                 _stop(worker)
-                time.sleep(1.0)  # the scheduler forgets the worker
+                _wait_for_workers(address, 0)  # the scheduler forgets the worker
     finally:
         _stop(scheduler)
 
