@@ -216,9 +216,11 @@ def _by_member(context: str, members: np.ndarray, peaks: dict) -> dict:
             for i, member in enumerate(members)}
 
 
-def taken(members: np.ndarray, which: np.ndarray) -> np.ndarray:
-    """members[which]: a view when `which` is a run of consecutive indices (a fresh grid's
-    batches), instead of a copy of records of 344 bytes each."""
+def taken(members: np.ndarray, which: np.ndarray | slice) -> np.ndarray:
+    """members[which]: a view when `which` is a slice or a run of consecutive indices (a fresh
+    grid's batches), instead of a copy of records of 344 bytes each."""
+    if isinstance(which, slice):
+        return members[which]
     if which.size and which[-1] - which[0] + 1 == which.size \
             and np.all(np.diff(which) == 1):
         return members[which[0]:which[-1] + 1]

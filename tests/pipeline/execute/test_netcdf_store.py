@@ -134,6 +134,7 @@ def test_a_batch_is_its_members_whether_a_view_or_a_copy():
     np.testing.assert_array_equal(view, members[run])
     np.testing.assert_array_equal(netcdf_store.taken(members, scattered), members[scattered])
     assert netcdf_store.taken(members, np.arange(0)).size == 0
+    assert np.shares_memory(netcdf_store.taken(members, slice(2, 6)), members)
     expected = hashlib.sha256(b"context" + members[run].tobytes()).hexdigest()
     assert batch_key("context", view) == batch_key("context", members[run].copy()) == expected
     assert batch_key("context", members[::2]) == \
