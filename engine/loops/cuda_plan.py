@@ -17,6 +17,7 @@ import math
 
 from numba import cuda, float64
 
+from ..errors import EngineError
 from ..results import MODE
 from ..stories.registry import MAX_FIELDS, MAX_STATE
 from . import cuda_physics as device
@@ -40,6 +41,11 @@ def _kernel(n_levels: int, circular: bool, story_code: int, isolator_code: int):
     peaks, hist), numba_plan._member's arguments but `members` (a thread each) in place of
     `shape` and `b`."""
     levels = n_levels
+    # The wall directions, a constant of the kernel (run_plan checks the run has as many):
+    # the loops over them unroll, so that u[0, d], v[0, d] and nx[0, d] index the state with
+    # constants and it stays in registers (with a count read at run time, the whole state
+    # went to the thread's local memory at every step).
+    walls = 1 if circular else 2
     stories = max(n_levels - 1, 1)
     operator_rows = 2 * n_levels
     story_force = device.story_law(story_code)
@@ -107,7 +113,7 @@ def _kernel(n_levels: int, circular: bool, story_code: int, isolator_code: int):
         iso_state = cuda.local.array(ISOLATOR_STATE_XY, float64)
         for j in range(ISOLATOR_STATE_XY):
             iso_state[j] = isolator_state[b, j]
-        n_walls = law.shape[1]
+        n_walls = walls
         half_dt = 0.5 * dt
 
         v_imp = cuda.local.array(2, float64)
@@ -338,6 +344,9 @@ def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, histor
     (cuda_loop.run_on_device)."""
     run = plan_run(ag, dt, arrays, contacts, moat, scale, angle, history, arrays_y, mu_wall)
     n_levels, circular = len(run["levels"]), run["circular"]
+    if len(contacts) != (1 if circular else 2):  # the kernel's wall directions (_kernel)
+        raise EngineError(f"a {moat} moat has {1 if circular else 2} wall directions, "
+                          f"got {len(contacts)} contacts")
     run_on_device((run["model"], run["memory"], run["kept"], run["written"]), run["groups"],
                   run["n_steps"], progress,
                   lambda story, isolator: _kernel(n_levels, circular, story, isolator))
