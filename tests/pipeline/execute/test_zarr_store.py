@@ -142,7 +142,7 @@ def test_a_batch_is_kept_a_part_at_a_time(record, reference, tmp_path, monkeypat
 def test_a_region_written_whole_but_not_marked_done_resumes(record, reference, tmp_path,
                                                             monkeypatch, count_simulated):
     """A run killed after a region's last part was counted in batch_members_done and before
-    the region was marked done (one of the suite's runs hit it): the same sweep again marks it
+    the region was marked done (a run of these tests hit it): the same sweep again marks it
     done without simulating it, simulates only the rest, and gives the NetCDF archive's
     numbers (its pace was a division by zero members)."""
     from pipeline.execute import zarr_store
