@@ -227,18 +227,29 @@ def damping_constants(cor, m_eff, n, rule="eq9"):
     return hunt_crossley_chi(cor, n, restitution_only=True), np.ones(cor.shape)
 
 
+def _first(bad: np.ndarray, **values) -> str:
+    """The values (m) by name of the first member where `bad` (B,) holds, and how many
+    members it holds for: a refusal names one member's values, not a million members'."""
+    i = int(np.flatnonzero(bad)[0])
+    said = ", ".join(f"{name} {float(np.ravel(value)[i if np.size(value) > 1 else 0]):g} m"
+                     for name, value in values.items())
+    count, size = int(np.count_nonzero(bad)), np.size(bad)
+    return said + (f" ({count} of {size} members)" if size > 1 else "")
+
+
 def contact_fields(gap, thickness, strain, n_bumpers, k_w, cor, m_eff, cavity, c_imp_rule,
                    c_imp, **pad):
     """The Contact fields of this law from its checked, broadcast (B,) parameters; `pad`: the
     pad's and its rubber's (area, k_r, n, alpha, shape_k, shape_factor_cal)."""
     n = pad["n"]
     if np.any(cavity >= thickness):
-        raise EngineError(f"cavity must be smaller than thickness, got cavity {cavity} m, "
-                          f"thickness {thickness} m")
+        raise EngineError("cavity must be smaller than thickness, got " + _first(
+            cavity >= thickness, cavity=cavity, thickness=thickness))
     protrusion = thickness - cavity
     if np.any(protrusion >= gap):
         raise EngineError("thickness - cavity must be smaller than gap: the bumpers would "
-                          f"close the gap (gap {gap}, thickness {thickness}, cavity {cavity})")
+                          "close the gap, " + _first(protrusion >= gap, gap=gap,
+                                                     thickness=thickness, cavity=cavity))
     if c_imp is None:
         c_imp_coef, c_imp_exponent = damping_constants(cor, m_eff, n, c_imp_rule)
     else:

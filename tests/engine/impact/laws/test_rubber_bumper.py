@@ -201,3 +201,29 @@ def test_a_wall_holds_its_length_over_two_pad_sides():
     assert crowded({"n_bumpers": np.array([100.0]), "area": np.array([0.06 ** 2])}) is None
     assert "pads of 150 mm" in crowded({"n_bumpers": np.array([4.0, 100.0]),
                                         "area": np.array([0.06 ** 2, np.nan])})
+
+
+def test_a_refusal_names_the_first_member_that_fails_not_every_member():
+    """Bumpers that would close the gap, or a cavity as deep as the pad, are refused in one
+    line naming the first such member's values and how many members fail, whatever the
+    batch's size."""
+    import re
+
+    import numpy as np
+    import pytest
+
+    import engine
+    from engine.errors import EngineError
+
+    gaps = np.linspace(0.2, 0.01, 100_000)  # the last 20% of the members too close
+    with pytest.raises(EngineError) as caught:
+        engine.Contact.bumper(gaps, thickness=0.05)
+    said = str(caught.value)
+    assert "\n" not in said and len(said) < 200
+    first = gaps[gaps <= 0.05][0]
+    assert re.search(rf"gap {first:g} m, thickness 0.05 m, cavity 0 m \((\d+) of 100000 members\)",
+                     said)
+    assert f"({np.count_nonzero(gaps <= 0.05)} of 100000 members)" in said
+    with pytest.raises(EngineError, match=r"^cavity must be smaller than thickness, got cavity "
+                                          r"0\.05 m, thickness 0\.05 m$"):
+        engine.Contact.bumper([0.2], thickness=0.05, cavity=0.05)
