@@ -17,7 +17,6 @@ import math
 
 from numba import cuda, float64
 
-from ..errors import EngineError
 from ..results import MODE
 from ..stories.registry import MAX_FIELDS, MAX_STATE
 from . import cuda_physics as device
@@ -35,17 +34,16 @@ from .numba_plan import plan_outcome, plan_run, wall_contact, wall_friction
 
 
 @functools.cache
-def _kernel(n_levels: int, circular: bool, story_code: int, isolator_code: int):
-    """The kernel of buildings of n_levels levels in a circular moat or not, on story law
-    `story_code` and isolator law `isolator_code`: kernel(members, s0, s1, model, memory,
-    peaks, hist), numba_plan._member's arguments but `members` (a thread each) in place of
-    `shape` and `b`."""
+def _kernel(n_levels: int, circular: bool, walls: int, story_code: int, isolator_code: int):
+    """The kernel of buildings of n_levels levels in a circular moat or not, against `walls`
+    wall directions (1 or 2), on story law `story_code` and isolator law `isolator_code`:
+    kernel(members, s0, s1, model, memory, peaks, hist), numba_plan._member's arguments but
+    `members` (a thread each) in place of `shape` and `b`."""
     levels = n_levels
-    # The wall directions, a constant of the kernel (run_plan checks the run has as many):
-    # the loops over them unroll, so that u[0, d], v[0, d] and nx[0, d] index the state with
-    # constants (with a count read at run time, the levels' u, v and nx lived in the
-    # thread's local memory: 352 bytes, loaded and stored at every step).
-    walls = 1 if circular else 2
+    # `walls`, the wall directions (the run's contacts), a constant of the kernel: the loops
+    # over them unroll, so that u[0, d], v[0, d] and nx[0, d] index the state with constants
+    # (with a count read at run time, the levels' u, v and nx lived in the thread's local
+    # memory: 352 bytes, loaded and stored at every step).
     stories = max(n_levels - 1, 1)
     operator_rows = 2 * n_levels
     story_force = device.story_law(story_code)
@@ -344,10 +342,8 @@ def run_plan(ag, dt, arrays, contacts, moat: str, progress, scale, angle, histor
     (cuda_loop.run_on_device)."""
     run = plan_run(ag, dt, arrays, contacts, moat, scale, angle, history, arrays_y, mu_wall)
     n_levels, circular = len(run["levels"]), run["circular"]
-    if len(contacts) != (1 if circular else 2):  # the kernel's wall directions (_kernel)
-        raise EngineError(f"a {moat} moat has {1 if circular else 2} wall directions, "
-                          f"got {len(contacts)} contacts")
     run_on_device((run["model"], run["memory"], run["kept"], run["written"]), run["groups"],
                   run["n_steps"], progress,
-                  lambda story, isolator: _kernel(n_levels, circular, story, isolator))
+                  lambda story, isolator: _kernel(n_levels, circular, len(contacts), story,
+                                                  isolator))
     return plan_outcome(run, history)

@@ -85,7 +85,7 @@ def mixture(given_no_collapse, collapse_probability, replacement: float, quantil
     realizations weighted (1 - P(C)) / S each, the replacement P(C))."""
     x = np.asarray(given_no_collapse, float)
     p = np.asarray(collapse_probability, float)
-    mean = p * replacement + (1 - p) * x.mean(axis=-1)
+    mean = stripe_means(p, x.mean(axis=-1), replacement)
     q = np.asarray(quantiles, float)
     out = np.full((q.size, *x.shape[:-1]), np.nan)
     for index in np.ndindex(x.shape[:-1]):

@@ -357,20 +357,14 @@ def _assess(groups, a, yield_drift, samples, seed) -> dict:
     run_repair_cost (len(groups), max runs): each run's mean repair cost on its own demands
     (`_runs_sample`, assessed in the same calculation on the same draws)."""
     import pandas as pd
-    from pelicun.model import DemandModel
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         stacked = []
         for group in groups:
             a.options.seed = seed
-            a.demand = DemandModel(a)
-            a.demand.load_sample(raw_demands(group.pfa, group.pid))
-            a.demand.calibrate_model({"ALL": {"DistributionFamily": "lognormal"}})
-            a.demand.generate_sample({"SampleSize": samples})
-            a.demand.estimate_RID_and_adjust_sample({"yield_drift": yield_drift})
-            a.demand.expand_sample("ONE", 1.0, "unitless")
-            stacked.append(a.demand.sample)
+            stacked.append(_demand_sample(a, raw_demands(group.pfa, group.pid), yield_drift,
+                                          fitted=samples))
         # the generator now stands where each group's own assessment would draw on from: the
         # runs' own demands below draw their residual drifts from a generator of their own
         state = a.options.rng.bit_generator.state
@@ -380,11 +374,10 @@ def _assess(groups, a, yield_drift, samples, seed) -> dict:
             stacked.append(_runs_sample(a, group, per_run, yield_drift))
         a.options.rng.bit_generator.state = state
         a.demand.sample = pd.concat(stacked, ignore_index=True)
-        size = len(groups) * (samples + per_run)
         which = np.concatenate([np.tile(np.arange(samples), len(groups)),
                                 np.tile(np.arange(per_run), len(groups))])
         with common_draws(which, samples):
-            a.asset.generate_cmp_sample(size)
+            a.asset.generate_cmp_sample(which.size)
             a.damage.calculate(dmg_process={"1_excessiveRID": {"DS1": "irreparable_DS1"}})
             a.loss.calculate()
             # pelicun keeps the component losses in pandas' nullable dtypes, a block a column:
@@ -428,13 +421,24 @@ def _runs_sample(a, group, samples: int, yield_drift: float):
     model fitted: realization k takes run k mod R's demands (their residual drifts estimated
     as the fitted model's are), so that each run's mean loss is known (`run_means`)."""
     import pandas as pd
-    from pelicun.model import DemandModel
 
     raw = raw_demands(group.pfa, group.pid)
     runs = raw.drop(index="Units")
     tiled = runs.iloc[np.arange(samples) % len(runs)].reset_index(drop=True)
+    return _demand_sample(a, pd.concat([tiled, raw.loc[["Units"]]]), yield_drift)
+
+
+def _demand_sample(a, raw, yield_drift: float, fitted: int | None = None):
+    """pelicun's demand sample of assessment `a` from the raw demands (raw_demands' table):
+    with `fitted`, that many realizations of the joint lognormal fitted to them (FEMA P-58-1
+    section 5.3), else the rows themselves; residual drifts estimated (section 5.4)."""
+    from pelicun.model import DemandModel
+
     a.demand = DemandModel(a)
-    a.demand.load_sample(pd.concat([tiled, raw.loc[["Units"]]]))
+    a.demand.load_sample(raw)
+    if fitted is not None:
+        a.demand.calibrate_model({"ALL": {"DistributionFamily": "lognormal"}})
+        a.demand.generate_sample({"SampleSize": fitted})
     a.demand.estimate_RID_and_adjust_sample({"yield_drift": yield_drift})
     a.demand.expand_sample("ONE", 1.0, "unitless")
     return a.demand.sample

@@ -231,10 +231,8 @@ def _first(bad: np.ndarray, **values) -> str:
     """The values (m) by name of the first member where `bad` (B,) holds, and how many
     members it holds for: a refusal names one member's values, not a million members'."""
     i = int(np.flatnonzero(bad)[0])
-    said = ", ".join(f"{name} {float(np.ravel(value)[i if np.size(value) > 1 else 0]):g} m"
-                     for name, value in values.items())
-    count, size = int(np.count_nonzero(bad)), np.size(bad)
-    return said + (f" ({count} of {size} members)" if size > 1 else "")
+    said = ", ".join(f"{name} {value[i]:g} m" for name, value in values.items())
+    return said + (f" ({np.count_nonzero(bad)} of {bad.size} members)" if bad.size > 1 else "")
 
 
 def contact_fields(gap, thickness, strain, n_bumpers, k_w, cor, m_eff, cavity, c_imp_rule,
