@@ -59,11 +59,21 @@ def step_operators(b: BuildingArrays, dt: float):
     [p - f(u_n), v_{n-1/2}] to v_{n+1/2} (L levels); the (B, L) wall response, the velocity
     change of every level per newton pushing level 0 back; and its level-0 entry, the (B,)
     compliance (m/s/N)."""
-    first, inverse = distinct_members(b.distinct)  # once per distinct building
-    step_op = full_step_operator(b.masses[first, :, None] * np.eye(b.masses.shape[1]),
-                                 b.damping[first], dt)[inverse]
+    distinct, which = distinct_step_operators(b, dt)
+    step_op = distinct[which]
     wall_response = step_op[:, :, 0].copy()
     return step_op, wall_response, wall_response[:, 0].copy()
+
+
+def distinct_step_operators(b: BuildingArrays, dt: float, keys=None):
+    """(operators, which): the (D, L, 2L) step operators of the batch's D distinct buildings
+    (step_operators') and, for every member, which of them is its own ((B,) intp): member b's
+    operator is operators[which[b]], the same numbers as step_operators' b-th. keys: (B,) ints
+    that tell distinct members apart (default b.distinct; a run in plan passes those of its x
+    and y buildings together)."""
+    first, which = distinct_members(b.distinct if keys is None else keys)
+    return full_step_operator(b.masses[first, :, None] * np.eye(b.masses.shape[1]),
+                              b.damping[first], dt), which
 
 
 def full_step_operator(mass: np.ndarray, damping: np.ndarray, dt: float) -> np.ndarray:

@@ -22,11 +22,8 @@ from numba import cuda, float64
 
 from ..impact.registry import ROW_WIDTH
 from ..results import MODE
-from ..stories.registry import MAX_FIELDS, MAX_STATE
 from . import cuda_physics as device
 from .layout import (
-    ISOLATOR_FIELDS,
-    ISOLATOR_STATE,
     PLANAR,
     PLANAR_PEAK_COLUMNS,
     PLANAR_STATE,
@@ -57,6 +54,10 @@ def _kernel(n_levels: int, story_code: int, isolator_code: int, banded: bool):
     operator_rows = 0 if banded else 2 * n_levels
     operator_size = max(operator_rows, 1)  # a local array's shape: constants only
     story_force = device.story_law(story_code)
+    # the member's law constants and state, as wide as its own laws' (the kernel's story and
+    # isolator laws): a wider local array only holds registers the laws never read
+    n_fields, n_state = device.story_widths(story_code)
+    n_row, n_iso_state = device.isolator_widths(isolator_code, "STATE")
     isolator_force = device.isolator_law(isolator_code, "force")
     isolator_advance = device.isolator_law(isolator_code, "advance")
     law_terms, implicit_force, onset_weight, failed = (
@@ -69,7 +70,8 @@ def _kernel(n_levels: int, story_code: int, isolator_code: int, banded: bool):
         if t >= members.size:
             return
         b = members[t]
-        ag, dt, op, bands, wall, mass, story, law, par, law_par, story_fields, isolator = model
+        (ag, dt, op, which, bands, wall, mass, story, law, par, law_par, story_fields,
+         isolator) = model
         u_all, v_all, story_state, state, isolator_state = memory
         peak_level, peak_story, peak_velocity, peak_shear, peak_scalar, n_impacts = peaks
         hist_row, every, h_u, h_acc, h_f, h_d, h_fi = hist
@@ -78,10 +80,11 @@ def _kernel(n_levels: int, story_code: int, isolator_code: int, banded: bool):
             return
         n_levels = levels
         # The member's constants and state in local arrays (registers where they fit).
+        own = which[b]  # the member's building: a sweep's members read one operator
         ot = cuda.local.array((operator_size, levels), float64)
         for j in range(operator_rows):
             for i in range(levels):
-                ot[j, i] = op[b, j, i]
+                ot[j, i] = op[own, j, i]
         bd = bands[b]
         w = cuda.local.array(levels, float64)
         m = cuda.local.array(levels, float64)
@@ -98,22 +101,22 @@ def _kernel(n_levels: int, story_code: int, isolator_code: int, banded: bool):
         collapse_drift = cuda.local.array(stories, float64)
         pd = cuda.local.array(stories, float64)
         ps = cuda.local.array(stories, float64)
-        s_fields = cuda.local.array((stories, MAX_FIELDS), float64)
-        s_state = cuda.local.array((stories, MAX_STATE), float64)
+        s_fields = cuda.local.array((stories, n_fields), float64)
+        s_state = cuda.local.array((stories, n_state), float64)
         for i in range(n_levels - 1):
             k_story[i] = story[b, PLANAR_STORY.story_k, i]
             gravity[i] = story[b, PLANAR_STORY.story_gravity, i]
             collapse_drift[i] = story[b, PLANAR_STORY.collapse_drift, i]
             pd[i], ps[i] = peak_story[b, i], peak_shear[b, i]
-            for j in range(MAX_FIELDS):
+            for j in range(n_fields):
                 s_fields[i, j] = story_fields[b, i, j]
-            for j in range(MAX_STATE):
+            for j in range(n_state):
                 s_state[i, j] = story_state[b, i, j]
-        iso_row = cuda.local.array(ISOLATOR_FIELDS, float64)
-        for j in range(ISOLATOR_FIELDS):
+        iso_row = cuda.local.array(n_row, float64)
+        for j in range(n_row):
             iso_row[j] = isolator[b, j]
-        iso_state = cuda.local.array(ISOLATOR_STATE, float64)
-        for j in range(ISOLATOR_STATE):
+        iso_state = cuda.local.array(n_iso_state, float64)
+        for j in range(n_iso_state):
             iso_state[j] = isolator_state[b, j]
         law_row = cuda.local.array(ROW_WIDTH, float64)
         for j in range(ROW_WIDTH):
@@ -232,9 +235,9 @@ def _kernel(n_levels: int, story_code: int, isolator_code: int, banded: bool):
             peak_velocity[b, i] = pv[i]
         for i in range(n_levels - 1):
             peak_story[b, i], peak_shear[b, i] = pd[i], ps[i]
-            for j in range(MAX_STATE):
+            for j in range(n_state):
                 story_state[b, i, j] = s_state[i, j]
-        for j in range(ISOLATOR_STATE):
+        for j in range(n_iso_state):
             isolator_state[b, j] = iso_state[j]
         st[PLANAR_STATE.v_imp] = v_imp
         st[PLANAR_STATE.delta_prev] = delta_prev
@@ -292,7 +295,7 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
     """engine.simulate's time loop on the device: (peaks dict, history dict or None), as
     numba_loop.run_simulation (the same arguments and packed arrays; run_on_device)."""
     run = planar_run(ag, dt, arrays, contact, history, scale)
-    n_levels, banded = len(run["levels"]), run["model"][3].shape[2] > 0
+    n_levels, banded = len(run["levels"]), run["model"][4].shape[2] > 0
     run_on_device((run["model"], run["memory"], run["kept"], run["hist"]), run["groups"],
                   ag.size, progress,
                   lambda story, isolator: _kernel(n_levels, story, isolator, banded))

@@ -129,6 +129,21 @@ def story_law(code: int, name: str = "force"):
     return device_function(getattr(tuple(story_registry.LAWS.values())[code], name))
 
 
+def story_widths(code: int) -> tuple[int, int]:
+    """(constants, state) per story of story law `code` (its N_FIELDS and N_STATE, at least 1:
+    a local array's shape): what a kernel of that law holds of a member's (B, N, MAX_FIELDS)
+    and (B, N, MAX_STATE) rows."""
+    law = tuple(story_registry.LAWS.values())[code]
+    return max(law.N_FIELDS, 1), max(law.N_STATE, 1)
+
+
+def isolator_widths(code: int, state: str) -> tuple[int, int]:
+    """(constants, state) of isolator law `code` (len(ROW) and len of its `state`, STATE or
+    STATE_XY, at least 1): what a kernel of that law holds of a member's isolator rows."""
+    law = isolator_registry.BY_CODE[code]
+    return max(len(law.ROW), 1), max(len(getattr(law, state)), 1)
+
+
 def isolator_law(code: int, name: str):
     """The isolator law `code`'s function `name` (force, advance, force_xy, advance_xy), on the
     device."""

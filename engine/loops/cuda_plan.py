@@ -18,13 +18,10 @@ import math
 from numba import cuda, float64
 
 from ..results import MODE
-from ..stories.registry import MAX_FIELDS, MAX_STATE
 from . import cuda_physics as device
 from .cuda_loop import run_on_device
 from .layout import (
     CONTACT,
-    ISOLATOR_FIELDS,
-    ISOLATOR_STATE_XY,
     PLAN,
     PLAN_PEAK_COLUMNS,
     PLAN_STATE,
@@ -45,8 +42,11 @@ def _kernel(n_levels: int, circular: bool, walls: int, story_code: int, isolator
     # (with a count read at run time, the levels' u, v and nx lived in the thread's local
     # memory: 352 bytes, loaded and stored at every step).
     stories = max(n_levels - 1, 1)
-    operator_rows = 2 * n_levels
     story_force = device.story_law(story_code)
+    # the member's law constants and state, as wide as the kernel's own laws' (a wider local
+    # array only holds registers the laws never read)
+    n_fields, n_state = device.story_widths(story_code)
+    n_row, n_iso_state = device.isolator_widths(isolator_code, "STATE_XY")
     isolator_force_xy = device.isolator_law(isolator_code, "force_xy")
     isolator_advance_xy = device.isolator_law(isolator_code, "advance_xy")
     contact = device.device_function(wall_contact)
@@ -59,8 +59,8 @@ def _kernel(n_levels: int, circular: bool, walls: int, story_code: int, isolator
         if t >= members.size:
             return
         b = members[t]
-        (ag, dt, op, wall, story_k, mass, story, law, par, gaps_all, law_par, story_fields,
-         isolator) = model
+        (ag, dt, op, which, wall, story_k, mass, story, law, par, gaps_all, law_par,
+         story_fields, isolator) = model
         u_all, v_all, f_story_all, story_state, state, wall_state, isolator_state = memory
         (peak_level, peak_level_xy, peak_story, peak_story_xy, peak_iso_xy, peak_scalar,
          n_impacts, peak_wall, peak_velocity, peak_shear) = peaks
@@ -70,10 +70,10 @@ def _kernel(n_levels: int, circular: bool, walls: int, story_code: int, isolator
             return
         n_levels = levels
         n_st = n_levels - 1
-        ot = cuda.local.array((operator_rows, levels, 2), float64)
-        for j in range(operator_rows):
-            for i in range(levels):
-                ot[j, i, 0], ot[j, i, 1] = op[b, j, i, 0], op[b, j, i, 1]
+        # The operators read where they lie, not copied: the members of a sweep share a few
+        # buildings (which), so a warp's reads of one are one broadcast, cached; copied, the
+        # 4 L^2 numbers filled the thread's registers and spilled its state to local memory.
+        ot = op[which[b]]
         w = cuda.local.array((levels, 2), float64)
         m = cuda.local.array(levels, float64)
         for i in range(levels):
@@ -84,8 +84,8 @@ def _kernel(n_levels: int, circular: bool, walls: int, story_code: int, isolator
         f_limit_story = cuda.local.array(stories, float64)
         collapse_square = cuda.local.array(stories, float64)
         gravity = cuda.local.array(stories, float64)
-        s_fields = cuda.local.array((stories, MAX_FIELDS), float64)
-        s_state = cuda.local.array((stories, 2, MAX_STATE), float64)
+        s_fields = cuda.local.array((stories, n_fields), float64)
+        s_state = cuda.local.array((stories, 2, n_state), float64)
         for i in range(n_st):
             ks[i, 0], ks[i, 1] = story_k[b, i, 0], story_k[b, i, 1]
             k_post[i] = story[b, PLAN_STORY.story_k_post, i]
@@ -93,10 +93,10 @@ def _kernel(n_levels: int, circular: bool, walls: int, story_code: int, isolator
             f_limit_story[i] = story[b, PLAN_STORY.story_f_limit, i]
             collapse_square[i] = story[b, PLAN_STORY.collapse_square, i]
             gravity[i] = story[b, PLAN_STORY.story_gravity, i]
-            for j in range(MAX_FIELDS):
+            for j in range(n_fields):
                 s_fields[i, j] = story_fields[b, i, j]
             for e in range(2):
-                for j in range(MAX_STATE):
+                for j in range(n_state):
                     s_state[i, e, j] = story_state[b, i, e, j]
         comp, comp_y = par[b, PLAN.compliance], par[b, PLAN.compliance_y]
         anisotropic = par[b, PLAN.anisotropic] != 0.0
@@ -105,11 +105,11 @@ def _kernel(n_levels: int, circular: bool, walls: int, story_code: int, isolator
         uniaxial = par[b, PLAN.stories_uniaxial] != 0.0
         cs, sn = par[b, PLAN.cos], par[b, PLAN.sin]
         capacity_square = par[b, PLAN.capacity_square]
-        iso_row = cuda.local.array(ISOLATOR_FIELDS, float64)
-        for j in range(ISOLATOR_FIELDS):
+        iso_row = cuda.local.array(n_row, float64)
+        for j in range(n_row):
             iso_row[j] = isolator[b, j]
-        iso_state = cuda.local.array(ISOLATOR_STATE_XY, float64)
-        for j in range(ISOLATOR_STATE_XY):
+        iso_state = cuda.local.array(n_iso_state, float64)
+        for j in range(n_iso_state):
             iso_state[j] = isolator_state[b, j]
         n_walls = walls
         half_dt = 0.5 * dt
@@ -317,10 +317,10 @@ def _kernel(n_levels: int, circular: bool, walls: int, story_code: int, isolator
             for e in range(2):
                 f_story_all[b, i, e] = fs[i, e]
                 peak_story_xy[b, i, e] = pd[i, e]
-                for j in range(MAX_STATE):
+                for j in range(n_state):
                     story_state[b, i, e, j] = s_state[i, e, j]
             peak_story[b, i], peak_shear[b, i] = pd2[i], ps2[i]
-        for j in range(ISOLATOR_STATE_XY):
+        for j in range(n_iso_state):
             isolator_state[b, j] = iso_state[j]
         for d in range(n_walls):
             ws[d, CONTACT.v_imp], ws[d, CONTACT.delta_prev] = v_imp[d], delta_prev[d]

@@ -24,7 +24,7 @@ from numba.np.unsafe.ndarray import to_fixed_tuple
 from ..impact.contact import law_rows
 from ..impact.registry import ROW_WIDTH
 from ..results import MODE, empty_peaks, residuals
-from ..scheme import banded_operators, step_operators
+from ..scheme import banded_operators, distinct_step_operators
 from ..stories.registry import MAX_FIELDS, MAX_STATE
 from . import compiled, layout
 from .compiled import (
@@ -104,8 +104,9 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     tuple of L zeros, so that L is a compile-time constant; `law_tag` and `isolator_tag` the
     member's story law and isolator law (numba_support.law_tag), so that they are constants too and
     their physics alone is compiled into this kernel: one compilation per number of levels, story
-    law and isolator law. model = (ag, dt, op, bands, wall, mass, story, law, par, law_par,
-    story_fields, isolator), what the run reads (isolator: the isolator law's rows); memory = (u, v,
+    law and isolator law. model = (ag, dt, op, which, bands, wall, mass, story, law, par, law_par,
+    story_fields, isolator), what the run reads (op: the distinct buildings' operators, which:
+    each member's; isolator: the isolator law's rows); memory = (u, v,
     story_state, state, isolator_state), what it carries between chunks; peaks = (peak_level,
     peak_story, peak_velocity, peak_shear, peak_scalar, n_impacts); hist = (hist_row, every,
     h_u, h_acc, h_f, h_d, h_fi)
@@ -113,7 +114,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     kernel this loop replaced, and a member's result never depends on the batch. A member that has
     collapsed stops."""
     levels, law_tag, isolator_tag = shape
-    ag, dt, op, bands, wall, mass, story, law, par, law_par, story_fields, isolator = model
+    ag, dt, op, which, bands, wall, mass, story, law, par, law_par, story_fields, isolator = model
     u_all, v_all, story_state, state, isolator_state = memory
     peak_level, peak_story, peak_velocity, peak_shear, peak_scalar, n_impacts = peaks
     hist_row, every, h_u, h_acc, h_f, h_d, h_fi = hist
@@ -121,7 +122,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     if st[PLANAR_STATE.collapsed] != 0.0:
         return
     n_levels = len(levels)
-    ot = op[b]
+    ot = op[which[b]]
     bd = bands[b]
     banded = bd.shape[1] > 0
     w = wall[b]
@@ -341,7 +342,9 @@ def planar_run(ag, dt, arrays, contact, history, scale) -> dict:
     size = len(contact)
     n_levels = arrays.masses.shape[1]
     n_steps = ag.size
-    op, wall_response, compliance = step_operators(arrays, dt)
+    op, which = distinct_step_operators(arrays, dt)
+    wall_response = op[which, :, 0]  # (B, L): step_operators' wall response
+    compliance = wall_response[:, 0].copy()
     bands = banded_operators(arrays, dt)
     if bands is None:
         bands = np.zeros((size, 5, 0))
@@ -364,9 +367,10 @@ def planar_run(ag, dt, arrays, contact, history, scale) -> dict:
     h_u, h_f, h_d, h_fi = (np.zeros((rows, n_out)) for _ in range(4))
     h_acc = np.zeros((rows, n_out, n_levels))
 
-    model = (ag, float(dt), np.ascontiguousarray(op.transpose(0, 2, 1)), bands,
-             np.ascontiguousarray(wall_response), np.ascontiguousarray(arrays.masses), story,
-             law, par, law_rows(contact), story_fields, isolator_rows(arrays))
+    model = (ag, float(dt), np.ascontiguousarray(op.transpose(0, 2, 1)),
+             np.ascontiguousarray(which, dtype=np.int64), bands, wall_response,
+             np.ascontiguousarray(arrays.masses), story, law, par, law_rows(contact),
+             story_fields, isolator_rows(arrays))
     model = kernel_arrays(model)
     return {"model": model, "memory": (u, v, story_state, state, isolator_state),
             "kept": (peaks["peak_total_accel"], peaks["peak_interstory_drift"],

@@ -32,7 +32,7 @@ from ..results import (
     empty_plan_history,
     residuals,
 )
-from ..scheme import step_operators
+from ..scheme import distinct_step_operators
 from ..stories.registry import MAX_FIELDS, MAX_STATE
 from . import compiled, layout
 from .compiled import (
@@ -120,8 +120,9 @@ def wall_friction(nx, w, comp, comp_y, limit, nrm_x, nrm_y):
 @njit(**LINK)
 def _member(shape, b, s0, s1, model, memory, peaks, hist):
     """Steps s0 <= step < s1 of member b (see the module docstring). shape = (levels, pairs,
-    circular, law_tag, isolator_tag); model = (ag, dt, op, wall, story_k, mass, story, law, par,
-    gaps, law_par, story_fields, isolator), what the run reads (isolator: the isolator law's rows);
+    circular, law_tag, isolator_tag); model = (ag, dt, op, which, wall, story_k, mass, story, law,
+    par, gaps, law_par, story_fields, isolator), what the run reads (op: the distinct buildings'
+    operators, which: each member's; isolator: the isolator law's rows);
     memory = (u, v, f_story, story_state, state, wall_state, isolator_state), what it carries
     between chunks; peaks = (peak_level, peak_level_xy, peak_story, peak_story_xy, peak_iso_xy,
     peak_scalar, n_impacts, peak_wall, peak_velocity, peak_shear); hist = (hist_row, every, h_u,
@@ -137,7 +138,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     planar kernel's), and so is its isolator law's (isolator_tag). A member that has collapsed
     stops."""
     levels, pairs, circular, law_tag, isolator_tag = shape
-    (ag, dt, op, wall, story_k, mass, story, law, par, gaps_all, law_par, story_fields,
+    (ag, dt, op, which, wall, story_k, mass, story, law, par, gaps_all, law_par, story_fields,
      isolator) = model
     u_all, v_all, f_story_all, story_state, state, wall_state, isolator_state = memory
     (peak_level, peak_level_xy, peak_story, peak_story_xy, peak_iso_xy, peak_scalar, n_impacts,
@@ -148,7 +149,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
         return
     n_levels = len(levels)
     n_st = n_levels - 1
-    ot = carray(data_pointer(op[b]), (2 * n_levels, n_levels, 2))
+    ot = carray(data_pointer(op[which[b]]), (2 * n_levels, n_levels, 2))
     w = wall[b]
     ks = story_k[b]
     m = mass[b]
@@ -414,13 +415,18 @@ def plan_run(ag, dt, arrays, contacts, moat: str, scale, angle, history=None, ar
     size, n_levels = arrays.masses.shape
     levels = (0,) * n_levels
     pairs = (0,) * (2 * n_levels)  # x and y of every level, side by side on the stack
-    op, wall_response, compliance = step_operators(arrays, dt)
+    # the operators once per distinct building, member b's op_xy[which[b]]: a Building is
+    # both its directions, so the x arrays' distinct members key y's too (arrays_y's own
+    # may join two buildings alike along y only)
+    op, which = distinct_step_operators(arrays, dt)
     if arrays_y is None:  # isotropic: the x arrays serve y
-        op_y, response_y, compliance_y, story_y = op, wall_response, compliance, arrays.story_k
+        op_y, story_y = op, arrays.story_k
     else:
-        op_y, response_y, compliance_y = step_operators(arrays_y, dt)
+        op_y = distinct_step_operators(arrays_y, dt, arrays.distinct)[0]
         story_y = arrays_y.story_k
-    # x and y side by side: the operators transposed (B, 2L, L, 2), the wall responses
+    wall_response, response_y = op[which, :, 0], op_y[which, :, 0]  # step_operators'
+    compliance, compliance_y = wall_response[:, 0].copy(), response_y[:, 0].copy()
+    # x and y side by side: the operators transposed (D, 2L, L, 2), the wall responses
     # (B, L, 2), the story stiffnesses (B, L - 1, 2)
     op_xy = np.ascontiguousarray(np.stack([op.transpose(0, 2, 1), op_y.transpose(0, 2, 1)],
                                           axis=-1))
@@ -452,7 +458,8 @@ def plan_run(ag, dt, arrays, contacts, moat: str, scale, angle, history=None, ar
     n_steps = ag.shape[0]
     hist_row, every, rows, inverse = history_rows(history, size)
     hist = empty_plan_history(rows, n_steps, every, dt, n_levels)
-    model = (np.ascontiguousarray(ag, dtype=np.float64), float(dt), op_xy, wall_xy, story_xy,
+    model = (np.ascontiguousarray(ag, dtype=np.float64), float(dt), op_xy,
+             np.ascontiguousarray(which, dtype=np.int64), wall_xy, story_xy,
              np.ascontiguousarray(arrays.masses), story, law, par, gaps, law_par, story_fields,
              isolator_rows(arrays))
     model = kernel_arrays(model)

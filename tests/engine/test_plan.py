@@ -227,3 +227,26 @@ def test_bad_plan_input(kwargs, match):
         engine.simulate(np.column_stack([accel, accel]), dt, Contact.linear([0.1]), **kwargs)
     with pytest.raises(engine.EngineError, match="moat: the planar model takes none"):
         engine.simulate(accel, dt, Contact.linear([0.1]), moat="circular")
+
+
+def test_each_member_steps_with_its_own_buildings_operators_in_a_mixed_batch():
+    """The loops build the step operators once per distinct building and index them per member:
+    in a batch of buildings alike along y but not along x (the second is the first's
+    y direction turned: their y arrays are one building), and an isotropic third, each
+    member's peaks are its building's run alone, to an ulp (the isotropic building's story
+    shear peaks alone as stiffness times drift, in a batch stiffer along y from its forces)."""
+    accel, dt = record()
+    pair = np.column_stack([accel, 0.7 * accel])
+    base = Building()
+    turned = Building(story_stiffness=(6e8, 6e8, 5e8, 4e8),
+                      story_stiffness_y=tuple(base.story_stiffness))
+    buildings = [turned, base, Building(story_stiffness_y=(9e8, 9e8, 8e8, 7e8))] * 2
+    contact = Contact.linear([0.08] * len(buildings))
+    together = engine.simulate(pair, dt, contact, buildings, backend="numba").peaks()
+    for member, building in enumerate(buildings[:3]):
+        alone = engine.simulate(pair, dt, Contact.linear(0.08), building,
+                                backend="numba").peaks()
+        for name, value in alone.items():
+            for copy in (member, member + 3):
+                np.testing.assert_allclose(together[name][copy], value[0], rtol=1e-15, atol=0,
+                                           err_msg=name)
