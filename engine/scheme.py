@@ -59,21 +59,18 @@ def step_operators(b: BuildingArrays, dt: float):
     [p - f(u_n), v_{n-1/2}] to v_{n+1/2} (L levels); the (B, L) wall response, the velocity
     change of every level per newton pushing level 0 back; and its level-0 entry, the (B,)
     compliance (m/s/N)."""
-    distinct, which = distinct_step_operators(b, dt)
-    step_op = distinct[which]
+    first, which = distinct_members(b.distinct)  # once per distinct building
+    step_op = distinct_step_operators(b, dt, first)[which]
     wall_response = step_op[:, :, 0].copy()
     return step_op, wall_response, wall_response[:, 0].copy()
 
 
-def distinct_step_operators(b: BuildingArrays, dt: float, keys=None):
-    """(operators, which): the (D, L, 2L) step operators of the batch's D distinct buildings
-    (step_operators') and, for every member, which of them is its own ((B,) intp): member b's
-    operator is operators[which[b]], the same numbers as step_operators' b-th. keys: (B,) ints
-    that tell distinct members apart (default b.distinct; a run in plan passes those of its x
-    and y buildings together)."""
-    first, which = distinct_members(b.distinct if keys is None else keys)
+def distinct_step_operators(b: BuildingArrays, dt: float, first: np.ndarray) -> np.ndarray:
+    """The (D, L, 2L) step operators (step_operators') of the members `first` ((D,) ints: one
+    member of each distinct building, building.distinct_members'): a batch's operators once
+    per building, member b's the one of its building."""
     return full_step_operator(b.masses[first, :, None] * np.eye(b.masses.shape[1]),
-                              b.damping[first], dt), which
+                              b.damping[first], dt)
 
 
 def full_step_operator(mass: np.ndarray, damping: np.ndarray, dt: float) -> np.ndarray:

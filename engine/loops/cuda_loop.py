@@ -109,7 +109,7 @@ def _kernel(n_levels: int, story_code: int, isolator_code: int, banded: bool):
             collapse_drift[i] = story[b, PLANAR_STORY.collapse_drift, i]
             pd[i], ps[i] = peak_story[b, i], peak_shear[b, i]
             for j in range(n_fields):
-                s_fields[i, j] = story_fields[b, i, j]
+                s_fields[i, j] = story_fields[own, i, j]
             for j in range(n_state):
                 s_state[i, j] = story_state[b, i, j]
         iso_row = cuda.local.array(n_row, float64)

@@ -94,7 +94,7 @@ def _kernel(n_levels: int, circular: bool, walls: int, story_code: int, isolator
             collapse_square[i] = story[b, PLAN_STORY.collapse_square, i]
             gravity[i] = story[b, PLAN_STORY.story_gravity, i]
             for j in range(n_fields):
-                s_fields[i, j] = story_fields[b, i, j]
+                s_fields[i, j] = story_fields[which[b], i, j]
             for e in range(2):
                 for j in range(n_state):
                     s_state[i, e, j] = story_state[b, i, e, j]

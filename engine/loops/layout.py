@@ -16,6 +16,7 @@ import numpy as np
 from ..isolators.registry import BY_CODE, MAX_FIELDS, MAX_STATE, MAX_STATE_XY
 from ..layout import appended, columns
 from ..results import PEAKS, PLAN_PEAKS, TORSION_PEAKS
+from ..stories import registry as story_registry
 
 PLANAR = columns("Planar", "compliance", "stories_nonlinear", "gap", "scale", "capacity")
 """numba_loop's per-member floats: the slab's compliance to a wall force (dt^2 / m, m/N), 1.0
@@ -113,6 +114,21 @@ def isolator_rows(arrays, bearings: int = 1) -> np.ndarray:
                 column = getattr(law.ROW, name)
                 rows[mine, column] = rows[mine, column] / bearings
     return rows
+
+
+def story_states(arrays, first, directions: int = 0) -> np.ndarray:
+    """The members' story law state at rest (arrays.story_state), C-contiguous float64, only
+    as wide as the widest N_STATE among the batch's story laws (at least 1; `first`: one member
+    of each distinct building): (B, N, W), or with `directions`, (B, N, directions, W), the
+    state repeated for a law along each axis (a run in plan). A law reads its own N_STATE
+    columns: a sweep of linear stories carries one column, not MAX_STATE."""
+    codes = np.unique(np.asarray(arrays.story_code)[first])
+    width = max(1, *(story_registry.BY_CODE[code].N_STATE for code in codes))
+    state = arrays.story_state[:, :, :width]
+    if directions:
+        return np.ascontiguousarray(np.repeat(state[:, :, None, :], directions, axis=2),
+                                    dtype=np.float64)
+    return np.array(state, dtype=np.float64, order="C")  # a copy: the kernels write it
 
 
 def contact_state(*shape) -> np.ndarray:

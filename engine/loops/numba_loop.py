@@ -21,11 +21,12 @@ import numpy as np
 from numba import carray, njit
 from numba.np.unsafe.ndarray import to_fixed_tuple
 
+from ..building import distinct_members
 from ..impact.contact import law_rows
 from ..impact.registry import ROW_WIDTH
 from ..results import MODE, empty_peaks, residuals
 from ..scheme import banded_operators, distinct_step_operators
-from ..stories.registry import MAX_FIELDS, MAX_STATE
+from ..stories.registry import MAX_FIELDS
 from . import compiled, layout
 from .compiled import (
     JIT,
@@ -51,6 +52,7 @@ from .layout import (
     isolator_rows,
     linear_story_shear,
     packed,
+    story_states,
 )
 from .numba_support import (
     by_law,
@@ -130,8 +132,8 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     k_story, gravity = story[b, PLANAR_STORY.story_k], story[b, PLANAR_STORY.story_gravity]
     collapse_drift = story[b, PLANAR_STORY.collapse_drift]
     # The story law's constants and state as views of a shape known when the kernel compiles.
-    s_fields = carray(data_pointer(story_fields[b]), (n_levels - 1, MAX_FIELDS))
-    s_state = carray(data_pointer(story_state[b]), (n_levels - 1, MAX_STATE))
+    s_fields = carray(data_pointer(story_fields[which[b]]), (n_levels - 1, MAX_FIELDS))
+    s_state = carray(data_pointer(story_state[b]), (n_levels - 1, story_state.shape[2]))
     p = par[b]
     comp = p[PLANAR.compliance]
     gap = p[PLANAR.gap]
@@ -342,7 +344,10 @@ def planar_run(ag, dt, arrays, contact, history, scale) -> dict:
     size = len(contact)
     n_levels = arrays.masses.shape[1]
     n_steps = ag.size
-    op, which = distinct_step_operators(arrays, dt)
+    # once per distinct building (a sweep's members: one), member b's [which[b]]: the step
+    # operators and the story law's constants
+    first, which = distinct_members(arrays.distinct)
+    op = distinct_step_operators(arrays, dt, first)
     wall_response = op[which, :, 0]  # (B, L): step_operators' wall response
     compliance = wall_response[:, 0].copy()
     bands = banded_operators(arrays, dt)
@@ -353,8 +358,8 @@ def planar_run(ag, dt, arrays, contact, history, scale) -> dict:
     u, v = np.zeros((size, n_levels)), np.zeros((size, n_levels))
     # Per story PLANAR_STORY; the story law's constants and state.
     story = packed(PLANAR_STORY, arrays)
-    story_fields = np.ascontiguousarray(arrays.story_fields, dtype=np.float64)
-    story_state = np.array(arrays.story_state, dtype=np.float64, order="C")
+    story_fields = np.ascontiguousarray(arrays.story_fields[first], dtype=np.float64)
+    story_state = story_states(arrays, first)
     state = np.zeros((size, len(PLANAR_STATE)))
     state[:, PLANAR_STATE.v_imp] = 1.0
     isolator_state = np.zeros((size, ISOLATOR_STATE))  # every law's state is zero at rest

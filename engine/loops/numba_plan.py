@@ -23,6 +23,7 @@ from pathlib import Path
 import numpy as np
 from numba import carray, njit
 
+from ..building import distinct_members
 from ..impact.contact import law_rows
 from ..results import (
     DIRECTIONS,
@@ -33,7 +34,7 @@ from ..results import (
     residuals,
 )
 from ..scheme import distinct_step_operators
-from ..stories.registry import MAX_FIELDS, MAX_STATE
+from ..stories.registry import MAX_FIELDS
 from . import compiled, layout
 from .compiled import (
     JIT,
@@ -62,6 +63,7 @@ from .layout import (
     isolator_rows,
     linear_story_shear,
     packed,
+    story_states,
 )
 from .numba_support import (
     add2,
@@ -165,8 +167,8 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     collapse_square = story[b, PLAN_STORY.collapse_square]  # no root per step
     gravity = story[b, PLAN_STORY.story_gravity]
     uniaxial = p[PLAN.stories_uniaxial] != 0.0
-    s_fields = carray(data_pointer(story_fields[b]), (n_levels - 1, MAX_FIELDS))
-    s_state = carray(data_pointer(story_state[b]), (n_levels - 1, 2, MAX_STATE))
+    s_fields = carray(data_pointer(story_fields[which[b]]), (n_levels - 1, MAX_FIELDS))
+    s_state = carray(data_pointer(story_state[b]), (n_levels - 1, 2, story_state.shape[3]))
     n_walls = law.shape[1]
     codes = law[b]
     half_dt = 0.5 * dt
@@ -418,12 +420,12 @@ def plan_run(ag, dt, arrays, contacts, moat: str, scale, angle, history=None, ar
     # the operators once per distinct building, member b's op_xy[which[b]]: a Building is
     # both its directions, so the x arrays' distinct members key y's too (arrays_y's own
     # may join two buildings alike along y only)
-    op, which = distinct_step_operators(arrays, dt)
+    first, which = distinct_members(arrays.distinct)
+    op = distinct_step_operators(arrays, dt, first)
     if arrays_y is None:  # isotropic: the x arrays serve y
         op_y, story_y = op, arrays.story_k
     else:
-        op_y = distinct_step_operators(arrays_y, dt, arrays.distinct)[0]
-        story_y = arrays_y.story_k
+        op_y, story_y = distinct_step_operators(arrays_y, dt, first), arrays_y.story_k
     wall_response, response_y = op[which, :, 0], op_y[which, :, 0]  # step_operators'
     compliance, compliance_y = wall_response[:, 0].copy(), response_y[:, 0].copy()
     # x and y side by side: the operators transposed (D, 2L, L, 2), the wall responses
@@ -444,11 +446,9 @@ def plan_run(ag, dt, arrays, contacts, moat: str, scale, angle, history=None, ar
                                 dtype=np.float64)
     law_par = np.ascontiguousarray(np.stack([law_rows(c) for c in contacts], axis=1))
     story = packed(PLAN_STORY, arrays, collapse_square=arrays.collapse_drift**2)
-    story_fields = np.ascontiguousarray(arrays.story_fields, dtype=np.float64)
-    # each story's law state twice: along x and along y
-    story_state = np.ascontiguousarray(np.repeat(arrays.story_state[:, :, None, :], 2, axis=2),
-                                       dtype=np.float64)
+    story_fields = np.ascontiguousarray(arrays.story_fields[first], dtype=np.float64)
     n_dirs = len(DIRECTIONS)
+    story_state = story_states(arrays, first, n_dirs)  # each story's law along x and y
     u, v = np.zeros((size, n_levels, n_dirs)), np.zeros((size, n_levels, n_dirs))
     f_story = np.zeros((size, n_levels - 1, n_dirs))
     state = np.zeros((size, len(PLAN_STATE)))

@@ -85,3 +85,25 @@ def test_a_law_reads_its_row_by_name(law):
 
 def test_a_member_without_wall_has_a_zero_row():
     assert not law_rows(Contact.none(3)).any()
+
+
+def test_the_story_state_is_as_wide_as_the_batchs_widest_story_law():
+    from engine import Stories
+    from engine.building import distinct_members
+    from engine.stories.registry import LAWS as STORY_LAWS
+
+    yields = (2.5e6, 2.2e6, 1.7e6, 1.0e6)
+    linear, bilinear = Building(), Building(stories=Stories.bilinear(yield_force=yields))
+    imk = Building(stories=Stories.imk(yield_force=yields, plastic_deformation=0.03,
+                                       post_capping_deformation=0.3))
+    for members, width in (([linear] * 3, 1), ([linear, bilinear, linear], 2),
+                           ([bilinear, imk, linear], STORY_LAWS["imk"].N_STATE)):
+        arrays = building_arrays(members, len(members))
+        first, _ = distinct_members(arrays.distinct)
+        state = layout.story_states(arrays, first)
+        assert state.shape == (3, 4, width) and state.flags.c_contiguous and state.flags.writeable
+        np.testing.assert_array_equal(state, arrays.story_state[:, :, :width])
+        assert not arrays.story_state[:, :, width:].any()  # what was left out is unused
+        in_plan = layout.story_states(arrays, first, 2)
+        assert in_plan.shape == (3, 4, 2, width)
+        np.testing.assert_array_equal(in_plan[:, :, 1], state)
