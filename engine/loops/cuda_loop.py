@@ -70,8 +70,7 @@ def _kernel(n_levels: int, story_code: int, isolator_code: int, banded: bool):
         if t >= members.size:
             return
         b = members[t]
-        (ag, dt, op, which, bands, wall, mass, story, law, par, law_par, story_fields,
-         isolator) = model
+        ag, dt, op, which, bands, mass, story, law, par, law_par, story_fields, isolator = model
         u_all, v_all, story_state, state, isolator_state = memory
         peak_level, peak_story, peak_velocity, peak_shear, peak_scalar, n_impacts = peaks
         hist_row, every, h_u, h_acc, h_f, h_d, h_fi = hist
@@ -79,13 +78,15 @@ def _kernel(n_levels: int, story_code: int, isolator_code: int, banded: bool):
         if st[PLANAR_STATE.collapsed] != 0.0:
             return
         n_levels = levels
-        # The member's constants and state in local arrays (registers where they fit).
-        own = which[b]  # the member's building: a sweep's members read one operator
+        # The member's constants and state in local arrays (registers where they fit); its
+        # building's (op, bands, mass, story, story_fields, isolator) at which[b]: the
+        # members of a sweep share a few, so a warp's reads of one are one broadcast.
+        own = which[b]
         ot = cuda.local.array((operator_size, levels), float64)
         for j in range(operator_rows):
             for i in range(levels):
                 ot[j, i] = op[own, j, i]
-        bd = bands[b]
+        bd = bands[own]
         w = cuda.local.array(levels, float64)
         m = cuda.local.array(levels, float64)
         u = cuda.local.array(levels, float64)
@@ -93,7 +94,7 @@ def _kernel(n_levels: int, story_code: int, isolator_code: int, banded: bool):
         pa = cuda.local.array(levels, float64)
         pv = cuda.local.array(levels, float64)
         for i in range(levels):
-            w[i], m[i] = wall[b, i], mass[b, i]
+            w[i], m[i] = op[own, 0, i], mass[own, i]  # w: the operator's first row
             u[i], v[i], pa[i] = u_all[b, i], v_all[b, i], peak_level[b, i]
             pv[i] = peak_velocity[b, i]
         k_story = cuda.local.array(stories, float64)
@@ -104,9 +105,9 @@ def _kernel(n_levels: int, story_code: int, isolator_code: int, banded: bool):
         s_fields = cuda.local.array((stories, n_fields), float64)
         s_state = cuda.local.array((stories, n_state), float64)
         for i in range(n_levels - 1):
-            k_story[i] = story[b, PLANAR_STORY.story_k, i]
-            gravity[i] = story[b, PLANAR_STORY.story_gravity, i]
-            collapse_drift[i] = story[b, PLANAR_STORY.collapse_drift, i]
+            k_story[i] = story[own, PLANAR_STORY.story_k, i]
+            gravity[i] = story[own, PLANAR_STORY.story_gravity, i]
+            collapse_drift[i] = story[own, PLANAR_STORY.collapse_drift, i]
             pd[i], ps[i] = peak_story[b, i], peak_shear[b, i]
             for j in range(n_fields):
                 s_fields[i, j] = story_fields[own, i, j]
@@ -114,7 +115,7 @@ def _kernel(n_levels: int, story_code: int, isolator_code: int, banded: bool):
                 s_state[i, j] = story_state[b, i, j]
         iso_row = cuda.local.array(n_row, float64)
         for j in range(n_row):
-            iso_row[j] = isolator[b, j]
+            iso_row[j] = isolator[own, j]
         iso_state = cuda.local.array(n_iso_state, float64)
         for j in range(n_iso_state):
             iso_state[j] = isolator_state[b, j]
@@ -295,7 +296,7 @@ def run_simulation(ag, dt, arrays, contact, history, progress, scale=1.0):
     """engine.simulate's time loop on the device: (peaks dict, history dict or None), as
     numba_loop.run_simulation (the same arguments and packed arrays; run_on_device)."""
     run = planar_run(ag, dt, arrays, contact, history, scale)
-    n_levels, banded = len(run["levels"]), run["model"][4].shape[2] > 0
+    n_levels, banded = len(run["levels"]), run["model"][4].shape[2] > 0  # bands
     run_on_device((run["model"], run["memory"], run["kept"], run["hist"]), run["groups"],
                   ag.size, progress,
                   lambda story, isolator: _kernel(n_levels, story, isolator, banded))

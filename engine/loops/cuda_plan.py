@@ -43,10 +43,10 @@ def _kernel(n_levels: int, circular: bool, walls: int, story_code: int, isolator
     # memory: 352 bytes, loaded and stored at every step).
     stories = max(n_levels - 1, 1)
     story_force = device.story_law(story_code)
-    # the member's law constants and state, as wide as the kernel's own laws' (a wider local
-    # array only holds registers the laws never read)
-    n_fields, n_state = device.story_widths(story_code)
-    n_row, n_iso_state = device.isolator_widths(isolator_code, "STATE_XY")
+    # the member's law state, as wide as the kernel's own laws' (a wider local array only
+    # holds registers the laws never read)
+    n_state = device.story_widths(story_code)[1]
+    n_iso_state = device.isolator_widths(isolator_code, "STATE_XY")[1]
     isolator_force_xy = device.isolator_law(isolator_code, "force_xy")
     isolator_advance_xy = device.isolator_law(isolator_code, "advance_xy")
     contact = device.device_function(wall_contact)
@@ -59,8 +59,8 @@ def _kernel(n_levels: int, circular: bool, walls: int, story_code: int, isolator
         if t >= members.size:
             return
         b = members[t]
-        (ag, dt, op, which, wall, story_k, mass, story, law, par, gaps_all, law_par,
-         story_fields, isolator) = model
+        (ag, dt, op, which, story_k, mass, story, law, par, gaps_all, law_par, story_fields,
+         isolator) = model
         u_all, v_all, f_story_all, story_state, state, wall_state, isolator_state = memory
         (peak_level, peak_level_xy, peak_story, peak_story_xy, peak_iso_xy, peak_scalar,
          n_impacts, peak_wall, peak_velocity, peak_shear) = peaks
@@ -70,31 +70,23 @@ def _kernel(n_levels: int, circular: bool, walls: int, story_code: int, isolator
             return
         n_levels = levels
         n_st = n_levels - 1
-        # The operators read where they lie, not copied: the members of a sweep share a few
-        # buildings (which), so a warp's reads of one are one broadcast, cached; copied, the
-        # 4 L^2 numbers filled the thread's registers and spilled its state to local memory.
-        ot = op[which[b]]
-        w = cuda.local.array((levels, 2), float64)
-        m = cuda.local.array(levels, float64)
-        for i in range(levels):
-            w[i, 0], w[i, 1], m[i] = wall[b, i, 0], wall[b, i, 1], mass[b, i]
-        ks = cuda.local.array((stories, 2), float64)
-        k_post = cuda.local.array(stories, float64)
-        k_slip_story = cuda.local.array(stories, float64)
-        f_limit_story = cuda.local.array(stories, float64)
-        collapse_square = cuda.local.array(stories, float64)
-        gravity = cuda.local.array(stories, float64)
-        s_fields = cuda.local.array((stories, n_fields), float64)
+        # The building's constants read where they lie, not copied: the members of a sweep
+        # share a few buildings (which), so a warp's reads of one are one broadcast, cached;
+        # copied, the operators' 4 L^2 numbers and the stories' filled the thread's
+        # registers and spilled its state to local memory.
+        own = which[b]
+        ot = op[own]
+        w = ot[0]  # the wall responses: the operators' first row (numba_plan.plan_run)
+        m = mass[own]
+        ks = story_k[own]
+        k_post = story[own, PLAN_STORY.story_k_post]
+        k_slip_story = story[own, PLAN_STORY.story_k_slip]
+        f_limit_story = story[own, PLAN_STORY.story_f_limit]
+        collapse_square = story[own, PLAN_STORY.collapse_square]
+        gravity = story[own, PLAN_STORY.story_gravity]
+        s_fields = story_fields[own]
         s_state = cuda.local.array((stories, 2, n_state), float64)
         for i in range(n_st):
-            ks[i, 0], ks[i, 1] = story_k[b, i, 0], story_k[b, i, 1]
-            k_post[i] = story[b, PLAN_STORY.story_k_post, i]
-            k_slip_story[i] = story[b, PLAN_STORY.story_k_slip, i]
-            f_limit_story[i] = story[b, PLAN_STORY.story_f_limit, i]
-            collapse_square[i] = story[b, PLAN_STORY.collapse_square, i]
-            gravity[i] = story[b, PLAN_STORY.story_gravity, i]
-            for j in range(n_fields):
-                s_fields[i, j] = story_fields[which[b], i, j]
             for e in range(2):
                 for j in range(n_state):
                     s_state[i, e, j] = story_state[b, i, e, j]
@@ -105,9 +97,7 @@ def _kernel(n_levels: int, circular: bool, walls: int, story_code: int, isolator
         uniaxial = par[b, PLAN.stories_uniaxial] != 0.0
         cs, sn = par[b, PLAN.cos], par[b, PLAN.sin]
         capacity_square = par[b, PLAN.capacity_square]
-        iso_row = cuda.local.array(n_row, float64)
-        for j in range(n_row):
-            iso_row[j] = isolator[b, j]
+        iso_row = isolator[own]
         iso_state = cuda.local.array(n_iso_state, float64)
         for j in range(n_iso_state):
             iso_state[j] = isolator_state[b, j]

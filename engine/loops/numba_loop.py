@@ -106,9 +106,10 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     tuple of L zeros, so that L is a compile-time constant; `law_tag` and `isolator_tag` the
     member's story law and isolator law (numba_support.law_tag), so that they are constants too and
     their physics alone is compiled into this kernel: one compilation per number of levels, story
-    law and isolator law. model = (ag, dt, op, which, bands, wall, mass, story, law, par, law_par,
-    story_fields, isolator), what the run reads (op: the distinct buildings' operators, which:
-    each member's; isolator: the isolator law's rows); memory = (u, v,
+    law and isolator law. model = (ag, dt, op, which, bands, mass, story, law, par, law_par,
+    story_fields, isolator), what the run reads: op, bands, mass, story, story_fields and
+    isolator (the isolator law's rows) once per distinct building, member b's at which[b];
+    law, par and law_par per member; memory = (u, v,
     story_state, state, isolator_state), what it carries between chunks; peaks = (peak_level,
     peak_story, peak_velocity, peak_shear, peak_scalar, n_impacts); hist = (hist_row, every,
     h_u, h_acc, h_f, h_d, h_fi)
@@ -116,7 +117,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     kernel this loop replaced, and a member's result never depends on the batch. A member that has
     collapsed stops."""
     levels, law_tag, isolator_tag = shape
-    ag, dt, op, which, bands, wall, mass, story, law, par, law_par, story_fields, isolator = model
+    ag, dt, op, which, bands, mass, story, law, par, law_par, story_fields, isolator = model
     u_all, v_all, story_state, state, isolator_state = memory
     peak_level, peak_story, peak_velocity, peak_shear, peak_scalar, n_impacts = peaks
     hist_row, every, h_u, h_acc, h_f, h_d, h_fi = hist
@@ -124,20 +125,21 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     if st[PLANAR_STATE.collapsed] != 0.0:
         return
     n_levels = len(levels)
-    ot = op[which[b]]
-    bd = bands[b]
+    own = which[b]  # the member's building
+    ot = op[own]
+    bd = bands[own]
     banded = bd.shape[1] > 0
-    w = wall[b]
-    m = mass[b]
-    k_story, gravity = story[b, PLANAR_STORY.story_k], story[b, PLANAR_STORY.story_gravity]
-    collapse_drift = story[b, PLANAR_STORY.collapse_drift]
+    w = ot[0]  # the wall response: the operator's first column (transposed: row)
+    m = mass[own]
+    k_story, gravity = story[own, PLANAR_STORY.story_k], story[own, PLANAR_STORY.story_gravity]
+    collapse_drift = story[own, PLANAR_STORY.collapse_drift]
     # The story law's constants and state as views of a shape known when the kernel compiles.
-    s_fields = carray(data_pointer(story_fields[which[b]]), (n_levels - 1, MAX_FIELDS))
+    s_fields = carray(data_pointer(story_fields[own]), (n_levels - 1, MAX_FIELDS))
     s_state = carray(data_pointer(story_state[b]), (n_levels - 1, story_state.shape[2]))
     p = par[b]
     comp = p[PLANAR.compliance]
     gap = p[PLANAR.gap]
-    iso_row = carray(data_pointer(isolator[b]), (ISOLATOR_FIELDS,))
+    iso_row = carray(data_pointer(isolator[own]), (ISOLATOR_FIELDS,))
     nonlinear = p[PLANAR.stories_nonlinear] != 0.0
     scale = p[PLANAR.scale]
     law_row = to_fixed_tuple(law_par[b], ROW_WIDTH)  # in registers, as scalars
@@ -344,21 +346,21 @@ def planar_run(ag, dt, arrays, contact, history, scale) -> dict:
     size = len(contact)
     n_levels = arrays.masses.shape[1]
     n_steps = ag.size
-    # once per distinct building (a sweep's members: one), member b's [which[b]]: the step
-    # operators and the story law's constants
+    # what is the building's, once per distinct building (a sweep's members: one), member
+    # b's at [which[b]]: a batch of 10^6 packs and copies one
     first, which = distinct_members(arrays.distinct)
+    building = arrays.take(first)
     op = distinct_step_operators(arrays, dt, first)
-    wall_response = op[which, :, 0]  # (B, L): step_operators' wall response
-    compliance = wall_response[:, 0].copy()
-    bands = banded_operators(arrays, dt)
+    compliance = op[which, 0, 0]  # step_operators' compliance
+    bands = banded_operators(building, dt)
     if bands is None:
-        bands = np.zeros((size, 5, 0))
+        bands = np.zeros((first.size, 5, 0))
     par = member_parameters(arrays, contact, compliance, scale)
     law = np.ascontiguousarray(contact.law, dtype=np.int64)
     u, v = np.zeros((size, n_levels)), np.zeros((size, n_levels))
     # Per story PLANAR_STORY; the story law's constants and state.
-    story = packed(PLANAR_STORY, arrays)
-    story_fields = np.ascontiguousarray(arrays.story_fields[first], dtype=np.float64)
+    story = packed(PLANAR_STORY, building)
+    story_fields = np.ascontiguousarray(building.story_fields, dtype=np.float64)
     story_state = story_states(arrays, first)
     state = np.zeros((size, len(PLANAR_STATE)))
     state[:, PLANAR_STATE.v_imp] = 1.0
@@ -373,9 +375,9 @@ def planar_run(ag, dt, arrays, contact, history, scale) -> dict:
     h_acc = np.zeros((rows, n_out, n_levels))
 
     model = (ag, float(dt), np.ascontiguousarray(op.transpose(0, 2, 1)),
-             np.ascontiguousarray(which, dtype=np.int64), bands, wall_response,
-             np.ascontiguousarray(arrays.masses), story, law, par, law_rows(contact),
-             story_fields, isolator_rows(arrays))
+             np.ascontiguousarray(which, dtype=np.int64), bands,
+             np.ascontiguousarray(building.masses), story, law, par, law_rows(contact),
+             story_fields, isolator_rows(building))
     model = kernel_arrays(model)
     return {"model": model, "memory": (u, v, story_state, state, isolator_state),
             "kept": (peaks["peak_total_accel"], peaks["peak_interstory_drift"],

@@ -122,9 +122,10 @@ def wall_friction(nx, w, comp, comp_y, limit, nrm_x, nrm_y):
 @njit(**LINK)
 def _member(shape, b, s0, s1, model, memory, peaks, hist):
     """Steps s0 <= step < s1 of member b (see the module docstring). shape = (levels, pairs,
-    circular, law_tag, isolator_tag); model = (ag, dt, op, which, wall, story_k, mass, story, law,
-    par, gaps, law_par, story_fields, isolator), what the run reads (op: the distinct buildings'
-    operators, which: each member's; isolator: the isolator law's rows);
+    circular, law_tag, isolator_tag); model = (ag, dt, op, which, story_k, mass, story, law, par,
+    gaps, law_par, story_fields, isolator), what the run reads: op, story_k, mass, story,
+    story_fields and isolator (the isolator law's rows) once per distinct building, member b's
+    at which[b]; law, par, gaps and law_par per member;
     memory = (u, v, f_story, story_state, state, wall_state, isolator_state), what it carries
     between chunks; peaks = (peak_level, peak_level_xy, peak_story, peak_story_xy, peak_iso_xy,
     peak_scalar, n_impacts, peak_wall, peak_velocity, peak_shear); hist = (hist_row, every, h_u,
@@ -140,7 +141,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     planar kernel's), and so is its isolator law's (isolator_tag). A member that has collapsed
     stops."""
     levels, pairs, circular, law_tag, isolator_tag = shape
-    (ag, dt, op, which, wall, story_k, mass, story, law, par, gaps_all, law_par, story_fields,
+    (ag, dt, op, which, story_k, mass, story, law, par, gaps_all, law_par, story_fields,
      isolator) = model
     u_all, v_all, f_story_all, story_state, state, wall_state, isolator_state = memory
     (peak_level, peak_level_xy, peak_story, peak_story_xy, peak_iso_xy, peak_scalar, n_impacts,
@@ -151,23 +152,25 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
         return
     n_levels = len(levels)
     n_st = n_levels - 1
-    ot = carray(data_pointer(op[which[b]]), (2 * n_levels, n_levels, 2))
-    w = wall[b]
-    ks = story_k[b]
-    m = mass[b]
+    own = which[b]  # the member's building
+    ot = carray(data_pointer(op[own]), (2 * n_levels, n_levels, 2))
+    w = ot[0]  # the wall responses: the operators' first columns (transposed: row)
+    ks = story_k[own]
+    m = mass[own]
     p = par[b]
     comp, comp_y = p[PLAN.compliance], p[PLAN.compliance_y]
     anisotropic = p[PLAN.anisotropic] != 0.0
     mu_wall = p[PLAN.mu_wall]
-    iso_row = carray(data_pointer(isolator[b]), (ISOLATOR_FIELDS,))
+    iso_row = carray(data_pointer(isolator[own]), (ISOLATOR_FIELDS,))
     stories_yield = p[PLAN.stories_yield] != 0.0
     cs, sn = p[PLAN.cos], p[PLAN.sin]
-    k_post, k_slip_story = story[b, PLAN_STORY.story_k_post], story[b, PLAN_STORY.story_k_slip]
-    f_limit_story = story[b, PLAN_STORY.story_f_limit]
-    collapse_square = story[b, PLAN_STORY.collapse_square]  # no root per step
-    gravity = story[b, PLAN_STORY.story_gravity]
+    k_post = story[own, PLAN_STORY.story_k_post]
+    k_slip_story = story[own, PLAN_STORY.story_k_slip]
+    f_limit_story = story[own, PLAN_STORY.story_f_limit]
+    collapse_square = story[own, PLAN_STORY.collapse_square]  # no root per step
+    gravity = story[own, PLAN_STORY.story_gravity]
     uniaxial = p[PLAN.stories_uniaxial] != 0.0
-    s_fields = carray(data_pointer(story_fields[which[b]]), (n_levels - 1, MAX_FIELDS))
+    s_fields = carray(data_pointer(story_fields[own]), (n_levels - 1, MAX_FIELDS))
     s_state = carray(data_pointer(story_state[b]), (n_levels - 1, 2, story_state.shape[3]))
     n_walls = law.shape[1]
     codes = law[b]
@@ -417,23 +420,22 @@ def plan_run(ag, dt, arrays, contacts, moat: str, scale, angle, history=None, ar
     size, n_levels = arrays.masses.shape
     levels = (0,) * n_levels
     pairs = (0,) * (2 * n_levels)  # x and y of every level, side by side on the stack
-    # the operators once per distinct building, member b's op_xy[which[b]]: a Building is
-    # both its directions, so the x arrays' distinct members key y's too (arrays_y's own
-    # may join two buildings alike along y only)
+    # what is the building's, once per distinct building, member b's at [which[b]]: a
+    # Building is both its directions, so the x arrays' distinct members key y's too
+    # (arrays_y's own may join two buildings alike along y only)
     first, which = distinct_members(arrays.distinct)
+    building = arrays.take(first)
     op = distinct_step_operators(arrays, dt, first)
     if arrays_y is None:  # isotropic: the x arrays serve y
-        op_y, story_y = op, arrays.story_k
+        op_y, story_y = op, building.story_k
     else:
-        op_y, story_y = distinct_step_operators(arrays_y, dt, first), arrays_y.story_k
-    wall_response, response_y = op[which, :, 0], op_y[which, :, 0]  # step_operators'
-    compliance, compliance_y = wall_response[:, 0].copy(), response_y[:, 0].copy()
-    # x and y side by side: the operators transposed (D, 2L, L, 2), the wall responses
-    # (B, L, 2), the story stiffnesses (B, L - 1, 2)
+        op_y, story_y = distinct_step_operators(arrays_y, dt, first), arrays_y.story_k[first]
+    compliance, compliance_y = op[which, 0, 0], op_y[which, 0, 0]  # step_operators'
+    # x and y side by side: the operators transposed (D, 2L, L, 2), the story stiffnesses
+    # (D, L - 1, 2)
     op_xy = np.ascontiguousarray(np.stack([op.transpose(0, 2, 1), op_y.transpose(0, 2, 1)],
                                           axis=-1))
-    wall_xy = np.ascontiguousarray(np.stack([wall_response, response_y], axis=-1))
-    story_xy = np.ascontiguousarray(np.stack([arrays.story_k, story_y], axis=-1))
+    story_xy = np.ascontiguousarray(np.stack([building.story_k, story_y], axis=-1))
     # cos and sin times the scale, as the NumPy loop forms them (the same bits)
     par = packed(PLAN, arrays, size, compliance=compliance, compliance_y=compliance_y,
                  anisotropic=arrays_y is not None, mu_wall=0.0 if mu_wall is None else mu_wall,
@@ -445,8 +447,8 @@ def plan_run(ag, dt, arrays, contacts, moat: str, scale, angle, history=None, ar
     gaps = np.ascontiguousarray(np.stack([c.clear_gap for c in contacts], axis=1),
                                 dtype=np.float64)
     law_par = np.ascontiguousarray(np.stack([law_rows(c) for c in contacts], axis=1))
-    story = packed(PLAN_STORY, arrays, collapse_square=arrays.collapse_drift**2)
-    story_fields = np.ascontiguousarray(arrays.story_fields[first], dtype=np.float64)
+    story = packed(PLAN_STORY, building, collapse_square=building.collapse_drift**2)
+    story_fields = np.ascontiguousarray(building.story_fields, dtype=np.float64)
     n_dirs = len(DIRECTIONS)
     story_state = story_states(arrays, first, n_dirs)  # each story's law along x and y
     u, v = np.zeros((size, n_levels, n_dirs)), np.zeros((size, n_levels, n_dirs))
@@ -459,9 +461,9 @@ def plan_run(ag, dt, arrays, contacts, moat: str, scale, angle, history=None, ar
     hist_row, every, rows, inverse = history_rows(history, size)
     hist = empty_plan_history(rows, n_steps, every, dt, n_levels)
     model = (np.ascontiguousarray(ag, dtype=np.float64), float(dt), op_xy,
-             np.ascontiguousarray(which, dtype=np.int64), wall_xy, story_xy,
-             np.ascontiguousarray(arrays.masses), story, law, par, gaps, law_par, story_fields,
-             isolator_rows(arrays))
+             np.ascontiguousarray(which, dtype=np.int64), story_xy,
+             np.ascontiguousarray(building.masses), story, law, par, gaps, law_par,
+             story_fields, isolator_rows(building))
     model = kernel_arrays(model)
     isolator_state = np.zeros((size, ISOLATOR_STATE_XY))  # every law's state is zero at rest
     memory = (u, v, f_story, story_state, state, wall_state, isolator_state)

@@ -62,24 +62,25 @@ def test_the_archive_reads_back_every_number_and_attribute(tmp_path, small_thres
     assert back.attrs == ds.attrs
 
 
-def test_a_variable_of_several_chunks_reads_back_on_any_number_of_threads(tmp_path):
+def test_a_variable_of_several_chunks_reads_back_on_any_number_of_threads(tmp_path,
+                                                                         small_threshold):
     data = np.random.default_rng(5).standard_normal((3, 41, 17))
-    ds = xr.Dataset({"x": (("a", "b", "c"), data)})
+    ds = xr.Dataset({"x": (("a", "b", "c"), data, {"units": "m"})})  # no coordinates
     for threads in (1, 3):
         path = tmp_path / f"t{threads}.nc"
-        shape = chunk_shape(data.shape, 8, target=1000)
-        parallel_deflate.placeholders(ds, {"x": shape}).to_netcdf(
-            path, encoding={"x": {"zlib": True, "complevel": 1, "shuffle": True,
-                                  "chunksizes": shape}})
-        assert not xr.open_dataset(path)["x"].values.any()  # zeros until the chunks land
-        write_chunks(path, ds, ["x"], threads=threads)
-        np.testing.assert_array_equal(xr.open_dataset(path)["x"].values, data)
+        parallel_deflate.write(ds, path, {"x": {"zlib": True, "complevel": 1}},
+                               threads=threads)
+        with h5py.File(path, "r") as f:
+            assert (f["x"].chunks, f["x"].compression_opts) == ((1, 15, 17), 1)  # 41 = 15+15+11
+        back = xr.open_dataset(path)
+        np.testing.assert_array_equal(back["x"].values, data)
+        assert back["x"].attrs == {"units": "m"} and back.sizes == ds.sizes
 
 
 def test_a_variable_not_stored_deflated_is_refused(tmp_path):
     ds = xr.Dataset({"x": (("a",), np.arange(1000.0))})
     ds.to_netcdf(tmp_path / "raw.nc", encoding={"x": {"chunksizes": (100,)}})
-    with pytest.raises(ValueError, match="x: stored as float64 .*expected the placeholder"):
+    with pytest.raises(ValueError, match="x: stored as float64 .*expected the declaration"):
         write_chunks(tmp_path / "raw.nc", ds, ["x"])
 
 
