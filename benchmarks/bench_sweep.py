@@ -2,7 +2,7 @@
 and the host's share of a sweep of a million members.
 
     python benchmarks/bench_sweep.py [--seconds 20] [--members 64] [--workers 0 2]
-    python benchmarks/bench_sweep.py --million [--repeats 3]
+    python benchmarks/bench_sweep.py --million [--repeats 3] [--batch-size 1000000]
 
 A synthetic record (a 1.5 s sine under a sin^2 envelope, 0.5 g) at the engine's default dt,
 bumpers on a gap grid; each configuration runs once. The engine's time step has a fixed cost
@@ -13,7 +13,8 @@ workers run out of batches.
 (100 steps), written to a NetCDF archive through its work folder, in this process: what the
 sweep costs besides its kernel (the members, contacts, checks, work files, the archive), the
 kernel's part printed beside (the engine's own timing of its batches). Medians of --repeats
-runs; writes benchmarks/results/bench_sweep_million.json.
+runs; writes benchmarks/results/bench_sweep_million.json. --batch-size 1000000: the members in
+one engine call, as on a GPU (the sweep's default batches are a CPU's).
 """
 from __future__ import annotations
 
@@ -23,7 +24,7 @@ import time
 import numpy as np
 
 
-def million(repeats: int) -> None:
+def million(repeats: int, batch_size: int | None = None) -> None:
     """The --million benchmark (module docstring)."""
     import json
     import statistics
@@ -53,11 +54,13 @@ def million(repeats: int) -> None:
             start = time.perf_counter()
             pipeline.sweep([record], gap=list(np.linspace(0.05, 0.50, 1000)),
                            wall_k=list(np.geomspace(1e9, 1e10, 1000)), impact="linear",
-                           dt=5e-4, out=Path(folder) / f"s{i}.nc", quiet=True)
+                           dt=5e-4, out=Path(folder) / f"s{i}.nc", quiet=True,
+                           batch_size=batch_size)
             walls.append(time.perf_counter() - start)
     batches.simulate_batch = real
     wall, engine_s = statistics.median(walls[1:]), statistics.median(kernel[1:])
-    out = {"members": 10**6, "steps": 100, "repeats": repeats, "wall_s": wall,
+    out = {"members": 10**6, "steps": 100, "repeats": repeats, "batch_size": batch_size,
+           "wall_s": wall,
            "engine_s": engine_s, "host_s": wall - engine_s}
     print(f"10^6 members x 100 steps: {wall:.2f} s end to end, {engine_s:.2f} s in the "
           f"engine's batches, {wall - engine_s:.2f} s the rest (medians of {repeats})")
@@ -74,6 +77,8 @@ def main(argv=None) -> None:
     p.add_argument("--million", action="store_true",
                    help="the host's share of a 10^6-member sweep (module docstring)")
     p.add_argument("--repeats", type=int, default=3, help="--million: runs timed")
+    p.add_argument("--batch-size", type=int, default=None,
+                   help="--million: members an engine call (default: the sweep's)")
     p.add_argument("--seconds", type=float, default=20.0, help="record length, s")
     p.add_argument("--members", type=int, default=64, help="grid members per record")
     p.add_argument("--records", type=int, default=2, help="number of records")
@@ -81,7 +86,7 @@ def main(argv=None) -> None:
     p.add_argument("--batch-sizes", type=int, nargs="+", default=[1, 16, 512])
     args = p.parse_args(argv)
     if args.million:
-        million(args.repeats)
+        million(args.repeats, args.batch_size)
         return
 
     dt = 0.01

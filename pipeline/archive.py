@@ -12,7 +12,6 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import dask
 import numpy as np
 import xarray as xr
 
@@ -29,9 +28,9 @@ from engine.results import (
     level_axes,
 )
 
+from . import parallel_deflate
 from .grid import Grid, baseline_text, swept_parameter
 from .members import EXCITATION_PARAMETERS, ISOLATOR_PARAMS, LISTED_PARAMS
-from .parallel_deflate import chunk_shape, parallel_variables, placeholders, write_chunks
 from .provenance import (
     ARCHIVE_VERSION,
     ARCHIVE_VERSION_ATTRIBUTE,
@@ -361,19 +360,9 @@ def to_netcdf(ds: xr.Dataset, path) -> None:
     see write_netcdf."""
     encoding = {name: COMPRESSION for name, var in ds.data_vars.items()
                 if var.dtype.kind in "fiu"}
-    large = parallel_variables(ds)
-    if large:
-        chunks = {name: chunk_shape(ds[name].shape, ds[name].dtype.itemsize)
-                  for name in large}
-        parallel = {**encoding, **{name: {**COMPRESSION, "shuffle": True, "chunksizes": shape}
-                                   for name, shape in chunks.items()}}
+    if parallel_deflate.parallel_variables(ds):
         try:
-            # the placeholders' zeros computed here, whatever scheduler the caller's dask
-            # has (a cluster's workers must not write this machine's file)
-            with dask.config.set(scheduler="synchronous"):
-                placeholders(ds, chunks).to_netcdf(path, engine="netcdf4", format="NETCDF4",
-                                                   encoding=parallel)
-            write_chunks(path, ds, large)
+            parallel_deflate.write(ds, path, encoding)
             return
         except (ImportError, OSError, ValueError):
             pass  # h5py missing or unable to write this file: netCDF4 writes it all, slower

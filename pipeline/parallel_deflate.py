@@ -6,9 +6,9 @@ sweep's time beside its kernel on a GPU), while the machine's other cores waited
 are independent. Here each is shuffled and deflated as HDF5's shuffle and deflate filters do
 (the filters netCDF4 declares on the variable, so every reader inflates them as its own) in a
 pool of threads (zlib releases the GIL while it compresses), and stored as it is (HDF5's
-direct chunk write, through h5py). The file stays netCDF4's own: xarray writes it first with
-the large variables as zeros (a chunk of zeros deflates to a few bytes), whose chunks the
-compressed ones then replace. The numbers read back are the array's, bit for bit
+direct chunk write, through h5py). The file stays netCDF4's own: xarray writes the rest,
+netCDF4 declares the large variables as xarray would (`write`), and only their chunks are
+stored past netCDF4. The numbers read back are the array's, bit for bit
 (tests/pipeline/test_parallel_deflate.py).
 """
 from __future__ import annotations
@@ -16,6 +16,7 @@ from __future__ import annotations
 import functools
 import itertools
 import os
+import tempfile
 import zlib
 from concurrent.futures import ThreadPoolExecutor
 
@@ -63,15 +64,45 @@ def chunk_shape(shape: tuple[int, ...], itemsize: int,
     return tuple(chunks)
 
 
-def placeholders(ds: xr.Dataset, chunks: dict[str, tuple[int, ...]]) -> xr.Dataset:
-    """`ds` with each variable of `chunks` replaced by lazy zeros of its shape, type and
-    attributes (dask, chunked as it will be stored): what xarray writes in place of the
-    numbers `write_chunks` stores."""
-    import dask.array as da
+def write(ds: xr.Dataset, path, encoding: dict, threads: int | None = None) -> None:
+    """Write `ds` to the netCDF4 file `path` (not atomic), its `parallel_variables` compressed
+    on `threads` threads (default: every core), the others by xarray with `encoding` (their
+    zlib), the parallel ones at its zlib level (default 4).
 
-    return ds.assign({name: (ds[name].dims, da.zeros(ds[name].shape, dtype=ds[name].dtype,
-                                                      chunks=shape), ds[name].attrs)
-                      for name, shape in chunks.items()})
+    xarray writes the dataset without the large variables; each is then declared as xarray
+    declares it (its attributes and fill value are read from a one-element copy xarray writes
+    beside), chunked (chunk_shape), shuffled and deflated, and its chunks stored
+    (write_chunks). ImportError without h5py, OSError or ValueError where the file cannot be
+    written so: the caller writes it all with xarray instead."""
+    import netCDF4
+
+    large = parallel_variables(ds)
+    rest = {name: value for name, value in encoding.items() if name not in large}
+    ds.drop_vars(large).to_netcdf(path, engine="netcdf4", format="NETCDF4", encoding=rest)
+    with tempfile.TemporaryDirectory() as folder:
+        twin_path = os.path.join(folder, "twin.nc")
+        twin = ds[large].isel({dim: slice(0, 1) for name in large for dim in ds[name].dims})
+        twin.to_netcdf(twin_path, engine="netcdf4", format="NETCDF4")
+        with netCDF4.Dataset(twin_path) as twin_file, netCDF4.Dataset(path, "r+") as nc:
+            for name in large:
+                _declare(nc, twin_file[name], ds, name,
+                         int(encoding.get(name, {}).get("complevel", 4)))
+    write_chunks(path, ds, large, threads)
+
+
+def _declare(nc, twin, ds: xr.Dataset, name: str, level: int) -> None:
+    """Declare variable `name` of `ds` in the open netCDF4 file `nc` as xarray declared its
+    one-element `twin` (type, dimensions, attributes, fill value), chunked and deflated at
+    `level` with HDF5's shuffle; no data written."""
+    for dim in twin.dimensions:
+        if dim not in nc.dimensions:  # a dimension only the large variables have
+            nc.createDimension(dim, ds.sizes[dim])
+    attrs = {key: twin.getncattr(key) for key in twin.ncattrs()}
+    variable = nc.createVariable(name, twin.datatype, twin.dimensions, zlib=True,
+                                 complevel=level, shuffle=True,
+                                 chunksizes=chunk_shape(ds[name].shape, ds[name].dtype.itemsize),
+                                 fill_value=attrs.pop("_FillValue", None))
+    variable.setncatts(attrs)
 
 
 def _shuffled_deflate(block: np.ndarray, level: int) -> bytes:
@@ -101,9 +132,9 @@ def _cores() -> int:
 
 def write_chunks(path, ds: xr.Dataset, names, threads: int | None = None) -> None:
     """Store the numbers of the variables `names` of `ds` into the netCDF4 file `path`, which
-    already holds them (placeholders), chunked and declared with HDF5's shuffle and deflate
-    filters: every chunk compressed on `threads` threads (default: every core), then
-    written as it is. ValueError if a variable's storage in the file is not that."""
+    declares them (`write`), chunked, with HDF5's shuffle and deflate filters: every chunk
+    compressed on `threads` threads (default: every core), then written as it is. ValueError
+    if a variable's storage in the file is not that."""
     import h5py
 
     with h5py.File(path, "r+") as f, \
@@ -114,7 +145,7 @@ def write_chunks(path, ds: xr.Dataset, names, threads: int | None = None) -> Non
                     or stored.dtype != data.dtype or stored.shape != data.shape:
                 raise ValueError(f"{name}: stored as {stored.dtype} {stored.shape}, chunks "
                                  f"{stored.chunks}, {stored.compression}, shuffle "
-                                 f"{stored.shuffle}; expected the placeholder of a "
+                                 f"{stored.shuffle}; expected the declaration of a "
                                  f"{data.dtype} {data.shape} array, shuffled and deflated")
             level, shape = stored.compression_opts, stored.chunks
             origins = list(itertools.product(*(range(0, n, c)

@@ -90,7 +90,7 @@ def test_data_flows_one_way():
 PIPELINE_LEVELS = (
     ("records and the shared leaves", ("pipeline.records", "pipeline.errors", "pipeline.checks",
                                        "pipeline.writing", "pipeline.building_file",
-                                       "pipeline.progress")),
+                                       "pipeline.progress", "pipeline.parallel_deflate")),
     ("motions", ("pipeline.motions",)),
     ("grid and execute", ("pipeline.members", "pipeline.grid", "pipeline.listed",
                           "pipeline.provenance", "pipeline.cluster", "pipeline.execute")),

@@ -13,9 +13,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..building import distinct_members
 from ..isolators.registry import BY_CODE, MAX_FIELDS, MAX_STATE, MAX_STATE_XY
 from ..layout import appended, columns
 from ..results import PEAKS, PLAN_PEAKS, TORSION_PEAKS
+from ..scheme import distinct_step_operators
 from ..stories import registry as story_registry
 
 PLANAR = columns("Planar", "compliance", "stories_nonlinear", "gap", "scale", "capacity")
@@ -114,6 +116,15 @@ def isolator_rows(arrays, bearings: int = 1) -> np.ndarray:
                 column = getattr(law.ROW, name)
                 rows[mine, column] = rows[mine, column] / bearings
     return rows
+
+
+def per_building(arrays, dt: float):
+    """What is a building's, packed once per distinct building (a sweep's 10^6 members share
+    one): (first, which, building, op), one member of each distinct building (D,), each
+    member's building among them (B,), their BuildingArrays (arrays.take(first)) and step
+    operators (D, L, 2L) (scheme.distinct_step_operators). Member b's are at which[b]."""
+    first, which = distinct_members(arrays.distinct)
+    return first, which, arrays.take(first), distinct_step_operators(arrays, dt, first)
 
 
 def story_states(arrays, first, directions: int = 0) -> np.ndarray:

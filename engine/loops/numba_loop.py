@@ -21,11 +21,10 @@ import numpy as np
 from numba import carray, njit
 from numba.np.unsafe.ndarray import to_fixed_tuple
 
-from ..building import distinct_members
 from ..impact.contact import law_rows
 from ..impact.registry import ROW_WIDTH
 from ..results import MODE, empty_peaks, residuals
-from ..scheme import banded_operators, distinct_step_operators
+from ..scheme import banded_operators
 from ..stories.registry import MAX_FIELDS
 from . import compiled, layout
 from .compiled import (
@@ -52,6 +51,7 @@ from .layout import (
     isolator_rows,
     linear_story_shear,
     packed,
+    per_building,
     story_states,
 )
 from .numba_support import (
@@ -107,9 +107,8 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     member's story law and isolator law (numba_support.law_tag), so that they are constants too and
     their physics alone is compiled into this kernel: one compilation per number of levels, story
     law and isolator law. model = (ag, dt, op, which, bands, mass, story, law, par, law_par,
-    story_fields, isolator), what the run reads: op, bands, mass, story, story_fields and
-    isolator (the isolator law's rows) once per distinct building, member b's at which[b];
-    law, par and law_par per member; memory = (u, v,
+    story_fields, isolator), what the run reads, its building's at which[b] (layout.per_building;
+    isolator: the isolator law's rows); memory = (u, v,
     story_state, state, isolator_state), what it carries between chunks; peaks = (peak_level,
     peak_story, peak_velocity, peak_shear, peak_scalar, n_impacts); hist = (hist_row, every,
     h_u, h_acc, h_f, h_d, h_fi)
@@ -346,11 +345,7 @@ def planar_run(ag, dt, arrays, contact, history, scale) -> dict:
     size = len(contact)
     n_levels = arrays.masses.shape[1]
     n_steps = ag.size
-    # what is the building's, once per distinct building (a sweep's members: one), member
-    # b's at [which[b]]: a batch of 10^6 packs and copies one
-    first, which = distinct_members(arrays.distinct)
-    building = arrays.take(first)
-    op = distinct_step_operators(arrays, dt, first)
+    first, which, building, op = per_building(arrays, dt)
     compliance = op[which, 0, 0]  # step_operators' compliance
     bands = banded_operators(building, dt)
     if bands is None:

@@ -23,7 +23,6 @@ from pathlib import Path
 import numpy as np
 from numba import carray, njit
 
-from ..building import distinct_members
 from ..impact.contact import law_rows
 from ..results import (
     DIRECTIONS,
@@ -63,6 +62,7 @@ from .layout import (
     isolator_rows,
     linear_story_shear,
     packed,
+    per_building,
     story_states,
 )
 from .numba_support import (
@@ -123,9 +123,8 @@ def wall_friction(nx, w, comp, comp_y, limit, nrm_x, nrm_y):
 def _member(shape, b, s0, s1, model, memory, peaks, hist):
     """Steps s0 <= step < s1 of member b (see the module docstring). shape = (levels, pairs,
     circular, law_tag, isolator_tag); model = (ag, dt, op, which, story_k, mass, story, law, par,
-    gaps, law_par, story_fields, isolator), what the run reads: op, story_k, mass, story,
-    story_fields and isolator (the isolator law's rows) once per distinct building, member b's
-    at which[b]; law, par, gaps and law_par per member;
+    gaps, law_par, story_fields, isolator), what the run reads, its building's at which[b]
+    (layout.per_building; isolator: the isolator law's rows);
     memory = (u, v, f_story, story_state, state, wall_state, isolator_state), what it carries
     between chunks; peaks = (peak_level, peak_level_xy, peak_story, peak_story_xy, peak_iso_xy,
     peak_scalar, n_impacts, peak_wall, peak_velocity, peak_shear); hist = (hist_row, every, h_u,
@@ -164,11 +163,10 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     iso_row = carray(data_pointer(isolator[own]), (ISOLATOR_FIELDS,))
     stories_yield = p[PLAN.stories_yield] != 0.0
     cs, sn = p[PLAN.cos], p[PLAN.sin]
-    k_post = story[own, PLAN_STORY.story_k_post]
-    k_slip_story = story[own, PLAN_STORY.story_k_slip]
-    f_limit_story = story[own, PLAN_STORY.story_f_limit]
-    collapse_square = story[own, PLAN_STORY.collapse_square]  # no root per step
-    gravity = story[own, PLAN_STORY.story_gravity]
+    rows = story[own]
+    k_post, k_slip_story = rows[PLAN_STORY.story_k_post], rows[PLAN_STORY.story_k_slip]
+    f_limit_story, gravity = rows[PLAN_STORY.story_f_limit], rows[PLAN_STORY.story_gravity]
+    collapse_square = rows[PLAN_STORY.collapse_square]  # no root per step
     uniaxial = p[PLAN.stories_uniaxial] != 0.0
     s_fields = carray(data_pointer(story_fields[own]), (n_levels - 1, MAX_FIELDS))
     s_state = carray(data_pointer(story_state[b]), (n_levels - 1, 2, story_state.shape[3]))
@@ -420,19 +418,12 @@ def plan_run(ag, dt, arrays, contacts, moat: str, scale, angle, history=None, ar
     size, n_levels = arrays.masses.shape
     levels = (0,) * n_levels
     pairs = (0,) * (2 * n_levels)  # x and y of every level, side by side on the stack
-    # what is the building's, once per distinct building, member b's at [which[b]]: a
-    # Building is both its directions, so the x arrays' distinct members key y's too
-    # (arrays_y's own may join two buildings alike along y only)
-    first, which = distinct_members(arrays.distinct)
-    building = arrays.take(first)
-    op = distinct_step_operators(arrays, dt, first)
-    if arrays_y is None:  # isotropic: the x arrays serve y
-        op_y, story_y = op, building.story_k
-    else:
-        op_y, story_y = distinct_step_operators(arrays_y, dt, first), arrays_y.story_k[first]
+    # a Building is both its directions: the x arrays' distinct members key y's too
+    first, which, building, op = per_building(arrays, dt)
+    op_y, story_y = (op, building.story_k) if arrays_y is None else (  # isotropic: x's serve y
+        distinct_step_operators(arrays_y, dt, first), arrays_y.story_k[first])
     compliance, compliance_y = op[which, 0, 0], op_y[which, 0, 0]  # step_operators'
-    # x and y side by side: the operators transposed (D, 2L, L, 2), the story stiffnesses
-    # (D, L - 1, 2)
+    # x and y side by side: operators transposed (D, 2L, L, 2), story stiffnesses (D, L - 1, 2)
     op_xy = np.ascontiguousarray(np.stack([op.transpose(0, 2, 1), op_y.transpose(0, 2, 1)],
                                           axis=-1))
     story_xy = np.ascontiguousarray(np.stack([building.story_k, story_y], axis=-1))
