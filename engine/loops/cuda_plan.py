@@ -79,11 +79,10 @@ def _kernel(n_levels: int, circular: bool, walls: int, story_code: int, isolator
         w = ot[0]  # the wall responses: the operators' first row (numba_plan.plan_run)
         m = mass[own]
         ks = story_k[own]
-        k_post = story[own, PLAN_STORY.story_k_post]
-        k_slip_story = story[own, PLAN_STORY.story_k_slip]
-        f_limit_story = story[own, PLAN_STORY.story_f_limit]
-        collapse_square = story[own, PLAN_STORY.collapse_square]
-        gravity = story[own, PLAN_STORY.story_gravity]
+        rows = story[own]
+        k_post, k_slip_story = rows[PLAN_STORY.story_k_post], rows[PLAN_STORY.story_k_slip]
+        f_limit_story, gravity = rows[PLAN_STORY.story_f_limit], rows[PLAN_STORY.story_gravity]
+        collapse_square = rows[PLAN_STORY.collapse_square]
         s_fields = story_fields[own]
         s_state = cuda.local.array((stories, 2, n_state), float64)
         for i in range(n_st):

@@ -108,8 +108,8 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     their physics alone is compiled into this kernel: one compilation per number of levels, story
     law and isolator law. model = (ag, dt, op, which, bands, mass, story, law, par, law_par,
     story_fields, isolator), what the run reads, its building's at which[b] (layout.per_building;
-    isolator: the isolator law's rows); memory = (u, v,
-    story_state, state, isolator_state), what it carries between chunks; peaks = (peak_level,
+    isolator: the isolator law's rows); memory = (u, v, story_state, state, isolator_state),
+    what it carries between chunks; peaks = (peak_level,
     peak_story, peak_velocity, peak_shear, peak_scalar, n_impacts); hist = (hist_row, every,
     h_u, h_acc, h_f, h_d, h_fi)
     (run_simulation builds them; layout.py names their columns). Sums run in the order of the scalar
@@ -132,7 +132,8 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     m = mass[own]
     k_story, gravity = story[own, PLANAR_STORY.story_k], story[own, PLANAR_STORY.story_gravity]
     collapse_drift = story[own, PLANAR_STORY.collapse_drift]
-    # The story law's constants and state as views of a shape known when the kernel compiles.
+    # The story law's constants and state as views: the constants' width known when the kernel
+    # compiles, the state's the batch's widest law's (layout.story_states).
     s_fields = carray(data_pointer(story_fields[own]), (n_levels - 1, MAX_FIELDS))
     s_state = carray(data_pointer(story_state[b]), (n_levels - 1, story_state.shape[2]))
     p = par[b]
