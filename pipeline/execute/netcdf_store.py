@@ -219,12 +219,18 @@ def _by_member(context: str, members: np.ndarray, peaks: dict) -> dict:
 def taken(members: np.ndarray, which: np.ndarray | slice) -> np.ndarray:
     """members[which]: a view when `which` is a slice or a run of consecutive indices (a fresh
     grid's batches), instead of a copy of records of 344 bytes each."""
+    return members[as_slice(which)]
+
+
+def as_slice(which: np.ndarray | slice) -> np.ndarray | slice:
+    """`which` as a slice when it is a run of consecutive indices (a fresh grid's batches: an
+    array indexed by it is a view, and assigned through it a block copy), else itself."""
     if isinstance(which, slice):
-        return members[which]
+        return which
     if which.size and which[-1] - which[0] + 1 == which.size \
             and np.all(np.diff(which) == 1):
-        return members[which[0]:which[-1] + 1]
-    return members[which]
+        return slice(int(which[0]), int(which[-1]) + 1)
+    return which
 
 
 def check_work_dir(work_dir) -> Path | None:
@@ -323,8 +329,9 @@ class NetCDFStore:
             self.written.append(self.work.save(
                 batch.key, self.contexts[batch.record],
                 taken(self.grid.members_of(batch.record), batch.members), peaks))
+        where = as_slice(batch.members)
         for name, value in peaks.items():
-            self.results[batch.record][name][batch.members] = value
+            self.results[batch.record][name][where] = value
         for k, i in enumerate(batch.members if self.copies else ()):
             for copy in self.copies.get((batch.record, int(i)), ()):
                 for name, value in peaks.items():

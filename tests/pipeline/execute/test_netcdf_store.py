@@ -135,6 +135,9 @@ def test_a_batch_is_its_members_whether_a_view_or_a_copy():
     np.testing.assert_array_equal(netcdf_store.taken(members, scattered), members[scattered])
     assert netcdf_store.taken(members, np.arange(0)).size == 0
     assert np.shares_memory(netcdf_store.taken(members, slice(2, 6)), members)
+    assert netcdf_store.as_slice(run) == slice(2, 6)  # accept copies a batch's peaks in a block
+    assert netcdf_store.as_slice(scattered) is scattered
+    assert netcdf_store.as_slice(np.array([3, 2])).tolist() == [3, 2]  # not a run upwards
     expected = hashlib.sha256(b"context" + members[run].tobytes()).hexdigest()
     assert batch_key("context", view) == batch_key("context", members[run].copy()) == expected
     assert batch_key("context", members[::2]) == \
