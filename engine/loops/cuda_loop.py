@@ -122,7 +122,7 @@ def _kernel(n_levels: int, story_code: int, isolator_code: int, banded: bool):
         law_row = cuda.local.array(ROW_WIDTH, float64)
         for j in range(ROW_WIDTH):
             law_row[j] = law_par[b, j]
-        comp = par[b, PLANAR.compliance]
+        comp = w[0]  # the compliance: the wall response at the slab
         gap = par[b, PLANAR.gap]
         nonlinear = par[b, PLANAR.stories_nonlinear] != 0.0
         scale = par[b, PLANAR.scale]

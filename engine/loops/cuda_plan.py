@@ -89,7 +89,7 @@ def _kernel(n_levels: int, circular: bool, walls: int, story_code: int, isolator
             for e in range(2):
                 for j in range(n_state):
                     s_state[i, e, j] = story_state[b, i, e, j]
-        comp, comp_y = par[b, PLAN.compliance], par[b, PLAN.compliance_y]
+        comp, comp_y = w[0, 0], w[0, 1]  # the compliances: the wall responses at the slab
         anisotropic = par[b, PLAN.anisotropic] != 0.0
         mu_wall = par[b, PLAN.mu_wall]
         stories_yield = par[b, PLAN.stories_yield] != 0.0

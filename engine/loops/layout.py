@@ -20,17 +20,17 @@ from ..results import PEAKS, PLAN_PEAKS, TORSION_PEAKS
 from ..scheme import distinct_step_operators
 from ..stories import registry as story_registry
 
-PLANAR = columns("Planar", "compliance", "stories_nonlinear", "gap", "scale", "capacity")
-"""numba_loop's per-member floats: the slab's compliance to a wall force (dt^2 / m, m/N), 1.0
-where the stories follow a nonlinear law, the clear gap (m), the record's scale and the
-isolator's displacement capacity (m, inf: none)."""
-PLAN = columns("Plan", "compliance", "compliance_y", "anisotropic", "mu_wall",
-               "stories_yield", "stories_uniaxial", "cos", "sin", "capacity_square")
-"""numba_plan's per-member floats: the compliances along x and y (m/N), 1.0 where the
-building differs along y, the slab-wall friction coefficient, 1.0 where the stories yield in
-plan (a slip element) or follow a uniaxial law along each axis, and the record's direction
-(cos, sin) times its scale, and the isolator's displacement capacity squared (m^2: no root per
-step)."""
+PLANAR = columns("Planar", "stories_nonlinear", "gap", "scale", "capacity")
+"""numba_loop's per-member floats: 1.0 where the stories follow a nonlinear law, the clear gap
+(m), the record's scale and the isolator's displacement capacity (m, inf: none). The slab's
+compliance to a wall force is its building's: the wall response's first entry."""
+PLAN = columns("Plan", "anisotropic", "mu_wall", "stories_yield", "stories_uniaxial", "cos",
+               "sin", "capacity_square")
+"""numba_plan's per-member floats: 1.0 where the building differs along y, the slab-wall
+friction coefficient, 1.0 where the stories yield in plan (a slip element) or follow a uniaxial
+law along each axis, the record's direction (cos, sin) times its scale, and the isolator's
+displacement capacity squared (m^2: no root per step). The compliances along x and y are the
+building's: its wall responses' first entries."""
 TORSION = columns("Torsion", "cos", "sin", "mu_wall", "capacity_square")
 """numba_torsion's per-member floats: the record's direction (cos, sin) times its scale, the
 slab-wall friction coefficient, a bearing's displacement capacity squared (m^2)."""

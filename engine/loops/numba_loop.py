@@ -137,7 +137,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     s_fields = carray(data_pointer(story_fields[own]), (n_levels - 1, MAX_FIELDS))
     s_state = carray(data_pointer(story_state[b]), (n_levels - 1, story_state.shape[2]))
     p = par[b]
-    comp = p[PLANAR.compliance]
+    comp = w[0]  # the compliance: the wall response at the slab
     gap = p[PLANAR.gap]
     iso_row = carray(data_pointer(isolator[own]), (ISOLATOR_FIELDS,))
     nonlinear = p[PLANAR.stories_nonlinear] != 0.0
@@ -332,9 +332,9 @@ def threads() -> int:
     return numba.get_num_threads()
 
 
-def member_parameters(arrays, contact, compliance, scale) -> np.ndarray:
+def member_parameters(arrays, contact, scale) -> np.ndarray:
     """(B, len(PLANAR)) float matrix of every per-member scalar the step reads."""
-    return packed(PLANAR, arrays, len(contact), compliance=compliance,
+    return packed(PLANAR, arrays, len(contact),
                   stories_nonlinear=~arrays.story_linear, gap=contact.clear_gap, scale=scale,
                   capacity=arrays.isolator_capacity)
 
@@ -347,11 +347,10 @@ def planar_run(ag, dt, arrays, contact, history, scale) -> dict:
     n_levels = arrays.masses.shape[1]
     n_steps = ag.size
     first, which, building, op = per_building(arrays, dt)
-    compliance = op[which, 0, 0]  # step_operators' compliance
     bands = banded_operators(building, dt)
     if bands is None:
         bands = np.zeros((first.size, 5, 0))
-    par = member_parameters(arrays, contact, compliance, scale)
+    par = member_parameters(arrays, contact, scale)
     law = np.ascontiguousarray(contact.law, dtype=np.int64)
     u, v = np.zeros((size, n_levels)), np.zeros((size, n_levels))
     # Per story PLANAR_STORY; the story law's constants and state.

@@ -157,7 +157,7 @@ def _member(shape, b, s0, s1, model, memory, peaks, hist):
     ks = story_k[own]
     m = mass[own]
     p = par[b]
-    comp, comp_y = p[PLAN.compliance], p[PLAN.compliance_y]
+    comp, comp_y = w[0, 0], w[0, 1]  # the compliances: the wall responses at the slab
     anisotropic = p[PLAN.anisotropic] != 0.0
     mu_wall = p[PLAN.mu_wall]
     iso_row = carray(data_pointer(isolator[own]), (ISOLATOR_FIELDS,))
@@ -422,14 +422,13 @@ def plan_run(ag, dt, arrays, contacts, moat: str, scale, angle, history=None, ar
     first, which, building, op = per_building(arrays, dt)
     op_y, story_y = (op, building.story_k) if arrays_y is None else (  # isotropic: x's serve y
         distinct_step_operators(arrays_y, dt, first), arrays_y.story_k[first])
-    compliance, compliance_y = op[which, 0, 0], op_y[which, 0, 0]  # step_operators'
     # x and y side by side: operators transposed (D, 2L, L, 2), story stiffnesses (D, L - 1, 2)
     op_xy = np.ascontiguousarray(np.stack([op.transpose(0, 2, 1), op_y.transpose(0, 2, 1)],
                                           axis=-1))
     story_xy = np.ascontiguousarray(np.stack([building.story_k, story_y], axis=-1))
     # cos and sin times the scale, as the NumPy loop forms them (the same bits)
-    par = packed(PLAN, arrays, size, compliance=compliance, compliance_y=compliance_y,
-                 anisotropic=arrays_y is not None, mu_wall=0.0 if mu_wall is None else mu_wall,
+    par = packed(PLAN, arrays, size, anisotropic=arrays_y is not None,
+                 mu_wall=0.0 if mu_wall is None else mu_wall,
                  stories_yield=arrays.story_yields, stories_uniaxial=arrays.story_uniaxial,
                  cos=np.cos(angle) * scale, sin=np.sin(angle) * scale,
                  capacity_square=arrays.isolator_capacity**2)
